@@ -1,0 +1,176 @@
+// A PID whose gains a fuzzy supervisor retunes every tick (sections 5.1-5.3, Eqs. 6-8).
+//
+// Each update:
+//   1. e = setpoint - measurement and its rate ec (the measured velocities, Eq. 2 and section
+//      5.1, or the difference of e over dt, following the PID's DerivativeSource);
+//   2. the supervisor sees the scaled inputs (Ke e, Kec ec) -- the physical error mapped onto the
+//      fuzzy universe; outside it the shoulder sets saturate;
+//   3. it returns (dKp, dKi, dKd), multiplied by the output scales (Sp, Si, Sd);
+//   4. the gains become, by GainUpdate,
+//        Absolute:     K = K0 + S dK                    (Eq. 6, memoryless)
+//        Incremental:  K = K_prev + S dK                (each tick adds to the last gains)
+//      then are clamped into [gain_min, gain_max] (by default [0, inf): no negative gain);
+//   5. the inner PID runs with the new gains (Eq. 7).
+// A fault (NaN/inf input, bad dt) is detected before step 2 and leaves gains and PID untouched.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "fuzzypid/paper.hpp"
+#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/scalar.hpp"
+#include "fuzzypid/status.hpp"
+
+namespace fuzzypid::control {
+
+enum class GainUpdate : std::uint8_t {
+  Absolute,     // K = K0 + dK  (Eq. 6)
+  Incremental,  // K_k = K_{k-1} + dK
+};
+
+[[nodiscard]] constexpr const char* to_string(GainUpdate g) noexcept {
+  return g == GainUpdate::Absolute ? "absolute" : "incremental";
+}
+
+template <class Scalar>
+struct FuzzyPidConfig {
+  pid::Config<Scalar> pid{};      // inner PID; pid.gains are the nominal gains K0
+  Scalar error_scale = Scalar(1);       // Ke, universe units per unit of e (e.g. per rad)
+  Scalar error_rate_scale = Scalar(1);  // Kec, universe units per unit of ec (e.g. per rad/s)
+  std::array<Scalar, 3> output_scale{Scalar(1), Scalar(1), Scalar(1)};  // Sp, Si, Sd
+  GainUpdate gain_update = GainUpdate::Absolute;
+  pid::Gains<Scalar> gain_min{Scalar(0), Scalar(0), Scalar(0)};
+  pid::Gains<Scalar> gain_max{detail::infinity<Scalar>(), detail::infinity<Scalar>(),
+                              detail::infinity<Scalar>()};
+
+  constexpr bool valid() const noexcept {
+    using detail::is_finite;
+    const auto ordered = [](Scalar lo, Scalar hi) { return lo == lo && hi == hi && lo <= hi; };
+    return pid.valid() && is_finite(error_scale) && is_finite(error_rate_scale) &&
+           is_finite(output_scale[0]) && is_finite(output_scale[1]) &&
+           is_finite(output_scale[2]) && ordered(gain_min.kp, gain_max.kp) &&
+           ordered(gain_min.ki, gain_max.ki) && ordered(gain_min.kd, gain_max.kd);
+  }
+};
+
+// The paper's configuration: K0 = (4, 0.001, 100), unit scales, absolute update.
+template <class Scalar>
+constexpr FuzzyPidConfig<Scalar> paper_config() noexcept {
+  FuzzyPidConfig<Scalar> c;
+  c.pid.gains = paper::kNominalGains<Scalar>;
+  return c;
+}
+
+// System is any fuzzy system with `infer(e, ec)` returning an object with `output[0..2]`
+// (dKp, dKi, dKd) and `status` -- the paper's built-in table system by default.
+template <class Scalar, class System = paper::System<Scalar>>
+class FuzzyPid {
+  FUZZYPID_ASSERT_SCALAR(Scalar);
+
+ public:
+  using Config = FuzzyPidConfig<Scalar>;
+  using Input = pid::Input<Scalar>;
+  using Gains = pid::Gains<Scalar>;
+
+  FuzzyPid() noexcept : FuzzyPid(paper::make_system<Scalar>(), paper_config<Scalar>()) {}
+
+  // An invalid configuration leaves the controller unconfigured: update() returns InvalidConfig.
+  FuzzyPid(const System& system, const Config& config) noexcept : system_(system) {
+    configured_ = configure(config);
+  }
+
+  // Replaces the configuration and resets the gains to the nominal K0 (state is kept).
+  Status configure(const Config& config) noexcept {
+    if (!config.valid()) return Status::InvalidConfig;
+    const Status s = pid_.configure(config.pid);
+    if (s != Status::Ok) return s;
+    config_ = config;
+    gains_ = clamp_gains(config.pid.gains);
+    (void)pid_.set_gains(gains_);
+    configured_ = Status::Ok;
+    return Status::Ok;
+  }
+
+  // One tick: retune the gains from (e, ec), then run the PID. Returns Ok, NoRuleFired (gains
+  // left at their nominal/previous value for this tick, PID still run) or a fault.
+  Status update(const Input& in, Scalar dt_s) noexcept {
+    if (configured_ != Status::Ok) return configured_;
+    if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
+    const bool rates = config_.pid.derivative_source == pid::DerivativeSource::Rates;
+    if (!detail::is_finite(in.setpoint) || !detail::is_finite(in.measurement) ||
+        !detail::is_finite(in.feed_forward) ||
+        (rates && (!detail::is_finite(in.setpoint_rate) ||
+                   !detail::is_finite(in.measurement_rate))))
+      return Status::NonFiniteInput;
+
+    const Scalar e = in.setpoint - in.measurement;
+    Scalar ec = Scalar(0);
+    if (rates) {
+      ec = in.setpoint_rate - in.measurement_rate;
+    } else if (pid_.has_previous()) {
+      ec = (e - pid_.previous_error()) / dt_s;
+    }
+    const auto inference = system_.infer(config_.error_scale * e, config_.error_rate_scale * ec);
+    if (is_fault(inference.status)) return Status::NumericOverflow;
+
+    const Gains base = config_.gain_update == GainUpdate::Absolute ? config_.pid.gains : gains_;
+    const Gains next = clamp_gains({base.kp + config_.output_scale[0] * inference.output[0],
+                                    base.ki + config_.output_scale[1] * inference.output[1],
+                                    base.kd + config_.output_scale[2] * inference.output[2]});
+    const Gains previous = gains_;
+    if (pid_.set_gains(next) != Status::Ok) return Status::NumericOverflow;
+    const Status s = pid_.update(in, dt_s);
+    if (is_fault(s)) {
+      (void)pid_.set_gains(previous);
+      return s;
+    }
+    gains_ = next;
+    delta_ = inference.output;
+    return inference.status == Status::NoRuleFired ? Status::NoRuleFired : s;
+  }
+
+  // Restores the nominal gains and clears the PID state.
+  void reset() noexcept {
+    pid_.reset();
+    gains_ = clamp_gains(config_.pid.gains);
+    (void)pid_.set_gains(gains_);
+    delta_ = {};
+  }
+
+  // Bumpless start at `output` (see pid::Pid::initialize); gains restart at K0.
+  Status initialize(Scalar output, const Input& in) noexcept {
+    const Status s = pid_.initialize(output, in);
+    if (s == Status::Ok) {
+      gains_ = clamp_gains(config_.pid.gains);
+      (void)pid_.set_gains(gains_);
+      delta_ = {};
+    }
+    return s;
+  }
+
+  Scalar output() const noexcept { return pid_.output(); }
+  // The gains used by the last update (Kp, Ki, Kd: the paper's Figs. 12-14).
+  const Gains& gains() const noexcept { return gains_; }
+  // The supervisor's last raw outputs (dKp, dKi, dKd), before output scaling.
+  const std::array<Scalar, 3>& delta() const noexcept { return delta_; }
+  const pid::Pid<Scalar>& pid() const noexcept { return pid_; }
+  const System& system() const noexcept { return system_; }
+  const Config& config() const noexcept { return config_; }
+
+ private:
+  Gains clamp_gains(const Gains& g) const noexcept {
+    return {detail::clamp(g.kp, config_.gain_min.kp, config_.gain_max.kp),
+            detail::clamp(g.ki, config_.gain_min.ki, config_.gain_max.ki),
+            detail::clamp(g.kd, config_.gain_min.kd, config_.gain_max.kd)};
+  }
+
+  System system_;
+  Config config_{};
+  Status configured_ = Status::Ok;
+  pid::Pid<Scalar> pid_{};
+  Gains gains_{};
+  std::array<Scalar, 3> delta_{};
+};
+
+}  // namespace fuzzypid::control

@@ -1,0 +1,129 @@
+// A linguistic variable: N fuzzy terms over a universe of discourse [min, max], and its
+// fuzzification (crisp value -> N membership degrees).
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "fuzzypid/fuzzy/membership.hpp"
+#include "fuzzypid/scalar.hpp"
+
+namespace fuzzypid::fuzzy {
+
+// The membership degrees of one crisp value in each of a variable's N terms. Only the indices
+// [first, last] can be non-zero; first > last means no term holds the value (e.g. NaN).
+template <class Scalar, std::size_t N>
+struct Fuzzified {
+  std::array<Scalar, N> degree{};
+  std::size_t first = 1;
+  std::size_t last = 0;
+
+  constexpr bool empty() const noexcept { return first > last; }
+};
+
+template <class Scalar, std::size_t N>
+class LinguisticVariable {
+  FUZZYPID_ASSERT_SCALAR(Scalar);
+  static_assert(N >= 2, "a linguistic variable needs at least two terms");
+
+ public:
+  // N triangles with evenly spaced peaks min, min + h, ..., max (h = (max - min) / (N - 1)), each
+  // reaching to its neighbours' peaks, so the degrees of any value in [min, max] sum to 1. The
+  // outermost terms are shoulders: a value outside the universe saturates at the nearest edge
+  // term with degree 1 instead of dropping out of every set. (Fig. 4 of the paper for N = 7 on
+  // [-0.3, 0.3].) Requires min < max.
+  static constexpr LinguisticVariable uniform(Scalar min, Scalar max) noexcept {
+    LinguisticVariable v;
+    v.min_ = min;
+    v.max_ = max;
+    v.uniform_ = true;
+    const Scalar h = (max - min) / Scalar(N - 1);
+    for (std::size_t k = 0; k < N; ++k) v.peak_[k] = k + 1 == N ? max : min + Scalar(k) * h;
+    v.terms_[0] = Term<Scalar>::left_shoulder(v.peak_[0], v.peak_[1]);
+    v.terms_[N - 1] = Term<Scalar>::right_shoulder(v.peak_[N - 2], v.peak_[N - 1]);
+    for (std::size_t k = 1; k + 1 < N; ++k)
+      v.terms_[k] = Term<Scalar>::triangle(v.peak_[k - 1], v.peak_[k], v.peak_[k + 1]);
+    v.step_ = h;
+    return v;
+  }
+
+  // Arbitrary terms on [min, max]. Fuzzification evaluates every term; no saturation is added, so
+  // give the outermost terms shoulder shapes if inputs may leave the universe.
+  static constexpr LinguisticVariable custom(Scalar min, Scalar max,
+                                             const std::array<Term<Scalar>, N>& terms) noexcept {
+    LinguisticVariable v;
+    v.min_ = min;
+    v.max_ = max;
+    v.uniform_ = false;
+    v.terms_ = terms;
+    for (std::size_t k = 0; k < N; ++k) v.peak_[k] = terms[k].center();
+    return v;
+  }
+
+  static constexpr std::size_t size() noexcept { return N; }
+  constexpr Scalar min() const noexcept { return min_; }
+  constexpr Scalar max() const noexcept { return max_; }
+  constexpr const Term<Scalar>& term(std::size_t k) const noexcept { return terms_[k]; }
+  constexpr const std::array<Term<Scalar>, N>& terms() const noexcept { return terms_; }
+  // The term centres (peaks of a uniform partition), in the universe's units.
+  constexpr const std::array<Scalar, N>& centers() const noexcept { return peak_; }
+  constexpr bool is_uniform() const noexcept { return uniform_; }
+
+  // True when min < max (both finite) and every term is a valid shape.
+  constexpr bool valid() const noexcept {
+    if (!(detail::is_finite(min_) && detail::is_finite(max_) && min_ < max_)) return false;
+    for (const auto& t : terms_)
+      if (!t.valid()) return false;
+    return true;
+  }
+
+  // Membership degrees of x in every term. For a uniform partition at most two adjacent terms are
+  // non-zero and they are found in O(1); otherwise every term is evaluated.
+  Fuzzified<Scalar, N> fuzzify(Scalar x) const noexcept {
+    Fuzzified<Scalar, N> out;
+    if (x != x) return out;
+    if (uniform_) {
+      if (x <= min_) return single(0);
+      if (x >= max_) return single(N - 1);
+      // Index of the left peak of the interval holding x, corrected for rounding so that
+      // peak_[k] <= x <= peak_[k + 1].
+      std::size_t k = static_cast<std::size_t>((x - min_) / step_);
+      if (k > N - 2) k = N - 2;
+      if (x < peak_[k] && k > 0) --k;
+      if (x > peak_[k + 1] && k < N - 2) ++k;
+      // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
+      const Scalar width = peak_[k + 1] - peak_[k];
+      out.degree[k] = (peak_[k + 1] - x) / width;
+      out.degree[k + 1] = (x - peak_[k]) / width;
+      out.first = out.degree[k] > Scalar(0) ? k : k + 1;
+      out.last = out.degree[k + 1] > Scalar(0) ? k + 1 : k;
+      return out;
+    }
+    for (std::size_t k = 0; k < N; ++k) {
+      const Scalar d = terms_[k](x);
+      out.degree[k] = d;
+      if (d > Scalar(0)) {
+        if (out.empty()) out.first = k;
+        out.last = k;
+      }
+    }
+    return out;
+  }
+
+ private:
+  static constexpr Fuzzified<Scalar, N> single(std::size_t k) noexcept {
+    Fuzzified<Scalar, N> out;
+    out.degree[k] = Scalar(1);
+    out.first = out.last = k;
+    return out;
+  }
+
+  std::array<Term<Scalar>, N> terms_{};
+  std::array<Scalar, N> peak_{};
+  Scalar min_{};
+  Scalar max_{};
+  Scalar step_{};
+  bool uniform_ = false;
+};
+
+}  // namespace fuzzypid::fuzzy

@@ -1,0 +1,241 @@
+// A discrete PID controller in the parallel form of Eq. 2, written for a hard periodic loop.
+//
+// Each update(in, dt) computes, with e = setpoint - measurement,
+//
+//   P = Kp e
+//   I = I_prev + Ki e dt                         (backward Euler; the gain sits inside the sum)
+//   D = Kd d,  d = LPF(d_raw)                    (first-order filter, time constant Tf)
+//   v = P + I + D + feed_forward,   u = clamp(v, output_min, output_max)
+//
+// where d_raw is chosen by two switches:
+//   DerivativeSource::Rates       d_raw = setpoint_rate - measurement_rate   (Eq. 2 as written)
+//                                 or -measurement_rate with DerivativeOn::Measurement
+//   DerivativeSource::Difference  d_raw = (e - e_prev) / dt
+//                                 or -(y - y_prev) / dt with DerivativeOn::Measurement, which gives
+//                                 no derivative kick when the setpoint steps
+// and the filter is d = d_prev + dt / (Tf + dt) (d_raw - d_prev) (Tf = 0: no filter).
+//
+// The integral is stored as its contribution to the output, I = sum(Ki e dt), not as sum(e dt):
+// changing Ki online (a fuzzy supervisor does so every tick) therefore never bumps the output.
+// When Ki reaches 0 the integral is frozen, not reset. Anti-windup:
+//   None             I is only clamped to [integral_min, integral_max];
+//   Clamping         conditional integration: the increment Ki e dt is dropped when the output
+//                    would saturate and the increment pushes further into that limit (the sign of
+//                    the increment is compared with the side of the excess, which stays right for
+//                    limits that do not straddle zero);
+//   BackCalculation  I += Kt (u - v) dt after the step, bleeding the integral while saturated.
+// Feed-forward is part of v, so it is covered by both schemes.
+//
+// Faults: a NaN/inf input or gain, a dt that is not finite and positive, or an overflow leave
+// every piece of state untouched, hold the last output and return the fault. Nothing in update()
+// allocates, throws, locks or prints.
+#pragma once
+
+#include <cstdint>
+
+#include "fuzzypid/pid/gains.hpp"
+#include "fuzzypid/scalar.hpp"
+#include "fuzzypid/status.hpp"
+
+namespace fuzzypid::pid {
+
+enum class DerivativeOn : std::uint8_t { Error, Measurement };
+enum class DerivativeSource : std::uint8_t { Rates, Difference };
+enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
+
+template <class Scalar>
+struct Config {
+  Gains<Scalar> gains{Scalar(1), Scalar(0), Scalar(0)};
+  DerivativeOn derivative_on = DerivativeOn::Error;
+  DerivativeSource derivative_source = DerivativeSource::Rates;
+  Scalar derivative_filter_s = Scalar(0);  // Tf, s; 0 disables the filter
+  Scalar output_min = -detail::infinity<Scalar>();
+  Scalar output_max = detail::infinity<Scalar>();
+  Scalar integral_min = -detail::infinity<Scalar>();  // limits on I, in output units
+  Scalar integral_max = detail::infinity<Scalar>();
+  AntiWindup anti_windup = AntiWindup::Clamping;
+  Scalar tracking_gain_per_s = Scalar(0);  // Kt of back-calculation, 1/s
+
+  // Gains finite; limits ordered (infinite allowed); Tf and Kt finite and non-negative.
+  constexpr bool valid() const noexcept {
+    const auto not_nan = [](Scalar x) { return x == x; };
+    return gains.finite() && not_nan(output_min) && not_nan(output_max) &&
+           output_min <= output_max && not_nan(integral_min) && not_nan(integral_max) &&
+           integral_min <= integral_max && detail::is_finite(derivative_filter_s) &&
+           derivative_filter_s >= Scalar(0) && detail::is_finite(tracking_gain_per_s) &&
+           tracking_gain_per_s >= Scalar(0);
+  }
+};
+
+// One tick's measurements and references. Rates are used only with DerivativeSource::Rates.
+template <class Scalar>
+struct Input {
+  Scalar setpoint = Scalar(0);          // theta_d, e.g. rad
+  Scalar measurement = Scalar(0);       // theta
+  Scalar setpoint_rate = Scalar(0);     // theta_d dot, e.g. rad/s
+  Scalar measurement_rate = Scalar(0);  // theta dot
+  Scalar feed_forward = Scalar(0);      // added to the output, in output units
+};
+
+// The three terms of the last successful update, for logging.
+template <class Scalar>
+struct Terms {
+  Scalar p = Scalar(0);
+  Scalar i = Scalar(0);
+  Scalar d = Scalar(0);
+};
+
+template <class Scalar>
+class Pid {
+  FUZZYPID_ASSERT_SCALAR(Scalar);
+
+ public:
+  using Config = pid::Config<Scalar>;
+  using Gains = pid::Gains<Scalar>;
+  using Input = pid::Input<Scalar>;
+
+  constexpr Pid() noexcept = default;
+  // An invalid configuration leaves the controller unconfigured: update() then returns
+  // InvalidConfig until configure() succeeds.
+  explicit constexpr Pid(const Config& config) noexcept { configured_ = configure(config); }
+
+  // Replaces the configuration (keeps the state). Returns InvalidConfig and changes nothing when
+  // the configuration is invalid.
+  constexpr Status configure(const Config& config) noexcept {
+    if (!config.valid()) return Status::InvalidConfig;
+    config_ = config;
+    configured_ = Status::Ok;
+    return Status::Ok;
+  }
+
+  // Online gain change. The integral term keeps its value, so the output does not jump because of
+  // Ki; it moves at the next update only through the new Kp, Ki, Kd acting on new errors.
+  constexpr Status set_gains(const Gains& gains) noexcept {
+    if (!gains.finite()) return Status::NonFiniteInput;
+    config_.gains = gains;
+    return Status::Ok;
+  }
+
+  // Clears all state (integral, filter, previous samples, output).
+  constexpr void reset() noexcept {
+    integral_ = derivative_ = output_ = unsaturated_ = Scalar(0);
+    previous_error_ = previous_measurement_ = Scalar(0);
+    terms_ = {};
+    has_previous_ = saturated_ = false;
+  }
+
+  // Bumpless start (e.g. manual -> automatic): sets the integral so that the next update with the
+  // same input produces `output` (P + I + feed-forward = output, clamped into the integral
+  // limits), and records the input as the previous sample so no derivative spike follows.
+  constexpr Status initialize(Scalar output, const Input& in) noexcept {
+    if (!detail::is_finite(output) || !finite(in)) return Status::NonFiniteInput;
+    const Scalar e = in.setpoint - in.measurement;
+    const Scalar i = detail::clamp(output - config_.gains.kp * e - in.feed_forward,
+                                   config_.integral_min, config_.integral_max);
+    if (!detail::is_finite(i)) return Status::NonFiniteInput;
+    reset();
+    integral_ = i;
+    output_ = unsaturated_ = output;
+    previous_error_ = e;
+    previous_measurement_ = in.measurement;
+    has_previous_ = true;
+    return Status::Ok;
+  }
+
+  // One control step over dt_s seconds. Returns Ok or a fault (state untouched, output held).
+  constexpr Status update(const Input& in, Scalar dt_s) noexcept {
+    if (configured_ != Status::Ok) return configured_;
+    if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
+    if (!finite(in)) return Status::NonFiniteInput;
+
+    const Gains& g = config_.gains;
+    const Scalar e = in.setpoint - in.measurement;
+
+    Scalar d_raw = Scalar(0);
+    if (config_.derivative_source == DerivativeSource::Rates) {
+      d_raw = config_.derivative_on == DerivativeOn::Error
+                  ? in.setpoint_rate - in.measurement_rate
+                  : -in.measurement_rate;
+    } else if (has_previous_) {
+      d_raw = config_.derivative_on == DerivativeOn::Error
+                  ? (e - previous_error_) / dt_s
+                  : -(in.measurement - previous_measurement_) / dt_s;
+    }
+    const Scalar tf = config_.derivative_filter_s;
+    const Scalar d = (tf > Scalar(0) && has_previous_)
+                         ? derivative_ + dt_s / (tf + dt_s) * (d_raw - derivative_)
+                         : d_raw;
+
+    const Scalar p_term = g.kp * e;
+    const Scalar d_term = g.kd * d;
+    const Scalar increment = g.ki * e * dt_s;
+    const Scalar lo = config_.output_min;
+    const Scalar hi = config_.output_max;
+
+    Scalar integral = detail::clamp(integral_ + increment, config_.integral_min,
+                                    config_.integral_max);
+    if (config_.anti_windup == AntiWindup::Clamping) {
+      const Scalar trial = p_term + integral + d_term + in.feed_forward;
+      const bool winds_up = (trial > hi && increment > Scalar(0)) ||
+                            (trial < lo && increment < Scalar(0));
+      if (winds_up) integral = detail::clamp(integral_, config_.integral_min, config_.integral_max);
+    }
+    const Scalar v = p_term + integral + d_term + in.feed_forward;
+    const Scalar u = detail::clamp(v, lo, hi);
+    if (config_.anti_windup == AntiWindup::BackCalculation) {
+      integral = detail::clamp(integral + config_.tracking_gain_per_s * (u - v) * dt_s,
+                               config_.integral_min, config_.integral_max);
+    }
+    if (!detail::is_finite(v) || !detail::is_finite(integral) || !detail::is_finite(d))
+      return Status::NumericOverflow;
+
+    integral_ = integral;
+    derivative_ = d;
+    previous_error_ = e;
+    previous_measurement_ = in.measurement;
+    has_previous_ = true;
+    unsaturated_ = v;
+    output_ = u;
+    saturated_ = u != v;
+    terms_ = {p_term, integral, d_term};
+    return Status::Ok;
+  }
+
+  // Last output (held through faults), in output units.
+  constexpr Scalar output() const noexcept { return output_; }
+  // Last output before clamping.
+  constexpr Scalar unsaturated_output() const noexcept { return unsaturated_; }
+  constexpr bool saturated() const noexcept { return saturated_; }
+  // Integral term I (output units).
+  constexpr Scalar integral() const noexcept { return integral_; }
+  // Filtered derivative signal d (units of e per second).
+  constexpr Scalar derivative() const noexcept { return derivative_; }
+  constexpr const Terms<Scalar>& terms() const noexcept { return terms_; }
+  constexpr const Gains& gains() const noexcept { return config_.gains; }
+  constexpr const Config& config() const noexcept { return config_; }
+  // Whether a previous sample exists (false after construction and reset()).
+  constexpr bool has_previous() const noexcept { return has_previous_; }
+  constexpr Scalar previous_error() const noexcept { return previous_error_; }
+
+ private:
+  constexpr bool finite(const Input& in) const noexcept {
+    using detail::is_finite;
+    const bool rates = config_.derivative_source == DerivativeSource::Rates;
+    return is_finite(in.setpoint) && is_finite(in.measurement) && is_finite(in.feed_forward) &&
+           (!rates || (is_finite(in.setpoint_rate) && is_finite(in.measurement_rate)));
+  }
+
+  Config config_{};
+  Status configured_ = Status::Ok;
+  Scalar integral_ = Scalar(0);
+  Scalar derivative_ = Scalar(0);
+  Scalar output_ = Scalar(0);
+  Scalar unsaturated_ = Scalar(0);
+  Scalar previous_error_ = Scalar(0);
+  Scalar previous_measurement_ = Scalar(0);
+  Terms<Scalar> terms_{};
+  bool has_previous_ = false;
+  bool saturated_ = false;
+};
+
+}  // namespace fuzzypid::pid

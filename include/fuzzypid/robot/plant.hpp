@@ -1,0 +1,105 @@
+// The controlled plant: the arm's joints driven by torques, integrated over one controller tick.
+//
+// Decoupled mode (default), per joint i:
+//     J_i θ̈_i = sat(τ_i) − b_i θ̇_i + d_i
+//     J_i = s_i · M_ii(q) + J_motor,i
+// with M_ii the diagonal of the links' joint-space inertia (KDL ChainDynParam), s_i `inertia_scale`,
+// J_motor,i the reflected motor inertia (`armature_kgm2`), b_i viscous damping, d_i a disturbance
+// torque and sat() the clamp to ±torque limit. J is evaluated once per tick at the state at the
+// start of the tick (InertiaUpdate::EveryTick) or once for good (InertiaUpdate::Fixed).
+//
+// Coupled mode: M_eff(q) q̈ = sat(τ) − C(q, q̇) q̇ − g(q) − b q̇ + d, with
+// M_eff = S^½ M(q) S^½ + diag(J_motor), S = diag(s), M, C and g re-evaluated at every RK4 stage, and
+// gravity off by default (the paper's model has none).
+//
+// The torque and disturbance are held over the tick (zero-order hold); the state is integrated with
+// classical RK4 at `substep_s`, the last substep shortened to land exactly on the tick. step() does
+// not allocate, throw or print.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/robot/types.hpp"
+
+namespace fuzzypid::robot {
+
+enum class PlantCoupling : std::uint8_t { Decoupled, Coupled };
+enum class InertiaUpdate : std::uint8_t { EveryTick, Fixed };
+
+struct PlantConfig {
+  PlantCoupling coupling = PlantCoupling::Decoupled;
+  InertiaUpdate inertia_update = InertiaUpdate::EveryTick;
+  // Configuration at which a Fixed inertia is evaluated; nullopt = the configuration of reset().
+  std::optional<JointVector> fixed_configuration_rad;
+  // Reflected motor inertia (rotor inertia × gear ratio²), kg·m². Estimates from catalogue rotor
+  // inertias of 50 kg-class arms (docs/robot.md), each uncertain by a factor of two.
+  JointVector armature_kgm2 = {8.5, 16.0, 5.4, 1.7, 1.7, 0.5};
+  // Multiplies the link inertia (payload scenarios); the armature is not scaled.
+  JointVector inertia_scale = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  // Viscous damping b_i, N·m·s/rad. Zero: a pure double integrator.
+  JointVector damping_nms = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  // |τ_i| is clamped to this; nullopt = the URDF effort limits.
+  std::optional<JointVector> torque_limit_nm;
+  bool gravity = false;        // coupled mode only
+  double gravity_m_s2 = 9.81;  // along -z of the root frame
+  double substep_s = 1e-3;     // RK4 step, > 0
+};
+
+enum class PlantStatus : std::uint8_t {
+  Ok,
+  Saturated,      // stepped, but at least one torque was clamped (see saturated())
+  InvalidInput,   // a non-finite torque or disturbance, or dt not finite and > 0: nothing changed
+  NumericalError, // the dynamics produced a non-finite state: nothing changed
+};
+
+[[nodiscard]] constexpr const char* to_string(PlantStatus s) noexcept {
+  switch (s) {
+    case PlantStatus::Ok: return "ok";
+    case PlantStatus::Saturated: return "saturated";
+    case PlantStatus::InvalidInput: return "invalid_input";
+    case PlantStatus::NumericalError: return "numerical_error";
+  }
+  return "unknown";
+}
+
+class JointPlant {
+ public:
+  // Copies the model. An invalid configuration (non-positive substep, negative armature, scale,
+  // damping or torque limit, or a Fixed inertia that is not positive) is reported by valid().
+  JointPlant(const RobotModel& model, const PlantConfig& config = {});
+  JointPlant(const JointPlant& other);
+  JointPlant(JointPlant&& other) noexcept;
+  JointPlant& operator=(const JointPlant& other);
+  JointPlant& operator=(JointPlant&& other) noexcept;
+  ~JointPlant();
+
+  // False if the configuration was rejected; step() then returns InvalidInput.
+  bool valid() const noexcept;
+
+  // Sets the state (rad, rad/s) and, with InertiaUpdate::Fixed and no fixed configuration, the
+  // configuration at which the inertia is evaluated.
+  void reset(const JointVector& q_rad, const JointVector& qd_rad_s) noexcept;
+
+  // Advances by dt_s with torque_nm and disturbance_nm held constant.
+  [[nodiscard]] PlantStatus step(const JointVector& torque_nm, double dt_s,
+                                 const JointVector& disturbance_nm = {}) noexcept;
+
+  const JointVector& position() const noexcept;          // rad
+  const JointVector& velocity() const noexcept;          // rad/s
+  const JointVector& acceleration() const noexcept;      // rad/s², at the end of the last tick
+  const JointVector& inertia() const noexcept;           // effective J_i of the last tick, kg·m²
+  const JointVector& applied_torque() const noexcept;    // the clamped torque of the last tick
+  const std::array<bool, kNumJoints>& saturated() const noexcept;
+  double time_s() const noexcept;                         // sum of accepted dt since reset()
+
+  const PlantConfig& config() const noexcept;
+  const RobotModel& model() const noexcept;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fuzzypid::robot

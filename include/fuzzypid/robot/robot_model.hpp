@@ -1,0 +1,85 @@
+// The kinematic and dynamic model of a six-joint serial arm, loaded from a URDF through urdfdom and
+// evaluated with Orocos KDL. No KDL or urdfdom type appears here: the KDL chain and its solvers live
+// behind a pointer to an implementation.
+//
+// Thread safety: const members reuse scratch buffers inside the model, so one RobotModel must not
+// be used from two threads at once. Copies are independent (copy one per thread).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "fuzzypid/robot/types.hpp"
+
+namespace fuzzypid::robot {
+
+class RobotModel;
+
+struct LoadResult {
+  std::optional<RobotModel> model;  // set on success
+  std::string error;                // empty on success, a human-readable reason otherwise
+};
+
+// The bundled ER50-C20 URDF: $FUZZYPID_URDF if set and non-empty, else the source tree's
+// urdf/er50_c20.urdf if it exists, else the installed <datadir>/fuzzypid/urdf/er50_c20.urdf.
+[[nodiscard]] std::string default_urdf_path();
+
+class RobotModel {
+ public:
+  // Parses urdf_path and extracts the chain root_link -> tip_link. An empty root_link means the
+  // URDF's root link; an empty tip_link means the end of the unique path of links below the root
+  // (an error if the tree branches). The chain must have exactly kNumJoints revolute or continuous
+  // joints. Never throws: every failure is reported in LoadResult::error.
+  [[nodiscard]] static LoadResult load(const std::string& urdf_path,
+                                       const std::string& root_link = "",
+                                       const std::string& tip_link = "");
+
+  RobotModel(const RobotModel& other);
+  RobotModel(RobotModel&& other) noexcept;
+  RobotModel& operator=(const RobotModel& other);
+  RobotModel& operator=(RobotModel&& other) noexcept;
+  ~RobotModel();
+
+  const std::string& root_link() const noexcept;
+  const std::string& tip_link() const noexcept;
+  const std::array<std::string, kNumJoints>& joint_names() const noexcept;
+
+  // Limits as written in the URDF; a continuous joint has infinite position limits.
+  const JointVector& lower_limits_rad() const noexcept;
+  const JointVector& upper_limits_rad() const noexcept;
+  const JointVector& velocity_limits_rad_s() const noexcept;
+  const JointVector& effort_limits_nm() const noexcept;
+  bool within_limits(const JointVector& q, double tolerance_rad = 0.0) const noexcept;
+
+  // Tip pose in the root frame. Does not allocate.
+  Pose forward_kinematics(const JointVector& q) const noexcept;
+
+  // Geometric Jacobian: rows 0-2 map q̇ to the linear velocity (m/s) of the tip origin, rows 3-5 to
+  // the angular velocity (rad/s), both expressed in the root frame. Does not allocate.
+  Eigen::Matrix<double, 6, 6> jacobian(const JointVector& q) const noexcept;
+
+  // Joint-space inertia matrix M(q) (kg·m²) of the links alone (no motor armature). Does not
+  // allocate.
+  Eigen::Matrix<double, 6, 6> mass_matrix(const JointVector& q) const noexcept;
+
+  // Diagonal of mass_matrix(q): the inertia each joint sees with the others locked.
+  JointVector inertia_diagonal(const JointVector& q) const noexcept;
+
+  // Coriolis and centrifugal torques C(q, q̇)·q̇ (N·m). Does not allocate.
+  JointVector coriolis_torque(const JointVector& q, const JointVector& qd) const noexcept;
+
+  // Gravity torques g(q) (N·m) for gravity along -z of the root frame with the given magnitude.
+  JointVector gravity_torque(const JointVector& q, double gravity_m_s2 = 9.81) const noexcept;
+
+  class Impl;  // defined in src/robot/robot_model_impl.hpp; used by the other robot sources
+  const Impl& impl() const noexcept { return *impl_; }
+
+ private:
+  explicit RobotModel(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fuzzypid::robot

@@ -1,0 +1,78 @@
+// Internal: the KDL state behind RobotModel. Included only by src/robot/*.cpp.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include <kdl/chain.hpp>
+#include <kdl/chaindynparam.hpp>
+#include <kdl/chainfksolverpos_recursive.hpp>
+#include <kdl/chainjnttojacsolver.hpp>
+#include <kdl/jacobian.hpp>
+#include <kdl/jntarray.hpp>
+#include <kdl/jntspaceinertiamatrix.hpp>
+
+#include "fuzzypid/robot/robot_model.hpp"
+
+namespace fuzzypid::robot {
+
+struct ChainDescription {
+  KDL::Chain chain;
+  std::string root_link;
+  std::string tip_link;
+  std::array<std::string, kNumJoints> joint_names;
+  JointVector lower{};
+  JointVector upper{};
+  JointVector velocity{};
+  JointVector effort{};
+};
+
+// Owns the chain and solvers bound to it. KDL solvers keep a reference to the chain, so an Impl is
+// never moved (RobotModel holds it by unique_ptr) and a copy rebuilds its solvers on its own chain.
+class RobotModel::Impl {
+ public:
+  explicit Impl(ChainDescription description);
+  Impl(const Impl& other) : Impl(other.desc) {}
+  Impl& operator=(const Impl&) = delete;
+
+  ChainDescription desc;
+  KDL::ChainFkSolverPos_recursive fk_solver;
+  KDL::ChainJntToJacSolver jac_solver;
+  KDL::ChainDynParam dyn_solver;  // built with unit gravity along -z; results scale linearly
+
+  // Scratch reused by the const queries (sized at construction, never reallocated).
+  mutable KDL::JntArray q;
+  mutable KDL::JntArray qd;
+  mutable KDL::JntArray tau;
+  mutable KDL::Jacobian jac;
+  mutable KDL::JntSpaceInertiaMatrix mass;
+};
+
+// Copies a joint vector into a preallocated KDL array of the same size.
+inline void to_kdl(const JointVector& v, KDL::JntArray& out) noexcept {
+  for (std::size_t i = 0; i < kNumJoints; ++i) out(static_cast<unsigned int>(i)) = v[i];
+}
+
+inline JointVector from_kdl(const KDL::JntArray& a) noexcept {
+  JointVector v{};
+  for (std::size_t i = 0; i < kNumJoints; ++i) v[i] = a(static_cast<unsigned int>(i));
+  return v;
+}
+
+inline Pose from_kdl(const KDL::Frame& f) noexcept {
+  Pose p;
+  p.position_m = Eigen::Vector3d(f.p.x(), f.p.y(), f.p.z());
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) p.rotation(r, c) = f.M(r, c);
+  return p;
+}
+
+inline KDL::Frame to_kdl(const Pose& p) noexcept {
+  const Eigen::Matrix3d& R = p.rotation;
+  return KDL::Frame(KDL::Rotation(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0),
+                                  R(2, 1), R(2, 2)),
+                    KDL::Vector(p.position_m.x(), p.position_m.y(), p.position_m.z()));
+}
+
+}  // namespace fuzzypid::robot
