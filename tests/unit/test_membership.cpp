@@ -1,0 +1,462 @@
+// Membership functions against their closed forms, run-time terms, and the linguistic variables
+// built from them (the paper's input partition, section 5.1 and Fig. 4).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/fuzzy/linguistic_variable.hpp"
+#include "fuzzypid/fuzzy/membership.hpp"
+#include "fuzzypid/paper.hpp"
+
+namespace {
+
+using fuzzypid::fuzzy::Bell;
+using fuzzypid::fuzzy::Gaussian;
+using fuzzypid::fuzzy::LeftShoulder;
+using fuzzypid::fuzzy::LinguisticVariable;
+using fuzzypid::fuzzy::RightShoulder;
+using fuzzypid::fuzzy::Shape;
+using fuzzypid::fuzzy::Singleton;
+using fuzzypid::fuzzy::Term;
+using fuzzypid::fuzzy::Trapezoid;
+using fuzzypid::fuzzy::Triangle;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The piecewise-linear shapes are usable in constant expressions.
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(0.5) == 0.5);
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(1.0) == 1.0);
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(1.5) == 0.5);
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(0.0) == 0.0);
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(2.0) == 0.0);
+static_assert(Triangle<double>{0.0, 1.0, 2.0}(kNaN) == 0.0);
+static_assert(Triangle<double>{0.0, 0.0, 2.0}(0.0) == 1.0);  // vertical left edge
+static_assert(Triangle<double>{0.0, 2.0, 2.0}(2.0) == 1.0);  // vertical right edge
+static_assert(Trapezoid<double>{0.0, 1.0, 3.0, 4.0}(2.0) == 1.0);
+static_assert(Trapezoid<double>{0.0, 1.0, 3.0, 4.0}(3.5) == 0.5);
+static_assert(Trapezoid<double>{-kInf, -kInf, -0.3, -0.2}(-kInf) == 1.0);
+static_assert(Trapezoid<double>{0.2, 0.3, kInf, kInf}(kInf) == 1.0);
+static_assert(Trapezoid<double>{0.2, 0.3, kInf, kInf}(kNaN) == 0.0);
+static_assert(LeftShoulder<double>{-1.0, 1.0}(0.0) == 0.5);
+static_assert(LeftShoulder<double>{-1.0, 1.0}(-kInf) == 1.0);
+static_assert(LeftShoulder<double>{-1.0, 1.0}(kNaN) == 0.0);
+static_assert(RightShoulder<double>{-1.0, 1.0}(0.5) == 0.75);
+static_assert(RightShoulder<double>{-1.0, 1.0}(kInf) == 1.0);
+static_assert(RightShoulder<double>{-1.0, 1.0}(kNaN) == 0.0);
+static_assert(Singleton<double>{0.25}(0.25) == 1.0);
+static_assert(Singleton<double>{0.25}(0.2500001) == 0.0);
+static_assert(Term<double>::triangle(0.0, 1.0, 2.0).center() == 1.0);
+static_assert(Term<double>::trapezoid(0.0, 1.0, 3.0, 4.0).center() == 2.0);
+static_assert(Term<double>::triangle(0.0, 1.0, 2.0).valid());
+static_assert(!Term<double>::triangle(2.0, 1.0, 0.0).valid());
+static_assert(Triangle<float>{0.0f, 1.0f, 2.0f}(0.25f) == 0.25f);
+static_assert(LinguisticVariable<double, 7>::uniform(-0.3, 0.3).valid());
+static_assert(!LinguisticVariable<double, 7>::uniform(0.3, -0.3).valid());
+
+struct Case {
+  double x;
+  double expected;
+};
+
+std::string describe(double x) {
+  return "x = " + std::to_string(x) + (x != x ? " (NaN)" : "");
+}
+
+TEST(Triangle, MatchesItsClosedFormIncludingEdgesNaNAndInfinity) {
+  const Triangle<double> t{-1.0, 0.5, 2.0};
+  const Case cases[] = {
+      {-1.0, 0.0},           {2.0, 0.0},   {0.5, 1.0}, {-0.25, 0.5},
+      {1.25, 0.5},           {-5.0, 0.0},  {5.0, 0.0}, {kNaN, 0.0},
+      {kInf, 0.0},           {-kInf, 0.0}, {0.2, 0.8}, {1.7, 0.2},
+      {-0.999, 0.001 / 1.5},
+  };
+  for (const auto& c : cases)
+    EXPECT_NEAR(t(c.x), c.expected, 1e-15) << describe(c.x);
+}
+
+TEST(Triangle, MatchesTheMinOfItsTwoLinesOnRandomPoints) {
+  const std::uint64_t seed = 11;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int k = 0; k < 10000; ++k) {
+    double p[3] = {u(rng), u(rng), u(rng)};
+    std::sort(p, p + 3);
+    if (!(p[0] < p[1] && p[1] < p[2])) continue;
+    const Triangle<double> t{p[0], p[1], p[2]};
+    const double x = u(rng);
+    const double closed =
+        std::max(0.0, std::min((x - p[0]) / (p[1] - p[0]), (p[2] - x) / (p[2] - p[1])));
+    ASSERT_NEAR(t(x), closed, 1e-12) << describe(x);
+  }
+}
+
+TEST(Triangle, DegenerateVerticalEdgesJumpToOneAtThePeak) {
+  const Triangle<double> left{0.0, 0.0, 1.0};
+  EXPECT_EQ(left(0.0), 1.0);
+  EXPECT_EQ(left(-1e-300), 0.0);
+  EXPECT_EQ(left(0.25), 0.75);
+  EXPECT_EQ(left(1.0), 0.0);
+  const Triangle<double> right{0.0, 1.0, 1.0};
+  EXPECT_EQ(right(1.0), 1.0);
+  EXPECT_EQ(right(std::nextafter(1.0, 2.0)), 0.0);
+  EXPECT_EQ(right(0.75), 0.75);
+  const Triangle<double> spike{1.0, 1.0, 1.0};
+  EXPECT_EQ(spike(1.0), 1.0);
+  EXPECT_EQ(spike(std::nextafter(1.0, 0.0)), 0.0);
+  EXPECT_EQ(spike(std::nextafter(1.0, 2.0)), 0.0);
+}
+
+TEST(Trapezoid, MatchesItsClosedFormIncludingEdgesNaNAndInfinity) {
+  const Trapezoid<double> t{-2.0, -1.0, 1.0, 3.0};
+  const Case cases[] = {
+      {-2.0, 0.0}, {-1.0, 1.0},  {0.0, 1.0},  {1.0, 1.0},  {3.0, 0.0},  {-1.5, 0.5},  {2.0, 0.5},
+      {2.5, 0.25}, {-10.0, 0.0}, {10.0, 0.0}, {kNaN, 0.0}, {kInf, 0.0}, {-kInf, 0.0},
+  };
+  for (const auto& c : cases)
+    EXPECT_NEAR(t(c.x), c.expected, 1e-15) << describe(c.x);
+}
+
+TEST(Trapezoid, InfiniteVerticesMakeOpenShouldersLikeFuzzylite) {
+  const Trapezoid<double> nl{-kInf, -kInf, -0.3, -0.2};
+  const Trapezoid<double> pl{0.2, 0.3, kInf, kInf};
+  const Case nl_cases[] = {{-kInf, 1.0}, {-1e300, 1.0}, {-0.3, 1.0}, {-0.25, 0.5},
+                           {-0.2, 0.0},  {0.0, 0.0},    {kInf, 0.0}, {kNaN, 0.0}};
+  const Case pl_cases[] = {{kInf, 1.0}, {1e300, 1.0}, {0.3, 1.0},   {0.25, 0.5},
+                           {0.2, 0.0},  {0.0, 0.0},   {-kInf, 0.0}, {kNaN, 0.0}};
+  for (const auto& c : nl_cases)
+    EXPECT_NEAR(nl(c.x), c.expected, 1e-15) << describe(c.x);
+  for (const auto& c : pl_cases)
+    EXPECT_NEAR(pl(c.x), c.expected, 1e-15) << describe(c.x);
+  // Half-open: infinite left foot with a finite plateau start.
+  const Trapezoid<double> ramp{-kInf, 0.0, 1.0, 2.0};
+  EXPECT_EQ(ramp(-5.0), 1.0);
+  EXPECT_EQ(ramp(1.5), 0.5);
+}
+
+TEST(Trapezoid, DegenerateVerticalEdgesAndTriangularPlateau) {
+  const Trapezoid<double> box{0.0, 0.0, 1.0, 1.0};
+  EXPECT_EQ(box(0.0), 1.0);
+  EXPECT_EQ(box(1.0), 1.0);
+  EXPECT_EQ(box(std::nextafter(0.0, -1.0)), 0.0);
+  EXPECT_EQ(box(std::nextafter(1.0, 2.0)), 0.0);
+  const Trapezoid<double> as_triangle{0.0, 1.0, 1.0, 2.0};
+  const Triangle<double> triangle{0.0, 1.0, 2.0};
+  for (double x : {-1.0, 0.0, 0.3, 1.0, 1.7, 2.0, 3.0})
+    EXPECT_EQ(as_triangle(x), triangle(x));
+}
+
+TEST(Shoulders, MatchTheirClosedFormsIncludingNaNAndInfinity) {
+  const LeftShoulder<double> left{-0.3, -0.2};
+  const RightShoulder<double> right{0.2, 0.3};
+  const Case left_cases[] = {{-kInf, 1.0}, {-7.0, 1.0}, {-0.3, 1.0}, {-0.25, 0.5},
+                             {-0.2, 0.0},  {0.5, 0.0},  {kInf, 0.0}, {kNaN, 0.0}};
+  const Case right_cases[] = {{kInf, 1.0}, {7.0, 1.0},  {0.3, 1.0},   {0.25, 0.5},
+                              {0.2, 0.0},  {-0.5, 0.0}, {-kInf, 0.0}, {kNaN, 0.0}};
+  for (const auto& c : left_cases)
+    EXPECT_NEAR(left(c.x), c.expected, 1e-15) << describe(c.x);
+  for (const auto& c : right_cases)
+    EXPECT_NEAR(right(c.x), c.expected, 1e-15) << describe(c.x);
+}
+
+TEST(Shoulders, EqualTheInfiniteTrapezoidsOnRandomPoints) {
+  const std::uint64_t seed = 12;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const LeftShoulder<double> left{-0.3, -0.2};
+  const RightShoulder<double> right{0.2, 0.3};
+  const Trapezoid<double> nl{-kInf, -kInf, -0.3, -0.2};
+  const Trapezoid<double> pl{0.2, 0.3, kInf, kInf};
+  for (int k = 0; k < 10000; ++k) {
+    const double x = u(rng);
+    ASSERT_EQ(left(x), nl(x)) << describe(x);
+    ASSERT_EQ(right(x), pl(x)) << describe(x);
+  }
+}
+
+TEST(Gaussian, EqualsStdExpOfItsFormula) {
+  const std::uint64_t seed = 13;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::uniform_real_distribution<double> s(0.01, 3.0);
+  for (int k = 0; k < 10000; ++k) {
+    const Gaussian<double> g{u(rng), s(rng)};
+    const double x = u(rng);
+    const double closed = std::exp(-(x - g.mean) * (x - g.mean) / (2.0 * g.sigma * g.sigma));
+    ASSERT_NEAR(g(x), closed, 1e-14) << describe(x);
+  }
+  const Gaussian<double> g{0.5, 0.2};
+  EXPECT_EQ(g(0.5), 1.0);
+  EXPECT_NEAR(g(0.7), std::exp(-0.5), 1e-15);
+  EXPECT_EQ(g(kNaN), 0.0);
+  EXPECT_EQ(g(kInf), 0.0);
+  EXPECT_EQ(g(-kInf), 0.0);
+}
+
+TEST(Bell, EqualsStdPowOfItsFormula) {
+  const std::uint64_t seed = 14;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::uniform_real_distribution<double> w(0.05, 3.0);
+  std::uniform_real_distribution<double> b(0.1, 5.0);
+  for (int k = 0; k < 10000; ++k) {
+    const Bell<double> bell{w(rng), b(rng), u(rng)};
+    const double x = u(rng);
+    const double closed =
+        1.0 / (1.0 + std::pow(std::fabs((x - bell.center) / bell.width), 2.0 * bell.slope));
+    ASSERT_NEAR(bell(x), closed, 1e-14) << describe(x);
+  }
+  const Bell<double> bell{2.0, 1.5, 1.0};
+  EXPECT_EQ(bell(1.0), 1.0);
+  EXPECT_NEAR(bell(3.0), 0.5, 1e-15);  // |x - c| = width gives 1/2 for every slope
+  EXPECT_NEAR(bell(-1.0), 0.5, 1e-15);
+  EXPECT_EQ(bell(kNaN), 0.0);
+  EXPECT_EQ(bell(kInf), 0.0);
+  EXPECT_EQ(bell(-kInf), 0.0);
+  const Bell<double> negative_width{-2.0, 1.5, 1.0};  // |.| makes the sign of width irrelevant
+  EXPECT_NEAR(negative_width(3.0), 0.5, 1e-15);
+}
+
+TEST(Singleton, IsOneOnlyAtItsPoint) {
+  const Singleton<double> s{0.1};
+  EXPECT_EQ(s(0.1), 1.0);
+  EXPECT_EQ(s(std::nextafter(0.1, 1.0)), 0.0);
+  EXPECT_EQ(s(kNaN), 0.0);
+  EXPECT_EQ(s(kInf), 0.0);
+}
+
+TEST(Term, DispatchEqualsTheShapeStructs) {
+  const std::uint64_t seed = 15;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::uniform_real_distribution<double> positive(0.05, 2.0);
+  std::vector<double> xs = {kNaN, kInf, -kInf, 0.0};
+  for (int k = 0; k < 2000; ++k)
+    xs.push_back(u(rng));
+  for (int k = 0; k < 200; ++k) {
+    double p[4] = {u(rng), u(rng), u(rng), u(rng)};
+    std::sort(p, p + 4);
+    const double s1 = positive(rng);
+    const double s2 = positive(rng);
+    const auto tri = Term<double>::triangle(p[0], p[1], p[2]);
+    const auto trap = Term<double>::trapezoid(p[0], p[1], p[2], p[3]);
+    const auto ls = Term<double>::left_shoulder(p[0], p[1]);
+    const auto rs = Term<double>::right_shoulder(p[0], p[1]);
+    const auto gauss = Term<double>::gaussian(p[0], s1);
+    const auto bell = Term<double>::bell(s1, s2, p[1]);
+    const auto single = Term<double>::singleton(p[2]);
+    EXPECT_EQ(tri.shape, Shape::Triangle);
+    EXPECT_EQ(bell.shape, Shape::Bell);
+    for (double x : xs) {
+      ASSERT_EQ(tri(x), (Triangle<double>{p[0], p[1], p[2]}(x)));
+      ASSERT_EQ(trap(x), (Trapezoid<double>{p[0], p[1], p[2], p[3]}(x)));
+      ASSERT_EQ(ls(x), (LeftShoulder<double>{p[0], p[1]}(x)));
+      ASSERT_EQ(rs(x), (RightShoulder<double>{p[0], p[1]}(x)));
+      ASSERT_EQ(gauss(x), (Gaussian<double>{p[0], s1}(x)));
+      ASSERT_EQ(bell(x), (Bell<double>{s1, s2, p[1]}(x)));
+      ASSERT_EQ(single(x), (Singleton<double>{p[2]}(x)));
+    }
+  }
+}
+
+TEST(Term, CentersAreThePointsOfGreatestMembership) {
+  EXPECT_EQ(Term<double>::triangle(-1.0, 0.25, 1.0).center(), 0.25);
+  EXPECT_EQ(Term<double>::trapezoid(-1.0, 0.0, 0.5, 1.0).center(), 0.25);
+  EXPECT_EQ(Term<double>::left_shoulder(-0.3, -0.2).center(), -0.3);
+  EXPECT_EQ(Term<double>::right_shoulder(0.2, 0.3).center(), 0.3);
+  EXPECT_EQ(Term<double>::gaussian(0.7, 0.1).center(), 0.7);
+  EXPECT_EQ(Term<double>::bell(0.5, 2.0, -0.4).center(), -0.4);
+  EXPECT_EQ(Term<double>::singleton(0.9).center(), 0.9);
+  for (const auto& t :
+       {Term<double>::triangle(-1.0, 0.25, 1.0), Term<double>::trapezoid(-1.0, 0.0, 0.5, 1.0),
+        Term<double>::left_shoulder(-0.3, -0.2), Term<double>::right_shoulder(0.2, 0.3),
+        Term<double>::gaussian(0.7, 0.1), Term<double>::bell(0.5, 2.0, -0.4),
+        Term<double>::singleton(0.9)})
+    EXPECT_EQ(t(t.center()), 1.0);
+}
+
+TEST(Term, ValidRejectsUnorderedNonFiniteAndDegenerateParameters) {
+  EXPECT_TRUE(Term<double>::trapezoid(-kInf, -kInf, -0.3, -0.2).valid());
+  EXPECT_TRUE(Term<double>::trapezoid(0.2, 0.3, kInf, kInf).valid());
+  EXPECT_TRUE(Term<double>::triangle(0.0, 0.0, 1.0).valid());
+  EXPECT_FALSE(Term<double>::triangle(0.0, 0.0, 0.0).valid());
+  EXPECT_FALSE(Term<double>::triangle(kNaN, 0.0, 1.0).valid());
+  EXPECT_FALSE(Term<double>::triangle(-kInf, 0.0, 1.0).valid());
+  EXPECT_FALSE(Term<double>::trapezoid(0.0, 2.0, 1.0, 3.0).valid());
+  EXPECT_FALSE(Term<double>::trapezoid(-kInf, -kInf, -kInf, 0.0).valid());
+  EXPECT_FALSE(Term<double>::trapezoid(-kInf, -kInf, kInf, kInf).valid());
+  EXPECT_FALSE(Term<double>::left_shoulder(1.0, 1.0).valid());
+  EXPECT_FALSE(Term<double>::right_shoulder(1.0, 0.0).valid());
+  EXPECT_FALSE(Term<double>::gaussian(0.0, 0.0).valid());
+  EXPECT_FALSE(Term<double>::gaussian(0.0, -1.0).valid());
+  EXPECT_FALSE(Term<double>::bell(0.0, 1.0, 0.0).valid());
+  EXPECT_FALSE(Term<double>::bell(1.0, 0.0, 0.0).valid());
+  EXPECT_FALSE(Term<double>::singleton(kNaN).valid());
+}
+
+// The paper's seven input sets, each evaluated through its own Term.
+std::array<double, 7> paper_degrees(double x) {
+  const auto v = fuzzypid::paper::make_system<double>().e;
+  std::array<double, 7> d{};
+  for (std::size_t k = 0; k < 7; ++k)
+    d[k] = v.term(k)(x);
+  return d;
+}
+
+TEST(PaperPartition, DegreesSumToOneInsideTheUniverse) {
+  const std::uint64_t seed = 16;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  const auto v = fuzzypid::paper::make_system<double>().e;
+  std::vector<double> xs = {-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3};
+  for (int k = 0; k < 100000; ++k)
+    xs.push_back(u(rng));
+  for (double x : xs) {
+    double sum_terms = 0.0;
+    int nonzero = 0;
+    for (double d : paper_degrees(x)) {
+      ASSERT_GE(d, 0.0);
+      ASSERT_LE(d, 1.0);
+      sum_terms += d;
+      nonzero += d > 0.0;
+    }
+    ASSERT_NEAR(sum_terms, 1.0, 1e-15) << describe(x);
+    ASSERT_LE(nonzero, 2) << describe(x);
+    double sum_fuzzified = 0.0;
+    for (double d : v.fuzzify(x).degree)
+      sum_fuzzified += d;
+    ASSERT_NEAR(sum_fuzzified, 1.0, 1e-15) << describe(x);
+  }
+}
+
+TEST(PaperPartition, OutsideTheUniverseTheOuterSetsSaturate) {
+  const auto v = fuzzypid::paper::make_system<double>().e;
+  for (double x : {-0.3, -0.30000001, -1.0, -1e300, -std::numeric_limits<double>::max()}) {
+    const auto d = paper_degrees(x);
+    const auto f = v.fuzzify(x);
+    EXPECT_EQ(d[0], 1.0) << describe(x);
+    EXPECT_EQ(f.degree[0], 1.0) << describe(x);
+    EXPECT_EQ(f.first, 0u);
+    EXPECT_EQ(f.last, 0u);
+    for (std::size_t k = 1; k < 7; ++k) {
+      EXPECT_EQ(d[k], 0.0) << describe(x);
+      EXPECT_EQ(f.degree[k], 0.0) << describe(x);
+    }
+  }
+  for (double x : {0.3, 0.30000001, 1.0, 1e300, std::numeric_limits<double>::max()}) {
+    const auto d = paper_degrees(x);
+    const auto f = v.fuzzify(x);
+    EXPECT_EQ(d[6], 1.0) << describe(x);
+    EXPECT_EQ(f.degree[6], 1.0) << describe(x);
+    EXPECT_EQ(f.first, 6u);
+    EXPECT_EQ(f.last, 6u);
+    for (std::size_t k = 0; k < 6; ++k) {
+      EXPECT_EQ(d[k], 0.0) << describe(x);
+      EXPECT_EQ(f.degree[k], 0.0) << describe(x);
+    }
+  }
+}
+
+TEST(PaperPartition, HasTheTermsOfFigure4) {
+  const auto v = fuzzypid::paper::make_system<double>().e;
+  EXPECT_TRUE(v.is_uniform());
+  EXPECT_EQ(v.min(), -0.3);
+  EXPECT_EQ(v.max(), 0.3);
+  EXPECT_EQ(v.term(0).shape, Shape::LeftShoulder);
+  EXPECT_EQ(v.term(6).shape, Shape::RightShoulder);
+  for (std::size_t k = 1; k < 6; ++k)
+    EXPECT_EQ(v.term(k).shape, Shape::Triangle);
+  const double peaks[7] = {-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3};
+  for (std::size_t k = 0; k < 7; ++k) EXPECT_NEAR(v.centers()[k], peaks[k], 2e-16);
+}
+
+TEST(LinguisticVariable, NaNBelongsToNoTerm) {
+  const auto v = LinguisticVariable<double, 7>::uniform(-0.3, 0.3);
+  const auto f = v.fuzzify(kNaN);
+  EXPECT_TRUE(f.empty());
+  for (double d : f.degree)
+    EXPECT_EQ(d, 0.0);
+  const auto c = LinguisticVariable<double, 7>::custom(-0.3, 0.3, v.terms());
+  EXPECT_TRUE(c.fuzzify(kNaN).empty());
+}
+
+TEST(LinguisticVariable, InfinitySaturatesAtTheOuterTerm) {
+  const auto v = LinguisticVariable<double, 7>::uniform(-0.3, 0.3);
+  EXPECT_EQ(v.fuzzify(kInf).degree[6], 1.0);
+  EXPECT_EQ(v.fuzzify(-kInf).degree[0], 1.0);
+}
+
+// Compares the O(1) uniform path with a custom variable holding the same terms (which evaluates
+// every term): degrees and the [first, last] range must be identical.
+template <class Scalar, std::size_t N>
+void expect_uniform_fast_path_equals_every_term(Scalar min, Scalar max, std::uint64_t seed) {
+  SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
+  const auto uniform = LinguisticVariable<Scalar, N>::uniform(min, max);
+  const auto every = LinguisticVariable<Scalar, N>::custom(min, max, uniform.terms());
+  ASSERT_TRUE(uniform.is_uniform());
+  ASSERT_FALSE(every.is_uniform());
+  std::mt19937_64 rng(seed);
+  const Scalar span = max - min;
+  std::uniform_real_distribution<Scalar> u(min - span / 4, max + span / 4);
+  std::vector<Scalar> xs(uniform.centers().begin(), uniform.centers().end());
+  for (Scalar c : uniform.centers()) {
+    xs.push_back(std::nextafter(c, min - span));
+    xs.push_back(std::nextafter(c, max + span));
+  }
+  for (int k = 0; k < 20000; ++k)
+    xs.push_back(u(rng));
+  for (Scalar x : xs) {
+    const auto fast = uniform.fuzzify(x);
+    const auto slow = every.fuzzify(x);
+    for (std::size_t k = 0; k < N; ++k)
+      ASSERT_EQ(fast.degree[k], slow.degree[k]) << "term " << k << " at x = " << x;
+    ASSERT_EQ(fast.first, slow.first) << "x = " << x;
+    ASSERT_EQ(fast.last, slow.last) << "x = " << x;
+  }
+}
+
+TEST(LinguisticVariable, UniformFastPathEqualsEvaluatingEveryTerm) {
+  expect_uniform_fast_path_equals_every_term<double, 7>(-0.3, 0.3, 21);
+  expect_uniform_fast_path_equals_every_term<double, 2>(-1.0, 1.0, 22);
+  expect_uniform_fast_path_equals_every_term<double, 5>(0.0, 3.0, 23);
+  expect_uniform_fast_path_equals_every_term<double, 11>(-7.3, 2.9, 24);
+  expect_uniform_fast_path_equals_every_term<float, 7>(-0.3f, 0.3f, 25);
+}
+
+TEST(LinguisticVariable, CustomVariableWithAGapHasNoTermThere) {
+  const std::array<Term<double>, 2> terms{Term<double>::triangle(0.0, 1.0, 2.0),
+                                          Term<double>::triangle(3.0, 4.0, 5.0)};
+  const auto v = LinguisticVariable<double, 2>::custom(0.0, 5.0, terms);
+  EXPECT_TRUE(v.valid());
+  EXPECT_EQ(v.centers()[1], 4.0);
+  EXPECT_TRUE(v.fuzzify(2.5).empty());
+  const auto f = v.fuzzify(1.5);
+  EXPECT_EQ(f.first, 0u);
+  EXPECT_EQ(f.last, 0u);
+  EXPECT_EQ(f.degree[0], 0.5);
+}
+
+TEST(LinguisticVariable, ValidRejectsBadUniversesAndTerms) {
+  const auto good = LinguisticVariable<double, 7>::uniform(-0.3, 0.3);
+  EXPECT_FALSE((LinguisticVariable<double, 7>::uniform(0.3, 0.3).valid()));
+  EXPECT_FALSE((LinguisticVariable<double, 7>::uniform(-kInf, 0.3).valid()));
+  EXPECT_FALSE((LinguisticVariable<double, 7>::uniform(kNaN, 0.3).valid()));
+  auto terms = good.terms();
+  terms[3] = Term<double>::gaussian(0.0, -1.0);
+  EXPECT_FALSE((LinguisticVariable<double, 7>::custom(-0.3, 0.3, terms).valid()));
+}
+
+}  // namespace
