@@ -5,7 +5,9 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
+#include "fuzzypid/fuzzy/mamdani_system.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/fuzzy/rule_table.hpp"
