@@ -19,10 +19,11 @@
 // changing Ki online (a fuzzy supervisor does so every tick) therefore never bumps the output.
 // When Ki reaches 0 the integral is frozen, not reset. Anti-windup:
 //   None             I is only clamped to [integral_min, integral_max];
-//   Clamping         conditional integration: the increment Ki e dt is dropped when the output
-//                    would saturate and the increment pushes further into that limit (the sign of
-//                    the increment is compared with the side of the excess, which stays right for
-//                    limits that do not straddle zero);
+//   Clamping         conditional integration: when the output would saturate and the increment
+//                    Ki e dt pushes further into that limit, the increment is cut to the part that
+//                    brings the output to the limit (none if it is already there), so I stops
+//                    growing while saturated (the sign of the increment is compared with the side
+//                    of the excess, which stays right for limits that do not straddle zero);
 //   BackCalculation  I += Kt (u - v) dt after the step, bleeding the integral while saturated.
 // Feed-forward is part of v, so it is covered by both schemes.
 //
@@ -175,10 +176,14 @@ class Pid {
     Scalar integral = detail::clamp(integral_ + increment, config_.integral_min,
                                     config_.integral_max);
     if (config_.anti_windup == AntiWindup::Clamping) {
-      const Scalar trial = p_term + integral + d_term + in.feed_forward;
-      const bool winds_up = (trial > hi && increment > Scalar(0)) ||
-                            (trial < lo && increment < Scalar(0));
-      if (winds_up) integral = detail::clamp(integral_, config_.integral_min, config_.integral_max);
+      // Keep only the part of the increment that brings the output up to the limit: dropping all
+      // of it would leave the output below the limit, unsaturated, with integral action stopped.
+      const Scalar rest = p_term + d_term + in.feed_forward;
+      const Scalar trial = rest + integral;
+      Scalar held = integral;
+      if (trial > hi && increment > Scalar(0)) held = detail::max(integral_, hi - rest);
+      if (trial < lo && increment < Scalar(0)) held = detail::min(integral_, lo - rest);
+      integral = detail::clamp(held, config_.integral_min, config_.integral_max);
     }
     const Scalar v = p_term + integral + d_term + in.feed_forward;
     const Scalar u = detail::clamp(v, lo, hi);
