@@ -138,14 +138,33 @@ class FuzzyPid {
     delta_ = {};
   }
 
-  // Bumpless start at `output` (see pid::Pid::initialize); gains restart at K0.
+  // Bumpless start at `output` (see pid::Pid::initialize); gains restart at K0. The next update
+  // retunes the gains from this input's (e, ec) before the PID runs, so the integral is set with
+  // those retuned gains: that update then reproduces `output` (plus one step Ki' e dt).
   Status initialize(Scalar output, const Input& in) noexcept {
-    const Status s = pid_.initialize(output, in);
-    if (s == Status::Ok) {
-      gains_ = clamp_gains(config_.pid.gains);
-      (void)pid_.set_gains(gains_);
-      delta_ = {};
+    const Gains nominal = clamp_gains(config_.pid.gains);
+    Gains next = nominal;
+    const Scalar e = in.setpoint - in.measurement;
+    const Scalar ec = config_.pid.derivative_source == pid::DerivativeSource::Rates
+                          ? in.setpoint_rate - in.measurement_rate
+                          : Scalar(0);  // the difference source sees e twice: ec = 0
+    if (detail::is_finite(e) && detail::is_finite(ec)) {
+      const auto inference = system_.infer(config_.error_scale * e, config_.error_rate_scale * ec);
+      if (!is_fault(inference.status))
+        next = clamp_gains({config_.pid.gains.kp + config_.output_scale[0] * inference.output[0],
+                            config_.pid.gains.ki + config_.output_scale[1] * inference.output[1],
+                            config_.pid.gains.kd + config_.output_scale[2] * inference.output[2]});
     }
+    const Gains previous = pid_.gains();
+    if (pid_.set_gains(next) != Status::Ok) return Status::NumericOverflow;
+    const Status s = pid_.initialize(output, in);
+    if (s != Status::Ok) {
+      (void)pid_.set_gains(previous);
+      return s;
+    }
+    gains_ = nominal;
+    (void)pid_.set_gains(gains_);
+    delta_ = {};
     return s;
   }
 
