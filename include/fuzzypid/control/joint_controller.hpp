@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/pid/pid.hpp"
@@ -36,8 +37,10 @@ class JointController {
   using Command = JointCommand<Scalar, N>;
 
   JointController() = default;
-  // Every joint starts as a copy of `prototype`.
-  explicit JointController(const Controller& prototype) noexcept { joints_.fill(prototype); }
+  // Every joint starts as a copy of `prototype`. Copy-constructed, so Controller need not be
+  // default-constructible (FuzzyPid with a custom System is not).
+  explicit JointController(const Controller& prototype) noexcept
+      : joints_(fill(prototype, std::make_index_sequence<N>{})) {}
   explicit JointController(const std::array<Controller, N>& joints) noexcept : joints_(joints) {}
 
   // One tick for all joints. Positions in rad, velocities in rad/s, dt in s; the optional
@@ -70,6 +73,12 @@ class JointController {
   const Controller& joint(std::size_t i) const noexcept { return joints_[i]; }
 
  private:
+  template <std::size_t... I>
+  static std::array<Controller, N> fill(const Controller& prototype,
+                                        std::index_sequence<I...>) noexcept {
+    return {{(static_cast<void>(I), prototype)...}};
+  }
+
   std::array<Controller, N> joints_{};
 };
 

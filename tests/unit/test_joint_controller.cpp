@@ -1,0 +1,218 @@
+// control::JointController: N independent joints stepped together, faults isolated per joint.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+#include <type_traits>
+
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/pid/pid.hpp"
+
+namespace {
+
+using fuzzypid::Status;
+using fuzzypid::control::FuzzyPid;
+using fuzzypid::control::JointController;
+
+template <class Scalar>
+fuzzypid::pid::Pid<Scalar> make_pid(Scalar kp) {
+  fuzzypid::pid::Config<Scalar> c;
+  c.gains = {kp, Scalar(0.5), Scalar(0.1)};
+  c.output_min = Scalar(-50);
+  c.output_max = Scalar(50);
+  return fuzzypid::pid::Pid<Scalar>(c);
+}
+
+template <class Scalar>
+FuzzyPid<Scalar> make_fuzzy(Scalar kp) {
+  auto config = fuzzypid::control::paper_config<Scalar>();
+  config.pid.gains.kp = kp;
+  config.error_scale = Scalar(3);
+  return FuzzyPid<Scalar>(fuzzypid::paper::make_system<Scalar>(), config);
+}
+
+template <class Scalar, class Controller>
+struct Case {
+  using scalar = Scalar;
+  using controller = Controller;
+};
+
+template <class C>
+class JointControllerTyped : public ::testing::Test {};
+
+using Cases = ::testing::Types<Case<double, fuzzypid::pid::Pid<double>>,
+                               Case<float, fuzzypid::pid::Pid<float>>,
+                               Case<double, FuzzyPid<double>>, Case<float, FuzzyPid<float>>>;
+TYPED_TEST_SUITE(JointControllerTyped, Cases);
+
+template <class Controller, class Scalar>
+Controller make_controller(Scalar kp) {
+  if constexpr (std::is_same_v<Controller, fuzzypid::pid::Pid<Scalar>>) {
+    return make_pid<Scalar>(kp);
+  } else {
+    return make_fuzzy<Scalar>(kp);
+  }
+}
+
+constexpr std::size_t kJoints = 6;
+
+template <class Scalar, class Controller>
+std::array<Controller, kJoints> make_joints() {
+  std::array<Controller, kJoints> joints{};
+  for (std::size_t i = 0; i < kJoints; ++i)
+    joints[i] = make_controller<Controller>(Scalar(1) + Scalar(i));
+  return joints;
+}
+
+TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
+  using Scalar = typename TypeParam::scalar;
+  using Controller = typename TypeParam::controller;
+  const auto joints = make_joints<Scalar, Controller>();
+  JointController<Scalar, kJoints, Controller> controller(joints);
+  auto standalone = joints;
+  const std::uint64_t seed = 61;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<Scalar> u(Scalar(-0.2), Scalar(0.2));
+  for (int k = 0; k < 500; ++k) {
+    std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{}, ff{};
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      qd[i] = u(rng);
+      vd[i] = u(rng);
+      q[i] = u(rng);
+      v[i] = u(rng);
+      ff[i] = u(rng);
+    }
+    const auto out = controller.step(qd, vd, q, v, Scalar(0.01), &ff);
+    ASSERT_EQ(out.status, Status::Ok);
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      fuzzypid::pid::Input<Scalar> in;
+      in.setpoint = qd[i];
+      in.setpoint_rate = vd[i];
+      in.measurement = q[i];
+      in.measurement_rate = v[i];
+      in.feed_forward = ff[i];
+      ASSERT_EQ(standalone[i].update(in, Scalar(0.01)), Status::Ok);
+      ASSERT_EQ(out.command[i], standalone[i].output()) << "joint " << i;
+      ASSERT_EQ(out.joint_status[i], Status::Ok);
+      ASSERT_EQ(controller.joint(i).output(), standalone[i].output());
+    }
+  }
+}
+
+TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCommand) {
+  using Scalar = typename TypeParam::scalar;
+  using Controller = typename TypeParam::controller;
+  JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
+  std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
+  qd.fill(Scalar(0.1));
+  const auto first = controller.step(qd, vd, q, v, Scalar(0.01));
+  ASSERT_EQ(first.status, Status::Ok);
+
+  auto twin = controller;
+  auto bad_q = q;
+  bad_q[2] = std::numeric_limits<Scalar>::quiet_NaN();
+  auto bad_v = v;
+  bad_v[4] = std::numeric_limits<Scalar>::infinity();
+  const auto out = controller.step(qd, vd, bad_q, bad_v, Scalar(0.01));
+  const auto reference = twin.step(qd, vd, q, v, Scalar(0.01));
+  EXPECT_EQ(out.status, Status::NonFiniteInput);
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    if (i == 2 || i == 4) {
+      EXPECT_EQ(out.joint_status[i], Status::NonFiniteInput) << "joint " << i;
+      EXPECT_EQ(out.command[i], first.command[i]) << "joint " << i;
+    } else {
+      EXPECT_EQ(out.joint_status[i], Status::Ok) << "joint " << i;
+      EXPECT_EQ(out.command[i], reference.command[i]) << "joint " << i;
+    }
+  }
+  // The faulty joints recover on the next good tick.
+  const auto next = controller.step(qd, vd, q, v, Scalar(0.01));
+  EXPECT_EQ(next.status, Status::Ok);
+  EXPECT_EQ(next.command[0], twin.step(qd, vd, q, v, Scalar(0.01)).command[0]);
+}
+
+TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryCommand) {
+  using Scalar = typename TypeParam::scalar;
+  using Controller = typename TypeParam::controller;
+  JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
+  std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
+  qd.fill(Scalar(0.1));
+  const auto first = controller.step(qd, vd, q, v, Scalar(0.01));
+  const auto out = controller.step(qd, vd, q, v, Scalar(0));
+  EXPECT_EQ(out.status, Status::InvalidTimeStep);
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    EXPECT_EQ(out.joint_status[i], Status::InvalidTimeStep);
+    EXPECT_EQ(out.command[i], first.command[i]);
+  }
+}
+
+TYPED_TEST(JointControllerTyped, ResetClearsEveryJoint) {
+  using Scalar = typename TypeParam::scalar;
+  using Controller = typename TypeParam::controller;
+  JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
+  std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
+  qd.fill(Scalar(0.1));
+  for (int k = 0; k < 5; ++k)
+    (void)controller.step(qd, vd, q, v, Scalar(0.01));
+  controller.reset();
+  for (std::size_t i = 0; i < kJoints; ++i)
+    EXPECT_EQ(controller.joint(i).output(), Scalar(0));
+}
+
+TEST(JointController, PrototypeConstructorCopiesOneControllerIntoEveryJoint) {
+  JointController<double, 3, fuzzypid::pid::Pid<double>> controller(make_pid<double>(2.0));
+  EXPECT_EQ(controller.size(), 3u);
+  const auto out = controller.step({1.0, 2.0, 3.0}, {}, {}, {}, 0.01);
+  ASSERT_EQ(out.status, Status::Ok);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(controller.joint(i).gains().kp, 2.0);
+    EXPECT_NEAR(out.command[i], 2.0 * (i + 1.0) + 0.5 * (i + 1.0) * 0.01, 1e-12);
+  }
+}
+
+TEST(JointController, DefaultsToThePapersFuzzyPidOnEveryJoint) {
+  JointController<double, 6> controller;
+  for (std::size_t i = 0; i < 6; ++i)
+    EXPECT_EQ(controller.joint(i).gains(), fuzzypid::paper::kNominalGains<double>);
+  const auto out = controller.step({0.1, 0.1, 0.1, 0.1, 0.1, 0.1}, {}, {}, {}, 0.05);
+  EXPECT_EQ(out.status, Status::Ok);
+}
+
+TEST(JointController, StatusIsTheWorstOfTheJoints) {
+  // Joint 1 has a supervisor with no rule for large errors: NoRuleFired (a note), while joint 0
+  // faults on NaN: the fault wins.
+  using Gappy = fuzzypid::fuzzy::TskSystem<double, 2, 2, 3>;
+  Gappy gappy;
+  const std::array<fuzzypid::fuzzy::Term<double>, 2> terms{
+      fuzzypid::fuzzy::Term<double>::triangle(-1.0, 0.0, 1.0),
+      fuzzypid::fuzzy::Term<double>::triangle(0.0, 1.0, 2.0)};
+  gappy.e = fuzzypid::fuzzy::LinguisticVariable<double, 2>::custom(-1.0, 2.0, terms);
+  gappy.ec = gappy.e;
+  const FuzzyPid<double, Gappy> joint(gappy, fuzzypid::control::paper_config<double>());
+  JointController<double, 2, FuzzyPid<double, Gappy>> controller(joint);
+  auto out = controller.step({0.5, 5.0}, {}, {}, {}, 0.05);
+  EXPECT_EQ(out.joint_status[0], Status::Ok);
+  EXPECT_EQ(out.joint_status[1], Status::NoRuleFired);
+  EXPECT_EQ(out.status, Status::NoRuleFired);
+  out = controller.step({std::numeric_limits<double>::quiet_NaN(), 5.0}, {}, {}, {}, 0.05);
+  EXPECT_EQ(out.joint_status[0], Status::NonFiniteInput);
+  EXPECT_EQ(out.joint_status[1], Status::NoRuleFired);
+  EXPECT_EQ(out.status, Status::NonFiniteInput);
+}
+
+TEST(Status, WorstOrdersFaultsAboveNotesAboveOk) {
+  using fuzzypid::worst;
+  EXPECT_EQ(worst(Status::Ok, Status::NoRuleFired), Status::NoRuleFired);
+  EXPECT_EQ(worst(Status::NonFiniteInput, Status::NoRuleFired), Status::NonFiniteInput);
+  EXPECT_FALSE(fuzzypid::is_fault(Status::NoRuleFired));
+  EXPECT_TRUE(fuzzypid::is_fault(Status::InvalidTimeStep));
+  EXPECT_STREQ(fuzzypid::to_string(Status::NumericOverflow), "numeric_overflow");
+}
+
+}  // namespace
