@@ -1,0 +1,248 @@
+#include "fuzzypid/sim/experiment.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <utility>
+
+#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/paper.hpp"
+#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/robot/ik.hpp"
+#include "fuzzypid/sim/nelder_mead.hpp"
+
+namespace fuzzypid::sim {
+
+namespace {
+
+constexpr std::size_t kJoints = robot::kNumJoints;
+
+// Gaussian samples by Box-Muller over mt19937_64, so the noise sequence is the same with every
+// standard library (std::normal_distribution is implementation-defined).
+class Gaussian {
+ public:
+  explicit Gaussian(std::uint64_t seed) : engine_(seed) {}
+  double operator()(double sigma) {
+    if (sigma == 0.0) return 0.0;
+    constexpr double kTwoPi = 6.283185307179586;
+    const double u1 = (static_cast<double>(engine_() >> 11) + 1.0) * 0x1.0p-53;
+    const double u2 = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+    return sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// Gains of one joint's controller as the paper's units, whatever the controller type.
+template <class Controller>
+pid::Gains<double> current_gains(const Controller& c) {
+  return c.gains();
+}
+
+}  // namespace
+
+const char* to_string(GainUnits g) noexcept {
+  return g == GainUnits::Acceleration ? "acceleration" : "torque";
+}
+const char* to_string(PidForm f) noexcept {
+  return f == PidForm::PerTick ? "per-tick" : "continuous";
+}
+const char* to_string(ControllerKind c) noexcept {
+  switch (c) {
+    case ControllerKind::Pid:
+      return "pid";
+    case ControllerKind::Fuzzy:
+      return "fuzzy";
+    case ControllerKind::PidTuned:
+      return "pid-tuned";
+  }
+  return "unknown";
+}
+
+std::optional<Experiment> Experiment::create(const robot::RobotModel& model,
+                                             const robot::CartesianPathSpec& path,
+                                             const ExperimentOptions& options, std::string& error) {
+  if (!(options.tick_s > 0.0) || !std::isfinite(options.initial_error_rad) ||
+      !options.gains.finite()) {
+    error = "invalid experiment options (tick must be > 0, gains and initial error finite)";
+    return std::nullopt;
+  }
+  // The closed-form solver, seeded for the first sample with the paper's start joints so the
+  // path takes the same (elbow-up, wrist-flipped) branch the paper's vector suggests.
+  robot::JointPathResult planned =
+      robot::plan_joint_path(model, path, robot::IkSolver::Analytic, robot::kPaperStartJoints);
+  if (!planned.ok()) {
+    error = "the path cannot be followed: " + planned.message;
+    return std::nullopt;
+  }
+  const double planned_tick = planned.time_s.size() > 1 ? planned.time_s[1] - planned.time_s[0] : 0;
+  if (std::fabs(planned_tick - options.tick_s) > 1e-12) {
+    error = "the path's sample interval (" + std::to_string(planned_tick) +
+            " s) differs from the controller tick (" + std::to_string(options.tick_s) + " s)";
+    return std::nullopt;
+  }
+  return Experiment(model, std::move(planned), options);
+}
+
+Experiment::Experiment(const robot::RobotModel& model, robot::JointPathResult path,
+                       const ExperimentOptions& options)
+    : model_(model), path_(std::move(path)), options_(options) {
+  const robot::JointVector links = model_.inertia_diagonal(path_.position_rad.front());
+  for (std::size_t i = 0; i < kJoints; ++i)
+    nominal_inertia_[i] = links[i] + options_.plant.armature_kgm2[i];
+}
+
+pid::Gains<double> Experiment::to_continuous(const pid::Gains<double>& g) const noexcept {
+  if (options_.pid_form == PidForm::Continuous) return g;
+  return {g.kp, g.ki / options_.tick_s, g.kd * options_.tick_s};
+}
+
+pid::Gains<double> Experiment::to_paper_units(const pid::Gains<double>& g) const noexcept {
+  if (options_.pid_form == PidForm::Continuous) return g;
+  return {g.kp, g.ki * options_.tick_s, g.kd / options_.tick_s};
+}
+
+RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
+                          const std::optional<pid::Gains<double>>& gains) const {
+  RunResult result;
+  const ExperimentOptions& o = options_;
+  const bool acceleration = o.gain_units == GainUnits::Acceleration;
+
+  robot::PlantConfig plant_config = o.plant;
+  plant_config.inertia_scale.fill(scenario.inertia_scale);
+  robot::JointVector limit = model_.effort_limits_nm();
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    plant_config.damping_nms[i] = scenario.damping_per_s * nominal_inertia_[i];
+    if (scenario.accel_limit_rad_s2 > 0.0)
+      limit[i] = scenario.accel_limit_rad_s2 * nominal_inertia_[i];
+  }
+  plant_config.torque_limit_nm = limit;
+  robot::JointPlant plant(model_, plant_config);
+  if (!plant.valid()) {
+    result.error = "invalid plant configuration for scenario " + scenario.name;
+    return result;
+  }
+
+  // Per-joint PID configuration: the controller knows the actuator limit (in its own units), so
+  // conditional integration stops windup when the plant saturates.
+  const pid::Gains<double> base = to_continuous(gains.value_or(o.gains));
+  std::array<pid::Config<double>, kJoints> pid_configs{};
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    pid::Config<double>& c = pid_configs[i];
+    c.gains = base;
+    c.derivative_source = o.derivative;
+    c.derivative_on = pid::DerivativeOn::Error;
+    c.anti_windup = pid::AntiWindup::Clamping;
+    const double u_max = acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
+    c.output_min = -u_max;
+    c.output_max = u_max;
+  }
+
+  robot::JointVector q0 = path_.position_rad.front();
+  for (double& q : q0)
+    q -= o.initial_error_rad;
+  plant.reset(q0, robot::JointVector{});
+
+  Gaussian noise(o.noise_seed);
+  const std::size_t ticks = path_.time_s.size();
+  result.rows.reserve(ticks * kJoints);
+
+  auto simulate = [&](auto& controller) -> bool {
+    for (std::size_t k = 0; k < ticks; ++k) {
+      const double t = path_.time_s[k];
+      const robot::JointVector& qd_ref = path_.position_rad[k];
+      const robot::JointVector& vd_ref = path_.velocity_rad_s[k];
+      robot::JointVector q_meas = plant.position();
+      robot::JointVector v_meas = plant.velocity();
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        q_meas[i] += noise(scenario.position_noise_rad);
+        v_meas[i] += noise(scenario.velocity_noise_rad_s);
+      }
+      const auto command = controller.step(qd_ref, vd_ref, q_meas, v_meas, o.tick_s);
+      if (is_fault(command.status)) ++result.controller_faults;
+      robot::JointVector torque{};
+      robot::JointVector disturbance{};
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        TrajectoryRow row;
+        row.t_s = t;
+        row.joint = static_cast<int>(i) + 1;
+        row.theta_d = qd_ref[i];
+        row.theta = plant.position()[i];
+        row.error = qd_ref[i] - plant.position()[i];
+        row.error_rate = vd_ref[i] - plant.velocity()[i];
+        row.u = command.command[i];
+        const pid::Gains<double> g = to_paper_units(current_gains(controller.joint(i)));
+        row.kp = g.kp;
+        row.ki = g.ki;
+        row.kd = g.kd;
+        result.rows.push_back(row);
+        torque[i] = acceleration ? nominal_inertia_[i] * command.command[i] : command.command[i];
+        disturbance[i] = scenario.pulses.at(t) * nominal_inertia_[i];
+      }
+      if (k + 1 == ticks) break;
+      const robot::PlantStatus s = plant.step(torque, path_.time_s[k + 1] - t, disturbance);
+      if (s == robot::PlantStatus::Saturated) ++result.saturated_ticks;
+      if (s == robot::PlantStatus::InvalidInput || s == robot::PlantStatus::NumericalError) {
+        result.error = std::string("plant step failed at t = ") + std::to_string(t) +
+                       " s: " + robot::to_string(s);
+        return false;
+      }
+    }
+    return true;
+  };
+
+  if (kind == ControllerKind::Fuzzy) {
+    using Fuzzy = control::FuzzyPid<double>;
+    const auto system = paper::make_system<double>(o.conjunction, o.tables);
+    std::array<Fuzzy, kJoints> joints;
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      control::FuzzyPidConfig<double> fc;
+      fc.pid = pid_configs[i];
+      fc.error_scale = o.error_scale;
+      fc.error_rate_scale = o.error_rate_scale;
+      fc.gain_update = o.gain_update;
+      // dK is in the paper's units: convert like the gains themselves.
+      const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0});
+      fc.output_scale = {o.output_scale[0] * unit.kp, o.output_scale[1] * unit.ki,
+                         o.output_scale[2] * unit.kd};
+      joints[i] = Fuzzy(system, fc);
+    }
+    control::JointController<double, kJoints, Fuzzy> controller(joints);
+    result.ok = simulate(controller);
+  } else {
+    std::array<pid::Pid<double>, kJoints> joints;
+    for (std::size_t i = 0; i < kJoints; ++i)
+      joints[i] = pid::Pid<double>(pid_configs[i]);
+    control::JointController<double, kJoints, pid::Pid<double>> controller(joints);
+    result.ok = simulate(controller);
+  }
+  return result;
+}
+
+double total_itae(const std::vector<TrajectoryRow>& rows, double tick_s) {
+  double sum = 0.0;
+  for (const TrajectoryRow& r : rows)
+    sum += r.t_s * std::fabs(r.error) * tick_s;
+  return sum;
+}
+
+TuningResult tune_pid(const Experiment& experiment, const Scenario& scenario) {
+  const pid::Gains<double> g0 = experiment.options().gains;
+  const auto to_gains = [](const std::array<double, 3>& x) {
+    return pid::Gains<double>{std::pow(10.0, x[0]), std::pow(10.0, x[1]), std::pow(10.0, x[2])};
+  };
+  const auto objective = [&](const std::array<double, 3>& x) {
+    const RunResult r = experiment.run(scenario, ControllerKind::PidTuned, to_gains(x));
+    if (!r.ok || r.controller_faults != 0) return std::numeric_limits<double>::infinity();
+    const double itae = total_itae(r.rows, experiment.options().tick_s);
+    return std::isfinite(itae) ? itae : std::numeric_limits<double>::infinity();
+  };
+  // Search in decades, from the paper's gains, half a decade per initial step.
+  const std::array<double, 3> start = {std::log10(g0.kp), std::log10(std::max(g0.ki, 1e-9)),
+                                       std::log10(g0.kd)};
+  const auto best = nelder_mead<3>(objective, start, {0.5, 0.5, 0.5}, 1e-9, 300);
+  return {to_gains(best.x), best.value, best.evaluations};
+}
+
+}  // namespace fuzzypid::sim
