@@ -51,12 +51,14 @@ class RobotModel::Impl {
 
 // Copies a joint vector into a preallocated KDL array of the same size.
 inline void to_kdl(const JointVector& v, KDL::JntArray& out) noexcept {
-  for (std::size_t i = 0; i < kNumJoints; ++i) out(static_cast<unsigned int>(i)) = v[i];
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    out(static_cast<unsigned int>(i)) = v[i];
 }
 
 inline JointVector from_kdl(const KDL::JntArray& a) noexcept {
   JointVector v{};
-  for (std::size_t i = 0; i < kNumJoints; ++i) v[i] = a(static_cast<unsigned int>(i));
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    v[i] = a(static_cast<unsigned int>(i));
   return v;
 }
 
@@ -64,7 +66,8 @@ inline Pose from_kdl(const KDL::Frame& f) noexcept {
   Pose p;
   p.position_m = Eigen::Vector3d(f.p.x(), f.p.y(), f.p.z());
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) p.rotation(r, c) = f.M(r, c);
+    for (int c = 0; c < 3; ++c)
+      p.rotation(r, c) = f.M(r, c);
   return p;
 }
 

@@ -25,7 +25,9 @@ struct DhParameters {
 };
 
 // Table 1 as written; the twists are fixed by the structure above.
-[[nodiscard]] constexpr DhParameters er50_c20_dh() noexcept { return DhParameters{}; }
+[[nodiscard]] constexpr DhParameters er50_c20_dh() noexcept {
+  return DhParameters{};
+}
 
 // Closed-form forward kinematics of the table above (no KDL): pose of frame 6 in frame 0.
 [[nodiscard]] Pose dh_forward_kinematics(const DhParameters& dh, const JointVector& q) noexcept;

@@ -24,9 +24,12 @@ enum class IkSolver : std::uint8_t {
 // "analytic", "kdl-nr", "kdl-lma" (the command-line spelling).
 [[nodiscard]] constexpr const char* to_string(IkSolver s) noexcept {
   switch (s) {
-    case IkSolver::Analytic: return "analytic";
-    case IkSolver::KdlNr: return "kdl-nr";
-    case IkSolver::KdlLma: return "kdl-lma";
+    case IkSolver::Analytic:
+      return "analytic";
+    case IkSolver::KdlNr:
+      return "kdl-nr";
+    case IkSolver::KdlLma:
+      return "kdl-lma";
   }
   return "unknown";
 }

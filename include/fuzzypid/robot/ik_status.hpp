@@ -17,12 +17,18 @@ enum class IkStatus : std::uint8_t {
 
 [[nodiscard]] constexpr const char* to_string(IkStatus s) noexcept {
   switch (s) {
-    case IkStatus::Ok: return "ok";
-    case IkStatus::Unreachable: return "unreachable";
-    case IkStatus::JointLimits: return "joint_limits";
-    case IkStatus::Singular: return "singular";
-    case IkStatus::NoConvergence: return "no_convergence";
-    case IkStatus::InvalidInput: return "invalid_input";
+    case IkStatus::Ok:
+      return "ok";
+    case IkStatus::Unreachable:
+      return "unreachable";
+    case IkStatus::JointLimits:
+      return "joint_limits";
+    case IkStatus::Singular:
+      return "singular";
+    case IkStatus::NoConvergence:
+      return "no_convergence";
+    case IkStatus::InvalidInput:
+      return "invalid_input";
   }
   return "unknown";
 }

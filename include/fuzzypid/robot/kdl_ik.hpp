@@ -28,7 +28,7 @@ class RobotModel;
 enum class KdlIkMethod : std::uint8_t { NewtonRaphson, LevenbergMarquardt };
 
 struct KdlIkOptions {
-  double tolerance = 1e-6;           // pose error accepted, m and rad
+  double tolerance = 1e-6;  // pose error accepted, m and rad
   unsigned int max_iterations = 500;
   // LMA weights of the error twist (vx, vy, vz, wx, wy, wz), position in m and rotation in rad.
   std::array<double, 6> lma_weights = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};

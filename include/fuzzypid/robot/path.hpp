@@ -45,9 +45,11 @@ struct CartesianPathSpec {
   double max_joint_step_rad = 0.25;
 };
 
-// A and B of section 6 converted from mm to m, fixed orientation: the tool z axis pointing straight
-// down (the deburring tool facing the work table) and the tool x axis along the base x axis,
-// Rz-free, i.e. rotation = diag(1, -1, -1). docs/robot.md explains the choice.
+// The fixed tool orientation used for the section 6 path (see docs/robot.md for the choice).
+[[nodiscard]] Eigen::Matrix3d paper_path_rotation();
+
+// A and B of section 6 converted from mm to m, orientation fixed at paper_path_rotation(),
+// 101 samples over 5 s.
 [[nodiscard]] CartesianPathSpec paper_path_spec();
 
 enum class PathStatus : std::uint8_t {
@@ -59,10 +61,14 @@ enum class PathStatus : std::uint8_t {
 
 [[nodiscard]] constexpr const char* to_string(PathStatus s) noexcept {
   switch (s) {
-    case PathStatus::Ok: return "ok";
-    case PathStatus::InvalidSpec: return "invalid_spec";
-    case PathStatus::IkFailed: return "ik_failed";
-    case PathStatus::JointJump: return "joint_jump";
+    case PathStatus::Ok:
+      return "ok";
+    case PathStatus::InvalidSpec:
+      return "invalid_spec";
+    case PathStatus::IkFailed:
+      return "ik_failed";
+    case PathStatus::JointJump:
+      return "joint_jump";
   }
   return "unknown";
 }
@@ -71,14 +77,14 @@ struct JointPathResult {
   PathStatus status = PathStatus::InvalidSpec;
   IkStatus ik_status = IkStatus::Ok;  // of the first failing sample when status is IkFailed
   std::size_t first_failure = std::numeric_limits<std::size_t>::max();  // sample index
-  std::string message;                                                   // empty when Ok
+  std::string message;                                                  // empty when Ok
 
-  std::vector<double> time_s;                // t_k = k * duration / (samples - 1)
-  std::vector<Pose> poses;                   // the Cartesian targets
-  std::vector<JointVector> position_rad;     // IK of each target (filled up to the failure)
-  std::vector<JointVector> velocity_rad_s;   // central differences, one-sided at the ends
-  JointVector max_speed_rad_s{};             // largest |velocity| of each joint over the path
-  bool within_velocity_limits = false;       // max_speed within the model's velocity limits
+  std::vector<double> time_s;               // t_k = k * duration / (samples - 1)
+  std::vector<Pose> poses;                  // the Cartesian targets
+  std::vector<JointVector> position_rad;    // IK of each target (filled up to the failure)
+  std::vector<JointVector> velocity_rad_s;  // central differences, one-sided at the ends
+  JointVector max_speed_rad_s{};            // largest |velocity| of each joint over the path
+  bool within_velocity_limits = false;      // max_speed within the model's velocity limits
 
   bool ok() const noexcept { return status == PathStatus::Ok; }
 };
@@ -86,8 +92,9 @@ struct JointPathResult {
 // Samples the line start_m -> end_m uniformly in time, solves IK for each sample seeded with the
 // previous solution (the first with `seed`), and differentiates. Samples are computed only up to
 // the first failure.
-[[nodiscard]] JointPathResult plan_joint_path(const RobotModel& model, const CartesianPathSpec& spec,
-                                              IkSolver solver, const JointVector& seed);
+[[nodiscard]] JointPathResult plan_joint_path(const RobotModel& model,
+                                              const CartesianPathSpec& spec, IkSolver solver,
+                                              const JointVector& seed);
 
 // Same, reusing an existing solver set (avoids rebuilding the KDL solvers).
 [[nodiscard]] JointPathResult plan_joint_path(const InverseKinematics& ik, const RobotModel& model,

@@ -3,14 +3,15 @@
 // Decoupled mode (default), per joint i:
 //     J_i θ̈_i = sat(τ_i) − b_i θ̇_i + d_i
 //     J_i = s_i · M_ii(q) + J_motor,i
-// with M_ii the diagonal of the links' joint-space inertia (KDL ChainDynParam), s_i `inertia_scale`,
-// J_motor,i the reflected motor inertia (`armature_kgm2`), b_i viscous damping, d_i a disturbance
-// torque and sat() the clamp to ±torque limit. J is evaluated once per tick at the state at the
-// start of the tick (InertiaUpdate::EveryTick) or once for good (InertiaUpdate::Fixed).
+// with M_ii the diagonal of the links' joint-space inertia (KDL ChainDynParam), s_i
+// `inertia_scale`, J_motor,i the reflected motor inertia (`armature_kgm2`), b_i viscous damping,
+// d_i a disturbance torque and sat() the clamp to ±torque limit. J is evaluated once per tick at
+// the state at the start of the tick (InertiaUpdate::EveryTick) or once for good
+// (InertiaUpdate::Fixed).
 //
 // Coupled mode: M_eff(q) q̈ = sat(τ) − C(q, q̇) q̇ − g(q) − b q̇ + d, with
-// M_eff = S^½ M(q) S^½ + diag(J_motor), S = diag(s), M, C and g re-evaluated at every RK4 stage, and
-// gravity off by default (the paper's model has none).
+// M_eff = S^½ M(q) S^½ + diag(J_motor), S = diag(s), M, C and g re-evaluated at every RK4 stage,
+// and gravity off by default (the paper's model has none).
 //
 // The torque and disturbance are held over the tick (zero-order hold); the state is integrated with
 // classical RK4 at `substep_s`, the last substep shortened to land exactly on the tick. step() does
@@ -49,17 +50,21 @@ struct PlantConfig {
 
 enum class PlantStatus : std::uint8_t {
   Ok,
-  Saturated,      // stepped, but at least one torque was clamped (see saturated())
-  InvalidInput,   // a non-finite torque or disturbance, or dt not finite and > 0: nothing changed
-  NumericalError, // the dynamics produced a non-finite state: nothing changed
+  Saturated,       // stepped, but at least one torque was clamped (see saturated())
+  InvalidInput,    // a non-finite torque or disturbance, or dt not finite and > 0: nothing changed
+  NumericalError,  // the dynamics produced a non-finite state: nothing changed
 };
 
 [[nodiscard]] constexpr const char* to_string(PlantStatus s) noexcept {
   switch (s) {
-    case PlantStatus::Ok: return "ok";
-    case PlantStatus::Saturated: return "saturated";
-    case PlantStatus::InvalidInput: return "invalid_input";
-    case PlantStatus::NumericalError: return "numerical_error";
+    case PlantStatus::Ok:
+      return "ok";
+    case PlantStatus::Saturated:
+      return "saturated";
+    case PlantStatus::InvalidInput:
+      return "invalid_input";
+    case PlantStatus::NumericalError:
+      return "numerical_error";
   }
   return "unknown";
 }
@@ -86,13 +91,13 @@ class JointPlant {
   [[nodiscard]] PlantStatus step(const JointVector& torque_nm, double dt_s,
                                  const JointVector& disturbance_nm = {}) noexcept;
 
-  const JointVector& position() const noexcept;          // rad
-  const JointVector& velocity() const noexcept;          // rad/s
-  const JointVector& acceleration() const noexcept;      // rad/s², at the end of the last tick
-  const JointVector& inertia() const noexcept;           // effective J_i of the last tick, kg·m²
-  const JointVector& applied_torque() const noexcept;    // the clamped torque of the last tick
+  const JointVector& position() const noexcept;        // rad
+  const JointVector& velocity() const noexcept;        // rad/s
+  const JointVector& acceleration() const noexcept;    // rad/s², at the end of the last tick
+  const JointVector& inertia() const noexcept;         // effective J_i of the last tick, kg·m²
+  const JointVector& applied_torque() const noexcept;  // the clamped torque of the last tick
   const std::array<bool, kNumJoints>& saturated() const noexcept;
-  double time_s() const noexcept;                         // sum of accepted dt since reset()
+  double time_s() const noexcept;  // sum of accepted dt since reset()
 
   const PlantConfig& config() const noexcept;
   const RobotModel& model() const noexcept;

@@ -1,6 +1,6 @@
 // The kinematic and dynamic model of a six-joint serial arm, loaded from a URDF through urdfdom and
-// evaluated with Orocos KDL. No KDL or urdfdom type appears here: the KDL chain and its solvers live
-// behind a pointer to an implementation.
+// evaluated with Orocos KDL. No KDL or urdfdom type appears here: the KDL chain and its solvers
+// live behind a pointer to an implementation.
 //
 // Thread safety: const members reuse scratch buffers inside the model, so one RobotModel must not
 // be used from two threads at once. Copies are independent (copy one per thread).
@@ -16,12 +16,7 @@
 
 namespace fuzzypid::robot {
 
-class RobotModel;
-
-struct LoadResult {
-  std::optional<RobotModel> model;  // set on success
-  std::string error;                // empty on success, a human-readable reason otherwise
-};
+struct LoadResult;
 
 // The bundled ER50-C20 URDF: $FUZZYPID_URDF if set and non-empty, else the source tree's
 // urdf/er50_c20.urdf if it exists, else the installed <datadir>/fuzzypid/urdf/er50_c20.urdf.
@@ -80,6 +75,11 @@ class RobotModel {
  private:
   explicit RobotModel(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
+};
+
+struct LoadResult {
+  std::optional<RobotModel> model;  // set on success
+  std::string error;                // empty on success, a human-readable reason otherwise
 };
 
 }  // namespace fuzzypid::robot

@@ -1,0 +1,343 @@
+// RobotModel: URDF (urdfdom) -> KDL tree -> KDL chain, and the KDL-backed queries.
+//
+// The URDF -> KDL conversion follows the conventions of ROS's kdl_parser (which needs ROS and is
+// not used): a joint's origin becomes the segment's tip frame, its axis is expressed in the parent
+// link frame, and a link's inertia is moved from its inertial frame to the link frame.
+#include "robot_model_impl.hpp"
+
+#include <sys/stat.h>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <utility>
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+#include <kdl/tree.hpp>
+
+#ifndef FUZZYPID_URDF_SOURCE_DIR
+#define FUZZYPID_URDF_SOURCE_DIR ""
+#endif
+#ifndef FUZZYPID_URDF_INSTALL_DIR
+#define FUZZYPID_URDF_INSTALL_DIR ""
+#endif
+
+namespace fuzzypid::robot {
+namespace {
+
+constexpr const char* kDefaultUrdfName = "er50_c20.urdf";
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+bool file_exists(const std::string& path) {
+  struct stat st {};
+  return !path.empty() && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// Collects urdfdom's console_bridge messages during one parse, so that load() can return them
+// instead of letting them go to stderr. console_bridge's handler is process-global: the mutex
+// serialises concurrent loads.
+class CapturingHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
+    if (!messages.empty()) messages += "; ";
+    messages += text;
+  }
+  std::string messages;
+};
+
+std::mutex& parse_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+urdf::ModelInterfaceSharedPtr parse_captured(const std::string& xml, std::string& messages) {
+  std::lock_guard<std::mutex> lock(parse_mutex());
+  CapturingHandler handler;
+  console_bridge::useOutputHandler(&handler);
+  urdf::ModelInterfaceSharedPtr model;
+  try {
+    model = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    handler.messages += std::string(handler.messages.empty() ? "" : "; ") + e.what();
+    model.reset();
+  } catch (...) {
+    handler.messages += "unknown exception in the URDF parser";
+    model.reset();
+  }
+  console_bridge::restorePreviousOutputHandler();
+  messages = handler.messages;
+  return model;
+}
+
+KDL::Vector to_kdl(const urdf::Vector3& v) {
+  return KDL::Vector(v.x, v.y, v.z);
+}
+
+KDL::Frame to_kdl(const urdf::Pose& p) {
+  return KDL::Frame(
+      KDL::Rotation::Quaternion(p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w),
+      to_kdl(p.position));
+}
+
+// Returns false (and a reason) for joint types the arm model does not support.
+bool to_kdl(const urdf::Joint& joint, KDL::Joint& out, std::string& error) {
+  const KDL::Frame origin = to_kdl(joint.parent_to_joint_origin_transform);
+  switch (joint.type) {
+    case urdf::Joint::FIXED:
+      out = KDL::Joint(joint.name, KDL::Joint::None);
+      return true;
+    case urdf::Joint::REVOLUTE:
+    case urdf::Joint::CONTINUOUS:
+      out = KDL::Joint(joint.name, origin.p, origin.M * to_kdl(joint.axis), KDL::Joint::RotAxis);
+      return true;
+    default:
+      error = "joint '" + joint.name +
+              "' has a type other than revolute, continuous or fixed (unsupported)";
+      return false;
+  }
+}
+
+KDL::RigidBodyInertia to_kdl(const urdf::InertialSharedPtr& inertial) {
+  if (!inertial) return KDL::RigidBodyInertia::Zero();
+  const KDL::Frame origin = to_kdl(inertial->origin);
+  // URDF gives the tensor about the centre of mass in the inertial frame; KDL wants it about the
+  // centre of mass in the link frame. Rotating a zero-mass body at the origin does exactly that.
+  const KDL::RotationalInertia in_inertial_frame(inertial->ixx, inertial->iyy, inertial->izz,
+                                                 inertial->ixy, inertial->ixz, inertial->iyz);
+  const KDL::RigidBodyInertia rotated =
+      origin.M * KDL::RigidBodyInertia(0.0, KDL::Vector::Zero(), in_inertial_frame);
+  return KDL::RigidBodyInertia(inertial->mass, origin.p, rotated.getRotationalInertia());
+}
+
+bool add_children(const urdf::LinkConstSharedPtr& link, KDL::Tree& tree, std::string& error) {
+  for (const urdf::LinkSharedPtr& child : link->child_links) {
+    if (!child->parent_joint) {
+      error = "link '" + child->name + "' has no parent joint";
+      return false;
+    }
+    KDL::Joint joint;
+    if (!to_kdl(*child->parent_joint, joint, error)) return false;
+    const KDL::Segment segment(child->name, joint,
+                               to_kdl(child->parent_joint->parent_to_joint_origin_transform),
+                               to_kdl(child->inertial));
+    if (!tree.addSegment(segment, link->name)) {
+      error = "KDL rejected segment '" + child->name + "'";
+      return false;
+    }
+    if (!add_children(child, tree, error)) return false;
+  }
+  return true;
+}
+
+LoadResult fail(std::string message) {
+  LoadResult r;
+  r.error = std::move(message);
+  return r;
+}
+
+}  // namespace
+
+std::string default_urdf_path() {
+  if (const char* env = std::getenv("FUZZYPID_URDF"); env != nullptr && env[0] != '\0') return env;
+  const std::string source = std::string(FUZZYPID_URDF_SOURCE_DIR) + "/" + kDefaultUrdfName;
+  if (file_exists(source)) return source;
+  const std::string installed = std::string(FUZZYPID_URDF_INSTALL_DIR) + "/" + kDefaultUrdfName;
+  if (file_exists(installed)) return installed;
+  return source;  // loading it reports the missing file by name
+}
+
+RobotModel::Impl::Impl(ChainDescription description)
+    : desc(std::move(description)),
+      fk_solver(desc.chain),
+      jac_solver(desc.chain),
+      dyn_solver(desc.chain, KDL::Vector(0.0, 0.0, -1.0)),
+      q(kNumJoints),
+      qd(kNumJoints),
+      tau(kNumJoints),
+      jac(kNumJoints),
+      mass(kNumJoints) {}
+
+RobotModel::RobotModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+RobotModel::RobotModel(const RobotModel& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+RobotModel::RobotModel(RobotModel&& other) noexcept = default;
+RobotModel& RobotModel::operator=(const RobotModel& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+RobotModel& RobotModel::operator=(RobotModel&& other) noexcept = default;
+RobotModel::~RobotModel() = default;
+
+LoadResult RobotModel::load(const std::string& urdf_path, const std::string& root_link,
+                            const std::string& tip_link) {
+  try {
+    std::ifstream in(urdf_path, std::ios::binary);
+    if (!in) return fail("cannot open URDF file '" + urdf_path + "'");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) return fail("cannot read URDF file '" + urdf_path + "'");
+
+    std::string messages;
+    const urdf::ModelInterfaceSharedPtr urdf_model = parse_captured(text.str(), messages);
+    if (!urdf_model) {
+      return fail("'" + urdf_path + "' is not a valid URDF" +
+                  (messages.empty() ? std::string() : ": " + messages));
+    }
+    const urdf::LinkConstSharedPtr urdf_root = urdf_model->getRoot();
+    if (!urdf_root) return fail("'" + urdf_path + "' has no root link");
+
+    KDL::Tree tree(urdf_root->name);
+    std::string error;
+    if (!add_children(urdf_root, tree, error)) return fail("'" + urdf_path + "': " + error);
+
+    const std::string root = root_link.empty() ? urdf_root->name : root_link;
+    if (!urdf_model->getLink(root)) return fail("root link '" + root + "' is not in the URDF");
+    std::string tip = tip_link;
+    if (tip.empty()) {
+      urdf::LinkConstSharedPtr link = urdf_model->getLink(root);
+      while (!link->child_links.empty()) {
+        if (link->child_links.size() > 1) {
+          return fail("the URDF branches at link '" + link->name +
+                      "'; name the tip link explicitly");
+        }
+        link = link->child_links.front();
+      }
+      tip = link->name;
+    } else if (!urdf_model->getLink(tip)) {
+      return fail("tip link '" + tip + "' is not in the URDF");
+    }
+
+    ChainDescription desc;
+    desc.root_link = root;
+    desc.tip_link = tip;
+    if (!tree.getChain(root, tip, desc.chain)) {
+      return fail("no chain from root link '" + root + "' to tip link '" + tip + "'");
+    }
+    // KDL's getChain also walks up the tree; require tip to lie below root, as an arm does.
+    for (urdf::LinkConstSharedPtr link = urdf_model->getLink(tip);; link = link->getParent()) {
+      if (link->name == root) break;
+      if (!link->getParent()) {
+        return fail("tip link '" + tip + "' is not below root link '" + root + "'");
+      }
+    }
+    if (desc.chain.getNrOfJoints() != kNumJoints) {
+      return fail("the chain '" + root + "' -> '" + tip + "' has " +
+                  std::to_string(desc.chain.getNrOfJoints()) + " movable joints, expected " +
+                  std::to_string(kNumJoints));
+    }
+
+    std::size_t j = 0;
+    for (const KDL::Segment& segment : desc.chain.segments) {
+      if (segment.getJoint().getType() == KDL::Joint::None) continue;
+      const std::string& name = segment.getJoint().getName();
+      const urdf::JointConstSharedPtr joint = urdf_model->getJoint(name);
+      desc.joint_names[j] = name;
+      desc.lower[j] = -kInf;
+      desc.upper[j] = kInf;
+      desc.velocity[j] = kInf;
+      desc.effort[j] = kInf;
+      if (joint && joint->limits) {
+        if (joint->type == urdf::Joint::REVOLUTE) {
+          desc.lower[j] = joint->limits->lower;
+          desc.upper[j] = joint->limits->upper;
+          if (!(desc.lower[j] <= desc.upper[j])) {
+            return fail("joint '" + name + "' has lower limit above upper limit");
+          }
+        }
+        // URDF uses 0 for "not given" in velocity and effort.
+        if (joint->limits->velocity > 0.0) desc.velocity[j] = joint->limits->velocity;
+        if (joint->limits->effort > 0.0) desc.effort[j] = joint->limits->effort;
+      }
+      ++j;
+    }
+    return LoadResult{RobotModel(std::make_unique<Impl>(std::move(desc))), {}};
+  } catch (const std::exception& e) {
+    return fail("loading '" + urdf_path + "' failed: " + e.what());
+  } catch (...) {
+    return fail("loading '" + urdf_path + "' failed");
+  }
+}
+
+const std::string& RobotModel::root_link() const noexcept {
+  return impl_->desc.root_link;
+}
+const std::string& RobotModel::tip_link() const noexcept {
+  return impl_->desc.tip_link;
+}
+const std::array<std::string, kNumJoints>& RobotModel::joint_names() const noexcept {
+  return impl_->desc.joint_names;
+}
+const JointVector& RobotModel::lower_limits_rad() const noexcept {
+  return impl_->desc.lower;
+}
+const JointVector& RobotModel::upper_limits_rad() const noexcept {
+  return impl_->desc.upper;
+}
+const JointVector& RobotModel::velocity_limits_rad_s() const noexcept {
+  return impl_->desc.velocity;
+}
+const JointVector& RobotModel::effort_limits_nm() const noexcept {
+  return impl_->desc.effort;
+}
+
+bool RobotModel::within_limits(const JointVector& q, double tolerance_rad) const noexcept {
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    if (!(q[i] >= impl_->desc.lower[i] - tolerance_rad &&
+          q[i] <= impl_->desc.upper[i] + tolerance_rad))
+      return false;
+  }
+  return true;
+}
+
+Pose RobotModel::forward_kinematics(const JointVector& q) const noexcept {
+  to_kdl(q, impl_->q);
+  KDL::Frame f;
+  impl_->fk_solver.JntToCart(impl_->q, f);
+  return from_kdl(f);
+}
+
+Eigen::Matrix<double, 6, 6> RobotModel::jacobian(const JointVector& q) const noexcept {
+  to_kdl(q, impl_->q);
+  impl_->jac_solver.JntToJac(impl_->q, impl_->jac);
+  return impl_->jac.data;
+}
+
+Eigen::Matrix<double, 6, 6> RobotModel::mass_matrix(const JointVector& q) const noexcept {
+  to_kdl(q, impl_->q);
+  impl_->dyn_solver.JntToMass(impl_->q, impl_->mass);
+  return impl_->mass.data;
+}
+
+JointVector RobotModel::inertia_diagonal(const JointVector& q) const noexcept {
+  to_kdl(q, impl_->q);
+  impl_->dyn_solver.JntToMass(impl_->q, impl_->mass);
+  JointVector d{};
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const auto k = static_cast<unsigned int>(i);
+    d[i] = impl_->mass(k, k);
+  }
+  return d;
+}
+
+JointVector RobotModel::coriolis_torque(const JointVector& q,
+                                        const JointVector& qd) const noexcept {
+  to_kdl(q, impl_->q);
+  to_kdl(qd, impl_->qd);
+  impl_->dyn_solver.JntToCoriolis(impl_->q, impl_->qd, impl_->tau);
+  return from_kdl(impl_->tau);
+}
+
+JointVector RobotModel::gravity_torque(const JointVector& q, double gravity_m_s2) const noexcept {
+  to_kdl(q, impl_->q);
+  impl_->dyn_solver.JntToGravity(impl_->q, impl_->tau);
+  JointVector g = from_kdl(impl_->tau);
+  for (double& v : g)
+    v *= gravity_m_s2;
+  return g;
+}
+
+}  // namespace fuzzypid::robot

@@ -1,0 +1,204 @@
+// The bundled ER50-C20 URDF and the URDF -> KDL loader.
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+
+#include "fuzzypid/robot/dh_parameters.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
+#include "test_support.hpp"
+
+namespace fuzzypid::robot {
+namespace {
+
+using test::bundled_model;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// Table 1 as modified D-H, written out independently of the library:
+// T_{i-1,i} = RotX(alpha_{i-1}) TransX(a_{i-1}) RotZ(theta_i) TransZ(d_i).
+Eigen::Matrix4d table1_product(const JointVector& q) {
+  const double alpha[6] = {0.0, -90.0 * kDeg, 0.0, -90.0 * kDeg, 90.0 * kDeg, -90.0 * kDeg};
+  const double a[6] = {0.0, 0.220, 0.900, 0.160, 0.0, 0.0};
+  const double d[6] = {0.563, 0.0, 0.0, 1.014, 0.0, 0.0};
+  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+  for (int i = 0; i < 6; ++i) {
+    Eigen::Matrix4d rx = Eigen::Matrix4d::Identity();
+    rx.block<3, 3>(0, 0) = Eigen::AngleAxisd(alpha[i], Eigen::Vector3d::UnitX()).toRotationMatrix();
+    Eigen::Matrix4d tx = Eigen::Matrix4d::Identity();
+    tx(0, 3) = a[i];
+    Eigen::Matrix4d rz = Eigen::Matrix4d::Identity();
+    rz.block<3, 3>(0, 0) =
+        Eigen::AngleAxisd(q[static_cast<std::size_t>(i)], Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+    Eigen::Matrix4d tz = Eigen::Matrix4d::Identity();
+    tz(2, 3) = d[i];
+    t = t * rx * tx * rz * tz;
+  }
+  return t;
+}
+
+std::string data_path(const char* name) {
+  return std::string(FUZZYPID_ROBOT_TEST_DATA) + "/" + name;
+}
+
+TEST(RobotModel, LoadsTheBundledUrdfWithoutAPath) {
+  const LoadResult r = RobotModel::load(default_urdf_path());
+  ASSERT_TRUE(r.model.has_value()) << r.error;
+  EXPECT_TRUE(r.error.empty());
+  EXPECT_EQ(r.model->root_link(), "base_link");
+  EXPECT_EQ(r.model->tip_link(), "flange");
+  EXPECT_EQ(r.model->joint_names()[0], "joint1");
+  EXPECT_EQ(r.model->joint_names()[5], "joint6");
+}
+
+TEST(RobotModel, EnvironmentVariableOverridesTheDefaultUrdf) {
+  ASSERT_EQ(::setenv("FUZZYPID_URDF", "/some/where/else.urdf", 1), 0);
+  EXPECT_EQ(default_urdf_path(), "/some/where/else.urdf");
+  ASSERT_EQ(::unsetenv("FUZZYPID_URDF"), 0);
+  EXPECT_NE(default_urdf_path(), "/some/where/else.urdf");
+}
+
+TEST(RobotModel, JointLimitsAreTable1Ranges) {
+  const RobotModel& m = bundled_model();
+  const JointVector lower = {-180 * kDeg, -135 * kDeg, -80 * kDeg,
+                             -360 * kDeg, -120 * kDeg, -450 * kDeg};
+  const JointVector upper = {180 * kDeg, 80 * kDeg, 225 * kDeg, 360 * kDeg, 120 * kDeg, 450 * kDeg};
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_NEAR(m.lower_limits_rad()[i], lower[i], 1e-15) << "joint " << i + 1;
+    EXPECT_NEAR(m.upper_limits_rad()[i], upper[i], 1e-15) << "joint " << i + 1;
+    EXPECT_GT(m.velocity_limits_rad_s()[i], 0.0);
+    EXPECT_TRUE(std::isfinite(m.effort_limits_nm()[i]));
+  }
+}
+
+TEST(RobotModel, ForwardKinematicsIsTheProductOfTable1Transforms) {
+  const RobotModel& m = bundled_model();
+  auto rng = test::seeded_rng(20240601, "ForwardKinematicsIsTheProductOfTable1Transforms");
+  for (int n = 0; n < 2000; ++n) {
+    const JointVector q = test::random_within(m, rng);
+    const Pose p = m.forward_kinematics(q);
+    const Eigen::Matrix4d t = table1_product(q);
+    EXPECT_LT((p.position_m - t.block<3, 1>(0, 3)).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((p.rotation - t.block<3, 3>(0, 0)).cwiseAbs().maxCoeff(), 1e-12);
+    const Pose c = dh_forward_kinematics(er50_c20_dh(), q);
+    EXPECT_LT((p.position_m - c.position_m).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((p.rotation - c.rotation).cwiseAbs().maxCoeff(), 1e-12);
+  }
+}
+
+// At q = 0: frame 2 sits at (a1, 0, d1) with y2 = -z0; frame 3 is a2 further along x0; the
+// J4 offset (a3, d4) in frame 3 is a3 along x0 and d4 along -z0. Wrist centre = tip =
+// (a1 + a2 + a3, 0, d1 - d4) = (1.280, 0, -0.451) m, and the tip axes are x0, -y0, -z0.
+TEST(RobotModel, ZeroConfigurationPutsTheWristCentreBelowTheShoulder) {
+  const Pose p = bundled_model().forward_kinematics(JointVector{});
+  EXPECT_NEAR(p.position_m.x(), 1.280, 1e-12);
+  EXPECT_NEAR(p.position_m.y(), 0.0, 1e-12);
+  EXPECT_NEAR(p.position_m.z(), -0.451, 1e-12);
+  EXPECT_LT(
+      (p.rotation - Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()).cwiseAbs().maxCoeff(),
+      1e-12);
+}
+
+TEST(RobotModel, JacobianMatchesFiniteDifferencesOfForwardKinematics) {
+  const RobotModel& m = bundled_model();
+  auto rng = test::seeded_rng(77, "JacobianMatchesFiniteDifferencesOfForwardKinematics");
+  const double h = 1e-6;
+  for (int n = 0; n < 200; ++n) {
+    const JointVector q = test::random_within(m, rng);
+    const Eigen::Matrix<double, 6, 6> jac = m.jacobian(q);
+    const Pose p0 = m.forward_kinematics(q);
+    for (std::size_t j = 0; j < kNumJoints; ++j) {
+      JointVector qp = q;
+      JointVector qm = q;
+      qp[j] += h;
+      qm[j] -= h;
+      const Pose pp = m.forward_kinematics(qp);
+      const Pose pm = m.forward_kinematics(qm);
+      const Eigen::Vector3d v = (pp.position_m - pm.position_m) / (2 * h);
+      // Ṙ Rᵀ = [ω]x
+      const Eigen::Matrix3d w = (pp.rotation - pm.rotation) / (2 * h) * p0.rotation.transpose();
+      const Eigen::Vector3d omega(w(2, 1), w(0, 2), w(1, 0));
+      const auto c = static_cast<int>(j);
+      EXPECT_LT((jac.block<3, 1>(0, c) - v).norm(), 1e-7) << "column " << j;
+      EXPECT_LT((jac.block<3, 1>(3, c) - omega).norm(), 1e-7) << "column " << j;
+    }
+  }
+}
+
+TEST(RobotModel, MassMatrixIsSymmetricPositiveDefiniteWithItsDiagonalExposed) {
+  const RobotModel& m = bundled_model();
+  auto rng = test::seeded_rng(5, "MassMatrixIsSymmetricPositiveDefinite");
+  for (int n = 0; n < 200; ++n) {
+    const JointVector q = test::random_within(m, rng);
+    const Eigen::Matrix<double, 6, 6> mm = m.mass_matrix(q);
+    EXPECT_LT((mm - mm.transpose()).cwiseAbs().maxCoeff(), 1e-9);
+    const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(mm);
+    EXPECT_EQ(llt.info(), Eigen::Success);
+    const JointVector d = m.inertia_diagonal(q);
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      EXPECT_DOUBLE_EQ(d[i], mm(static_cast<int>(i), static_cast<int>(i)));
+    }
+  }
+}
+
+TEST(RobotModel, GravityDoesNotLoadTheVerticalFirstAxisAndCoriolisVanishesAtRest) {
+  const RobotModel& m = bundled_model();
+  const JointVector q = {0.3, -0.8, 0.4, 0.2, -0.6, 0.1};
+  const JointVector g = m.gravity_torque(q);
+  EXPECT_NEAR(g[0], 0.0, 1e-9);
+  EXPECT_GT(std::fabs(g[1]), 100.0);  // the shoulder carries the arm
+  const JointVector c = m.coriolis_torque(q, JointVector{});
+  for (double v : c)
+    EXPECT_NEAR(v, 0.0, 1e-12);
+}
+
+TEST(RobotModel, CopiesAndMovesAreIndependentModels) {
+  const RobotModel& m = bundled_model();
+  RobotModel copy = m;
+  RobotModel moved = std::move(copy);
+  const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
+  EXPECT_EQ(moved.forward_kinematics(q).position_m, m.forward_kinematics(q).position_m);
+  RobotModel assigned = m;
+  assigned = moved;
+  EXPECT_EQ(assigned.jacobian(q), m.jacobian(q));
+}
+
+struct BadUrdfCase {
+  const char* file;
+  const char* root;
+  const char* tip;
+  const char* expected_fragment;
+};
+
+class RobotModelLoadErrors : public ::testing::TestWithParam<BadUrdfCase> {};
+
+TEST_P(RobotModelLoadErrors, ReportAReasonInsteadOfAModel) {
+  const BadUrdfCase& c = GetParam();
+  const std::string path = c.file[0] == '/'
+                               ? std::string(c.file)
+                               : (c.file[0] == '@' ? default_urdf_path() : data_path(c.file));
+  const LoadResult r = RobotModel::load(path, c.root, c.tip);
+  EXPECT_FALSE(r.model.has_value());
+  EXPECT_NE(r.error.find(c.expected_fragment), std::string::npos) << "error was: " << r.error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, RobotModelLoadErrors,
+    ::testing::Values(BadUrdfCase{"/nonexistent/robot.urdf", "", "", "cannot open"},
+                      BadUrdfCase{"malformed.urdf", "", "", "not a valid URDF"},
+                      BadUrdfCase{"dangling_joint.urdf", "", "", "not a valid URDF"},
+                      BadUrdfCase{"branching.urdf", "", "", "branches at link 'base'"},
+                      BadUrdfCase{"five_joints.urdf", "", "", "has 5 movable joints"},
+                      BadUrdfCase{"prismatic.urdf", "", "", "unsupported"},
+                      BadUrdfCase{"@", "no_such_link", "", "root link 'no_such_link'"},
+                      BadUrdfCase{"@", "", "no_such_link", "tip link 'no_such_link'"},
+                      BadUrdfCase{"@", "link6", "link2", "not below root link"},
+                      BadUrdfCase{"@", "base_link", "link4", "has 4 movable joints"}));
+
+}  // namespace
+}  // namespace fuzzypid::robot
