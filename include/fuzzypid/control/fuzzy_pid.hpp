@@ -94,7 +94,9 @@ class FuzzyPid {
 
   // One tick: retune the gains from (e, ec), then run the PID. Returns Ok, NoRuleFired (gains
   // left at their nominal/previous value for this tick, PID still run) or a fault.
-  Status update(const Input& in, Scalar dt_s) noexcept {
+  // Flattened (GCC/Clang) so the inference and the PID inline into one body: the compiler then
+  // drops the parts of the inference result the tick does not read (bench/README.md).
+  [[gnu::flatten]] Status update(const Input& in, Scalar dt_s) noexcept {
     if (configured_ != Status::Ok) return configured_;
     if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
     const bool rates = config_.pid.derivative_source == pid::DerivativeSource::Rates;

@@ -10,6 +10,9 @@
 
 namespace fuzzypid::fuzzy {
 
+template <class Scalar, std::size_t NE, std::size_t NEC, std::size_t NOut>
+struct TskSystem;
+
 // The membership degrees of one crisp value in each of a variable's N terms. Only the indices
 // [first, last] can be non-zero; first > last means no term holds the value (e.g. NaN).
 template <class Scalar, std::size_t N>
@@ -44,6 +47,7 @@ class LinguisticVariable {
     for (std::size_t k = 1; k + 1 < N; ++k)
       v.terms_[k] = Term<Scalar>::triangle(v.peak_[k - 1], v.peak_[k], v.peak_[k + 1]);
     v.step_ = h;
+    v.inverse_step_ = Scalar(1) / h;
     return v;
   }
 
@@ -81,24 +85,49 @@ class LinguisticVariable {
   // non-zero and they are found in O(1); otherwise every term is evaluated.
   Fuzzified<Scalar, N> fuzzify(Scalar x) const noexcept {
     Fuzzified<Scalar, N> out;
-    if (x != x) return out;
-    if (uniform_) {
-      if (x <= min_) return single(0);
-      if (x >= max_) return single(N - 1);
-      // Index of the left peak of the interval holding x, corrected for rounding so that
-      // peak_[k] <= x <= peak_[k + 1].
-      std::size_t k = static_cast<std::size_t>((x - min_) / step_);
-      if (k > N - 2) k = N - 2;
-      if (x < peak_[k] && k > 0) --k;
-      if (x > peak_[k + 1] && k < N - 2) ++k;
-      // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
-      const Scalar width = peak_[k + 1] - peak_[k];
-      out.degree[k] = (peak_[k + 1] - x) / width;
-      out.degree[k + 1] = (x - peak_[k]) / width;
-      out.first = out.degree[k] > Scalar(0) ? k : k + 1;
-      out.last = out.degree[k + 1] > Scalar(0) ? k + 1 : k;
-      return out;
+    fuzzify_into(x, out);
+    return out;
+  }
+
+ private:
+  template <class, std::size_t, std::size_t, std::size_t>
+  friend struct TskSystem;
+
+  // fuzzify() written into `out`, which must be default-constructed (all degrees 0, empty span).
+  // TskSystem fuzzifies straight into its result with it, saving two copies of the degrees.
+  void fuzzify_into(Scalar x, Fuzzified<Scalar, N>& out) const noexcept {
+    if (x != x) return;
+    if (!uniform_) {
+      fuzzify_each(x, out);
+      return;
     }
+    if (x <= min_) {
+      set_single(out, 0);
+      return;
+    }
+    if (x >= max_) {
+      set_single(out, N - 1);
+      return;
+    }
+    // Index of the left peak of the interval holding x, corrected for rounding so that
+    // peak_[k] <= x <= peak_[k + 1]. The estimate multiplies by 1/h rather than dividing by h (a
+    // division costs as much as the rest of this function); like the quotient it can be off by
+    // one next to a peak, which the two corrections absorb. On a peak both neighbouring intervals
+    // give the same degrees (1 for that peak's term, 0 elsewhere).
+    std::size_t k = static_cast<std::size_t>((x - min_) * inverse_step_);
+    if (k > N - 2) k = N - 2;
+    if (x < peak_[k] && k > 0) --k;
+    if (x > peak_[k + 1] && k < N - 2) ++k;
+    // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
+    const Scalar width = peak_[k + 1] - peak_[k];
+    out.degree[k] = (peak_[k + 1] - x) / width;
+    out.degree[k + 1] = (x - peak_[k]) / width;
+    out.first = out.degree[k] > Scalar(0) ? k : k + 1;
+    out.last = out.degree[k + 1] > Scalar(0) ? k + 1 : k;
+  }
+
+  // Every term evaluated (custom partitions); out of line so the uniform path inlines.
+  [[gnu::noinline]] void fuzzify_each(Scalar x, Fuzzified<Scalar, N>& out) const noexcept {
     for (std::size_t k = 0; k < N; ++k) {
       const Scalar d = terms_[k](x);
       out.degree[k] = d;
@@ -107,15 +136,11 @@ class LinguisticVariable {
         out.last = k;
       }
     }
-    return out;
   }
 
- private:
-  static constexpr Fuzzified<Scalar, N> single(std::size_t k) noexcept {
-    Fuzzified<Scalar, N> out;
+  static constexpr void set_single(Fuzzified<Scalar, N>& out, std::size_t k) noexcept {
     out.degree[k] = Scalar(1);
     out.first = out.last = k;
-    return out;
   }
 
   std::array<Term<Scalar>, N> terms_{};
@@ -123,6 +148,7 @@ class LinguisticVariable {
   Scalar min_{};
   Scalar max_{};
   Scalar step_{};
+  Scalar inverse_step_{};  // 1 / step_, for the interval estimate of fuzzify_into()
   bool uniform_ = false;
 };
 

@@ -66,28 +66,82 @@ struct TskSystem {
       r.status = Status::NonFiniteInput;
       return r;
     }
-    r.e = e.fuzzify(e_value);
-    r.ec = ec.fuzzify(ec_value);
-    std::array<Scalar, NOut> weighted{};
-    Scalar total = Scalar(0);
-    for (std::size_t i = r.e.first; i <= r.e.last && i < NE; ++i) {
-      for (std::size_t j = r.ec.first; j <= r.ec.last && j < NEC; ++j) {
-        const Scalar w = conjoin(conjunction, r.e.degree[i], r.ec.degree[j]);
-        total += w;
-        for (std::size_t o = 0; o < NOut; ++o) weighted[o] += w * consequents[o][i][j];
-      }
-    }
+    e.fuzzify_into(e_value, r.e);
+    ec.fuzzify_into(ec_value, r.ec);
+    const Sums sums = conjunction == Conjunction::Minimum ? fire<Conjunction::Minimum>(r.e, r.ec)
+                                                          : fire<Conjunction::Product>(r.e, r.ec);
+    const Scalar total = sums.total;
     r.total_strength = total;
     if (!(total > Scalar(0))) {
       r.status = Status::NoRuleFired;
-      return r;
-    }
-    if (defuzzifier == TskDefuzzifier::WeightedAverage) {
-      for (std::size_t o = 0; o < NOut; ++o) r.output[o] = weighted[o] / total;
+    } else if (defuzzifier == TskDefuzzifier::WeightedAverage) {
+      for (std::size_t o = 0; o < NOut; ++o) r.output[o] = sums.weighted[o] / total;
     } else {
-      r.output = weighted;
+      r.output = sums.weighted;
     }
     return r;
+  }
+
+ private:
+  struct Sums {
+    std::array<Scalar, NOut> weighted;  // sum of w_ij c_ij per output
+    Scalar total;                       // sum of w_ij
+  };
+
+  // Fires the rules (i, j) for i in [fe.first, fe.last], j in [fec.first, fec.last], row by row.
+  // Spans of one or two terms (always the case for a uniform partition) take an unrolled path that
+  // adds the same products in the same order as the general loop, so the sums are bit-identical.
+  template <Conjunction Op>
+  Sums fire(const Fuzzified<Scalar, NE>& fe, const Fuzzified<Scalar, NEC>& fec) const noexcept {
+    if (fe.empty() || fec.empty()) return Sums{};
+    const std::size_t i0 = fe.first;
+    const std::size_t j0 = fec.first;
+    if (fe.last - i0 > 1 || fec.last - j0 > 1) return fire_spans<Op>(fe, fec);
+    if (fe.last == i0) {
+      return fec.last == j0 ? fire_block<Op, 1, 1>(fe, fec, i0, j0)
+                            : fire_block<Op, 1, 2>(fe, fec, i0, j0);
+    }
+    return fec.last == j0 ? fire_block<Op, 2, 1>(fe, fec, i0, j0)
+                          : fire_block<Op, 2, 2>(fe, fec, i0, j0);
+  }
+
+  // Rules (i0 .. i0 + Rows - 1) x (j0 .. j0 + Cols - 1), unrolled at compile time. Each output
+  // accumulates its products in rule order, exactly as the general loop does.
+  template <Conjunction Op, std::size_t Rows, std::size_t Cols>
+  Sums fire_block(const Fuzzified<Scalar, NE>& fe, const Fuzzified<Scalar, NEC>& fec,
+                  std::size_t i0, std::size_t j0) const noexcept {
+    Scalar w[Rows][Cols];
+    for (std::size_t i = 0; i < Rows; ++i)
+      for (std::size_t j = 0; j < Cols; ++j)
+        w[i][j] = conjoin(Op, fe.degree[i0 + i], fec.degree[j0 + j]);
+    Sums s;
+    s.total = Scalar(0);
+    for (std::size_t i = 0; i < Rows; ++i)
+      for (std::size_t j = 0; j < Cols; ++j) s.total += w[i][j];
+    for (std::size_t o = 0; o < NOut; ++o) {
+      const RuleTable<Scalar, NE, NEC>& table = consequents[o];
+      Scalar y = Scalar(0);
+      for (std::size_t i = 0; i < Rows; ++i)
+        for (std::size_t j = 0; j < Cols; ++j) y += w[i][j] * table[i0 + i][j0 + j];
+      s.weighted[o] = y;
+    }
+    return s;
+  }
+
+  // The general loop, for partitions where more than two terms of a variable can hold. Out of
+  // line so that infer() stays small enough to inline into a controller's tick.
+  template <Conjunction Op>
+  [[gnu::noinline]] Sums fire_spans(const Fuzzified<Scalar, NE>& fe,
+                                    const Fuzzified<Scalar, NEC>& fec) const noexcept {
+    Sums s{};
+    for (std::size_t i = fe.first; i <= fe.last && i < NE; ++i) {
+      for (std::size_t j = fec.first; j <= fec.last && j < NEC; ++j) {
+        const Scalar w = conjoin(Op, fe.degree[i], fec.degree[j]);
+        s.total += w;
+        for (std::size_t o = 0; o < NOut; ++o) s.weighted[o] += w * consequents[o][i][j];
+      }
+    }
+    return s;
   }
 };
 
