@@ -6,6 +6,7 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/fuzzy/defuzzify.hpp"
+#include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/mamdani_system.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"

@@ -69,8 +69,10 @@ struct Gaussian {
   Scalar mean, sigma;
   Scalar operator()(Scalar x) const noexcept {
     if (x != x) return Scalar(0);
-    const Scalar z = (x - mean) / sigma;
-    return std::exp(Scalar(-0.5) * z * z);
+    // Evaluated in MATLAB's and fuzzylite's operation order, so loaded rule bases reproduce their
+    // results bit for bit (a sampled maximum can otherwise flip between near-equal samples).
+    const Scalar d = x - mean;
+    return std::exp(-d * d / (Scalar(2) * sigma * sigma));
   }
 };
 

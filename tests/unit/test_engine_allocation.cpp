@@ -1,0 +1,106 @@
+// A loaded rule base evaluates without allocating: the global allocation functions are replaced
+// by counting ones (so this file is its own executable), files are loaded first (loading may
+// allocate), then the counter must not move over 100,000 evaluations of each system and 100,000
+// FuzzyPid ticks driven by the loaded paper system.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/io/rule_file.hpp"
+
+namespace {
+std::size_t g_allocations = 0;  // the tests are single-threaded
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  return ::operator new(size);
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  ++g_allocations;
+  return std::malloc(size == 0 ? 1 : size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t& t) noexcept {
+  return ::operator new(size, t);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace {
+
+using fuzzypid::io::LoadError;
+using fuzzypid::io::LoadOptions;
+using fuzzypid::io::Model;
+
+std::unique_ptr<Model> load(const std::string& path, const LoadOptions& options = {}) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  EXPECT_TRUE(fuzzypid::io::load_rule_file(path, *model, error, options)) << error.to_string();
+  return model;
+}
+
+TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
+  LoadOptions exact;
+  exact.exact_centroid = true;
+  const std::unique_ptr<Model> models[] = {load(FUZZYPID_RULEBASES_DIR "/paper.fis"),
+                                           load(FUZZYPID_RULEBASES_DIR "/paper.fll"),
+                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis"),
+                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis", exact),
+                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_ops.fll"),
+                                           load(FUZZYPID_RULEFILES_DIR "/sugeno_linear.fll")};
+  for (const auto& model : models) {
+    ASSERT_TRUE(model);
+    auto engine = std::make_unique<fuzzypid::fuzzy::Engine<double>>(*model);
+    double in[fuzzypid::fuzzy::kMaxInputs] = {};
+    double out[fuzzypid::fuzzy::kMaxOutputs] = {};
+    const std::size_t before = g_allocations;
+    double checksum = 0.0;
+    for (int n = 0; n < 100000; ++n) {
+      for (std::size_t i = 0; i < model->num_inputs; ++i) {
+        const auto& v = model->inputs[i];
+        in[i] = v.min + (v.max - v.min) * static_cast<double>((n * 7919 + 13 * i) % 1000) / 999.0;
+      }
+      (void)engine->evaluate(in, out);
+      checksum += out[0];
+    }
+    EXPECT_EQ(g_allocations, before) << "allocations in 100,000 evaluations";
+    EXPECT_TRUE(checksum == checksum);
+  }
+}
+
+TEST(EngineAllocation, FuzzyPidWithALoadedSystemAllocatesNothingPerTick) {
+  const auto model = load(FUZZYPID_RULEBASES_DIR "/paper.fis");
+  using Supervisor = fuzzypid::fuzzy::EngineSupervisor<double>;
+  auto controller = std::make_unique<fuzzypid::control::FuzzyPid<double, Supervisor>>(
+      Supervisor(model.get()), fuzzypid::control::paper_config<double>());
+  const std::size_t before = g_allocations;
+  fuzzypid::pid::Input<double> in;
+  in.setpoint = 0.1;
+  for (int n = 0; n < 100000; ++n) {
+    in.measurement = 0.1 * static_cast<double>(n % 100) / 100.0;
+    (void)controller->update(in, 0.001);
+  }
+  EXPECT_EQ(g_allocations, before);
+}
+
+}  // namespace

@@ -1,0 +1,626 @@
+// Rule bases as files (fuzzypid::rulefile + fuzzy::Engine): our engine against fuzzylite 6
+// importing the same .fis/.fll text with its own importers; export/import round trips; malformed
+// files; and a loaded system driving FuzzyPid.
+#include <fl/Headers.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/io/rule_file.hpp"
+#include "fuzzypid/paper.hpp"
+
+namespace {
+
+using fuzzypid::Status;
+using fuzzypid::fuzzy::Engine;
+using fuzzypid::io::LoadError;
+using fuzzypid::io::LoadOptions;
+using fuzzypid::io::Model;
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string rulebase(const std::string& name) {
+  return read(FUZZYPID_RULEBASES_DIR "/" + name);
+}
+std::string fixture(const std::string& name) {
+  return read(FUZZYPID_RULEFILES_DIR "/" + name);
+}
+
+// Replaces the first line starting with `key` by `line`.
+std::string with_line(std::string text, const std::string& key, const std::string& line) {
+  const std::size_t at = text.find("\n" + key);
+  EXPECT_NE(at, std::string::npos) << key;
+  const std::size_t end = text.find('\n', at + 1);
+  return text.replace(at + 1, end - at - 1, line);
+}
+
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+enum class Format { Fis, Fll };
+
+std::unique_ptr<Model> parse(Format f, const std::string& text, const LoadOptions& options = {}) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  const bool ok = f == Format::Fis ? fuzzypid::io::parse_fis(text, "test", *model, error, options)
+                                   : fuzzypid::io::parse_fll(text, "test", *model, error, options);
+  EXPECT_TRUE(ok) << error.to_string();
+  return ok ? std::move(model) : nullptr;
+}
+
+std::unique_ptr<fl::Engine> fuzzylite(Format f, const std::string& text) {
+  fl::Engine* e =
+      f == Format::Fis ? fl::FisImporter().fromString(text) : fl::FllImporter().fromString(text);
+  return std::unique_ptr<fl::Engine>(e);
+}
+
+// Evaluates ours and fuzzylite's on `points` random inputs (ranges widened by 20 % so inputs also
+// leave the universe) and returns the largest difference; a NaN from fuzzylite (no rule fired,
+// default nan) must be 0 with NoRuleFired on our side.
+double compare_with_fuzzylite(Format f, const std::string& text, int points, std::uint64_t seed,
+                              const LoadOptions& options = {}) {
+  fl::fuzzylite::setMachEps(0.0);
+  const auto model = parse(f, text, options);
+  if (!model) return INFINITY;
+  auto engine = std::make_unique<Engine<double>>(*model);
+  auto oracle = fuzzylite(f, text);
+  std::string status;
+  EXPECT_TRUE(oracle->isReady(&status)) << status;
+  EXPECT_EQ(oracle->numberOfInputVariables(), model->num_inputs);
+  EXPECT_EQ(oracle->numberOfOutputVariables(), model->num_outputs);
+  std::mt19937_64 rng(seed);
+  double max_diff = 0.0;
+  std::vector<double> in(model->num_inputs), out(model->num_outputs);
+  for (int n = 0; n < points; ++n) {
+    for (std::size_t i = 0; i < model->num_inputs; ++i) {
+      const auto& v = model->inputs[i];
+      const double margin = 0.2 * (v.max - v.min);
+      in[i] = uniform(rng, v.min - margin, v.max + margin);
+      oracle->getInputVariable(i)->setValue(in[i]);
+    }
+    oracle->process();
+    const Status s = engine->evaluate(in.data(), out.data());
+    EXPECT_FALSE(fuzzypid::is_fault(s));
+    for (std::size_t o = 0; o < model->num_outputs; ++o) {
+      const double expected = oracle->getOutputVariable(o)->getValue();
+      if (std::isnan(expected)) {
+        EXPECT_EQ(s, Status::NoRuleFired);
+        EXPECT_EQ(out[o], 0.0);
+        continue;
+      }
+      const double diff = std::fabs(out[o] - expected);
+      max_diff = std::max(max_diff, diff);
+      if (diff > 1e-9) {
+        ADD_FAILURE() << "output " << o << " differs by " << diff << " at input " << n;
+        return max_diff;
+      }
+    }
+  }
+  return max_diff;
+}
+
+constexpr int kPoints = 3000;
+
+TEST(RuleFile, PaperSystemEqualsFuzzyliteAndTheBuiltInSystem) {
+  for (const auto& [format, file] :
+       {std::pair{Format::Fis, "paper.fis"}, {Format::Fll, "paper.fll"}}) {
+    const std::string text = rulebase(file);
+    const double d = compare_with_fuzzylite(format, text, 10000, 1);
+    std::cout << file << ": max |ours - fuzzylite| = " << d << "\n";
+    EXPECT_LE(d, 1e-9);
+
+    const auto model = parse(format, text);
+    ASSERT_TRUE(model);
+    auto engine = std::make_unique<Engine<double>>(*model);
+    const auto builtin = fuzzypid::paper::make_system<double>();
+    std::mt19937_64 rng(2);
+    double max_diff = 0.0;
+    for (int n = 0; n < 10000; ++n) {
+      const double in[2] = {uniform(rng, -0.4, 0.4), uniform(rng, -0.4, 0.4)};
+      double out[3];
+      ASSERT_EQ(engine->evaluate(in, out), Status::Ok);
+      const auto r = builtin.infer(in[0], in[1]);
+      for (int o = 0; o < 3; ++o)
+        max_diff = std::max(max_diff, std::fabs(out[o] - r.output[o]));
+    }
+    std::cout << file << ": max |ours - paper::make_system| = " << max_diff << "\n";
+    EXPECT_LE(max_diff, 1e-15);
+  }
+}
+
+TEST(RuleFile, MamdaniEqualsFuzzyliteForEveryOperatorAndDefuzzifier) {
+  const std::string base = fixture("mamdani_mix.fis");
+  double worst = 0.0;
+  std::uint64_t seed = 10;
+  for (const char* defuzz : {"centroid", "bisector", "mom", "som", "lom"}) {
+    for (const char* and_or : {"min/max", "prod/probor"}) {
+      for (const char* imp : {"min", "prod"}) {
+        for (const char* agg : {"max", "sum"}) {
+          std::string text =
+              with_line(base, "DefuzzMethod", std::string("DefuzzMethod='") + defuzz + "'");
+          const bool prod = std::string(and_or) == "prod/probor";
+          text = with_line(text, "AndMethod", prod ? "AndMethod='prod'" : "AndMethod='min'");
+          text = with_line(text, "OrMethod", prod ? "OrMethod='probor'" : "OrMethod='max'");
+          text = with_line(text, "ImpMethod", std::string("ImpMethod='") + imp + "'");
+          text = with_line(text, "AggMethod", std::string("AggMethod='") + agg + "'");
+          SCOPED_TRACE(std::string(defuzz) + " " + and_or + " " + imp + " " + agg);
+          worst = std::max(worst, compare_with_fuzzylite(Format::Fis, text, kPoints / 3, seed++));
+        }
+      }
+    }
+  }
+  std::cout << "mamdani_mix.fis, 80 operator/defuzzifier combinations: max |ours - fuzzylite| = "
+            << worst << "\n";
+}
+
+TEST(RuleFile, FllMamdaniAndSugenoEqualFuzzylite) {
+  const std::string ops = fixture("mamdani_ops.fll");
+  double d = compare_with_fuzzylite(Format::Fll, ops, kPoints, 20);
+  std::cout << "mamdani_ops.fll: " << d << "\n";
+  for (const char* defuzz : {"Bisector 150", "MeanOfMaximum 300", "SmallestOfMaximum 100",
+                             "LargestOfMaximum 100", "Centroid"}) {
+    SCOPED_TRACE(defuzz);
+    d = std::max(d, compare_with_fuzzylite(
+                        Format::Fll,
+                        with_line(ops, "  defuzzifier", std::string("  defuzzifier: ") + defuzz),
+                        kPoints / 3, 21));
+  }
+  const std::string sugeno = fixture("sugeno_linear.fll");
+  double s = compare_with_fuzzylite(Format::Fll, sugeno, kPoints, 22);
+  // The same with both outputs weighted-average and both weighted-sum.
+  std::string swapped = sugeno;
+  swapped.replace(swapped.find("WeightedAverage"), 15, "WeightedSum");
+  s = std::max(s, compare_with_fuzzylite(Format::Fll, swapped, kPoints, 23));
+  swapped = sugeno;
+  swapped.replace(swapped.find("WeightedSum"), 11, "WeightedAverage");
+  s = std::max(s, compare_with_fuzzylite(Format::Fll, swapped, kPoints, 24));
+  std::cout << "mamdani_ops.fll (all integral defuzzifiers): max diff " << d
+            << "; sugeno_linear.fll (wtaver/wtsum): max diff " << s << "\n";
+}
+
+TEST(RuleFile, FisSugenoWithLinearTermsEqualsFuzzylite) {
+  // The Sugeno fixture written as .fis (by our exporter, without the .fll-only features).
+  std::string fll = fixture("sugeno_linear.fll");
+  fll = with_line(fll, "  lock-range: true", "  lock-range: false");
+  fll = with_line(fll, "  lock-range: true", "  lock-range: false");
+  fll = with_line(fll, "  default: 0.5", "  default: nan");
+  fll = with_line(fll, "  defuzzifier: WeightedSum", "  defuzzifier: WeightedAverage TakagiSugeno");
+  const auto model = parse(Format::Fll, fll);
+  ASSERT_TRUE(model);
+  std::string fis, error;
+  ASSERT_TRUE(fuzzypid::io::to_fis(*model, fis, error)) << error;
+  double d = compare_with_fuzzylite(Format::Fis, fis, kPoints, 30);
+  d = std::max(
+      d, compare_with_fuzzylite(Format::Fis, with_line(fis, "DefuzzMethod", "DefuzzMethod='wtsum'"),
+                                kPoints, 31));
+  std::cout << "sugeno as .fis (wtaver, wtsum): max diff " << d << "\n";
+}
+
+TEST(RuleFile, OurExportsReadByFuzzyliteGiveTheSameResults) {
+  for (const auto& [format, text] : {std::pair{Format::Fis, fixture("mamdani_mix.fis")},
+                                     {Format::Fll, fixture("mamdani_ops.fll")},
+                                     {Format::Fll, fixture("sugeno_linear.fll")},
+                                     {Format::Fis, rulebase("paper.fis")}}) {
+    const auto model = parse(format, text);
+    ASSERT_TRUE(model);
+    std::string fll, error;
+    ASSERT_TRUE(fuzzypid::io::to_fll(*model, fll, error)) << error;
+    EXPECT_LE(compare_with_fuzzylite(Format::Fll, fll, 1000, 40), 1e-9);
+  }
+}
+
+void expect_same_model(const Model& a, const Model& b) {
+  ASSERT_EQ(a.num_inputs, b.num_inputs);
+  ASSERT_EQ(a.num_outputs, b.num_outputs);
+  ASSERT_EQ(a.num_rules, b.num_rules);
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.conjunction, b.conjunction);
+  EXPECT_EQ(a.disjunction, b.disjunction);
+  EXPECT_EQ(a.implication, b.implication);
+  for (std::size_t i = 0; i < a.num_inputs; ++i) {
+    const auto &x = a.inputs[i], &y = b.inputs[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.min, y.min);
+    EXPECT_EQ(x.max, y.max);
+    EXPECT_EQ(x.lock_range, y.lock_range);
+    ASSERT_EQ(x.num_terms, y.num_terms);
+    for (std::size_t t = 0; t < x.num_terms; ++t) {
+      EXPECT_EQ(x.term_names[t], y.term_names[t]);
+      EXPECT_EQ(x.terms[t].shape, y.terms[t].shape);
+      EXPECT_EQ(x.terms[t].p, y.terms[t].p);
+    }
+  }
+  for (std::size_t o = 0; o < a.num_outputs; ++o) {
+    const auto &x = a.outputs[o], &y = b.outputs[o];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.min, y.min);
+    EXPECT_EQ(x.max, y.max);
+    EXPECT_EQ(x.defuzzifier, y.defuzzifier);
+    EXPECT_EQ(x.resolution, y.resolution);
+    EXPECT_TRUE(x.default_value == y.default_value ||
+                (std::isnan(x.default_value) && std::isnan(y.default_value)));
+    ASSERT_EQ(x.num_terms, y.num_terms);
+    for (std::size_t t = 0; t < x.num_terms; ++t) {
+      EXPECT_EQ(x.term_names[t], y.term_names[t]);
+      EXPECT_EQ(x.terms[t].kind, y.terms[t].kind);
+      EXPECT_EQ(x.terms[t].membership.p, y.terms[t].membership.p);
+      EXPECT_EQ(x.terms[t].coefficients, y.terms[t].coefficients);
+    }
+    if (!fuzzypid::fuzzy::is_sugeno(x.defuzzifier)) {
+      EXPECT_EQ(x.aggregation, y.aggregation);
+    }
+  }
+  for (std::size_t r = 0; r < a.num_rules; ++r) {
+    EXPECT_EQ(a.rules[r].antecedent, b.rules[r].antecedent) << "rule " << r;
+    EXPECT_EQ(a.rules[r].consequent, b.rules[r].consequent) << "rule " << r;
+    EXPECT_EQ(a.rules[r].weight, b.rules[r].weight) << "rule " << r;
+    EXPECT_EQ(a.rules[r].disjunction, b.rules[r].disjunction) << "rule " << r;
+  }
+}
+
+void expect_same_outputs(const Model& a, const Model& b) {
+  auto ea = std::make_unique<Engine<double>>(a);
+  auto eb = std::make_unique<Engine<double>>(b);
+  std::mt19937_64 rng(50);
+  std::vector<double> in(a.num_inputs), oa(a.num_outputs), ob(a.num_outputs);
+  for (int n = 0; n < 500; ++n) {
+    for (std::size_t i = 0; i < a.num_inputs; ++i)
+      in[i] = uniform(rng, a.inputs[i].min - 0.1, a.inputs[i].max + 0.1);
+    EXPECT_EQ(ea->evaluate(in.data(), oa.data()), eb->evaluate(in.data(), ob.data()));
+    EXPECT_EQ(oa, ob);
+  }
+}
+
+TEST(RuleFile, ImportExportImportGivesTheSameEngine) {
+  const std::vector<std::pair<Format, std::string>> files = {
+      {Format::Fis, rulebase("paper.fis")},
+      {Format::Fll, rulebase("paper.fll")},
+      {Format::Fis, fixture("mamdani_mix.fis")},
+      {Format::Fll, fixture("mamdani_ops.fll")},
+      {Format::Fll, fixture("sugeno_linear.fll")}};
+  for (const auto& [format, text] : files) {
+    const auto first = parse(format, text);
+    ASSERT_TRUE(first);
+    std::string fll, fis, error;
+    ASSERT_TRUE(fuzzypid::io::to_fll(*first, fll, error)) << error;
+    const auto via_fll = parse(Format::Fll, fll);
+    ASSERT_TRUE(via_fll) << fll;
+    expect_same_model(*first, *via_fll);
+    expect_same_outputs(*first, *via_fll);
+    if (fuzzypid::io::to_fis(*first, fis, error)) {
+      const auto via_fis = parse(Format::Fis, fis);
+      ASSERT_TRUE(via_fis) << fis;
+      expect_same_model(*first, *via_fis);
+      expect_same_outputs(*first, *via_fis);
+    } else {
+      // Only the .fll-only features (locked ranges, finite defaults) may stop a .fis export.
+      EXPECT_NE(error.find("cannot express"), std::string::npos) << error;
+    }
+  }
+}
+
+TEST(RuleFile, PaperFisAndFllDescribeTheSameEngine) {
+  const auto fis = parse(Format::Fis, rulebase("paper.fis"));
+  const auto fll = parse(Format::Fll, rulebase("paper.fll"));
+  ASSERT_TRUE(fis && fll);
+  expect_same_outputs(*fis, *fll);
+}
+
+TEST(RuleFile, ExactCentroidOptionMatchesAFineSampledCentroid) {
+  const std::string text = fixture("mamdani_mix.fis");
+  LoadOptions exact;
+  exact.exact_centroid = true;
+  LoadOptions fine;
+  fine.fis_resolution = 200000;
+  const auto a = parse(Format::Fis, text, exact);
+  const auto b = parse(Format::Fis, text, fine);
+  ASSERT_TRUE(a && b);
+  auto ea = std::make_unique<Engine<double>>(*a);
+  auto eb = std::make_unique<Engine<double>>(*b);
+  std::mt19937_64 rng(60);
+  double max_diff = 0.0;
+  for (int n = 0; n < 100; ++n) {
+    const double in[3] = {uniform(rng, -1, 1), uniform(rng, 0, 10), uniform(rng, 0, 1)};
+    double oa[2], ob[2];
+    ASSERT_EQ(ea->evaluate(in, oa), eb->evaluate(in, ob));
+    for (int o = 0; o < 2; ++o)
+      max_diff = std::max(max_diff, std::fabs(oa[o] - ob[o]));
+  }
+  std::cout << "exact vs midpoint(200000): " << max_diff << "\n";
+  // Output terms with vertical edges inside the range (trimf [0 0 0.4] starts at the range end,
+  // so none here) would make the midpoint rule O(dx); all are continuous, so O(dx^2).
+  EXPECT_LE(max_diff, 1e-8);
+  // Exact centroid with a non-piecewise-linear output term is refused at load time.
+  Model m;
+  LoadError error;
+  EXPECT_FALSE(fuzzypid::io::parse_fll(fixture("mamdani_ops.fll"), "ops", m, error, exact));
+  EXPECT_NE(error.message.find("not piecewise linear"), std::string::npos) << error.to_string();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Malformed files: each gives an error naming the line (and the item).
+
+int line_of(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  if (at == std::string::npos) return -1;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+struct Bad {
+  const char* what;
+  std::string text;
+  std::string marker;   // text on the line the error must name; empty: line 0 (whole file)
+  std::string message;  // substring of the message
+};
+
+void expect_error(Format f, const Bad& bad) {
+  SCOPED_TRACE(bad.what);
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  const bool ok = f == Format::Fis ? fuzzypid::io::parse_fis(bad.text, "bad.file", *model, error)
+                                   : fuzzypid::io::parse_fll(bad.text, "bad.file", *model, error);
+  ASSERT_FALSE(ok);
+  const int expected = bad.marker.empty() ? 0 : line_of(bad.text, bad.marker);
+  ASSERT_GE(expected, 0) << "marker not found: " << bad.marker;
+  EXPECT_EQ(error.line, expected) << error.to_string();
+  EXPECT_NE(error.message.find(bad.message), std::string::npos) << error.to_string();
+  EXPECT_EQ(error.file, "bad.file");
+  EXPECT_EQ(error.to_string().rfind("bad.file", 0), 0u);
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+TEST(RuleFile, MalformedFisFilesNameTheLine) {
+  const std::string good = rulebase("paper.fis");
+  std::string many_inputs = replace(good, "NumInputs=2", "NumInputs=9");
+  std::string many_mfs = replace(good, "NumMFs=7\nMF1='NL'", "NumMFs=17\nMF1='NL'");
+  std::string many_rules = replace(good, "NumRules=49", "NumRules=513");
+  for (int k = 0; k < 470; ++k)
+    many_rules += "1 1, 1 1 1 (1) : 1\n";
+  std::string too_many_mf_lines = good;
+  too_many_mf_lines = replace(too_many_mf_lines, "MF7='PL':'trapmf',[0.2 0.3 inf inf]\n",
+                              "MF7='PL':'trapmf',[0.2 0.3 inf inf]\nMF17='XX':'trimf',[0 1 2]\n");
+  const std::vector<Bad> cases = {
+      {"truncated in the rules", good.substr(0, good.find("4 4, ")), "NumRules=49",
+       "NumRules=49 but 24 rules follow"},
+      {"truncated mid-line", good.substr(0, good.find("MF3='NS'") + 12), "MF3='NS'",
+       "expected MFk"},
+      {"truncated before outputs", good.substr(0, good.find("[Output1]")), "NumOutputs=3",
+       "[Output1] is missing"},
+      {"unknown keyword", replace(good, "Version=2.0", "Colour='blue'"), "Colour",
+       "unknown [System] key 'Colour'"},
+      {"unknown section", replace(good, "[Rules]", "[Rulez]"), "[Rulez]", "unknown section"},
+      {"unknown mf type", replace(good, "MF2='NM':'trimf'", "MF2='NM':'sigmf'"), "'sigmf'",
+       "unsupported term type 'sigmf'"},
+      {"unsupported method", replace(good, "AndMethod='min'", "AndMethod='my_and'"), "my_and",
+       "unsupported AndMethod 'my_and'"},
+      {"defuzz vs type", replace(good, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'"),
+       "DefuzzMethod", "does not fit"},
+      {"wrong NumMFs", replace(good, "NumMFs=7\nMF1='NL'", "NumMFs=6\nMF1='NL'"), "NumMFs=6",
+       "NumMFs=6 but 7"},
+      {"wrong NumInputs", replace(good, "NumInputs=2", "NumInputs=3"), "NumInputs=3",
+       "[Input3] is missing"},
+      {"rule arity", replace(good, "1 1, 7 1 5 (1) : 1", "1 1 1, 7 1 5 (1) : 1"), "1 1 1, 7 1 5",
+       "3 antecedent indices"},
+      {"reversed range", replace(good, "Range=[-0.3 0.3]", "Range=[0.3 -0.3]"), "Range=[0.3 -0.3]",
+       "min < max"},
+      {"NaN parameter", replace(good, "[-0.3 -0.2 -0.1]", "[nan -0.2 -0.1]"), "[nan -0.2",
+       "NaN parameter"},
+      {"unordered parameters", replace(good, "[-0.3 -0.2 -0.1]", "[-0.1 -0.2 -0.3]"),
+       "[-0.1 -0.2 -0.3]", "a <= b <= c"},
+      {"wrong parameter count", replace(good, "[-0.3 -0.2 -0.1]", "[-0.3 -0.2]"), "[-0.3 -0.2]",
+       "takes 3 parameters"},
+      {"duplicate term", replace(good, "MF2='NM'", "MF2='NL'"), "MF2='NL'",
+       "duplicate term name 'NL'"},
+      {"duplicate variable", replace(good, "Name='ec'", "Name='e'"),
+       "Name='e'\nRange=[-0.3 0.3]\nNumMFs=7\nMF1='NL':'trapmf',[-inf -inf -0.3 "
+       "-0.2]\nMF2='NM':'trimf',[-0.3 -0.2 -0.1]\nMF3='NS':'trimf',[-0.2 -0.1 "
+       "0]\nMF4='ZE':'trimf',[-0.1 0 0.1]\nMF5='PS':'trimf',[0 0.1 0.2]\nMF6='PM':'trimf',[0.1 0.2 "
+       "0.3]\nMF7='PL':'trapmf',[0.2 0.3 inf inf]\n\n[Output1]",
+       "duplicate variable name 'e'"},
+      {"unknown input term", replace(good, "1 1, 7 1 5 (1) : 1", "8 1, 7 1 5 (1) : 1"),
+       "8 1, 7 1 5", "term 8 of input 1"},
+      {"unknown output term", replace(good, "1 1, 7 1 5 (1) : 1", "1 1, 9 1 5 (1) : 1"),
+       "1 1, 9 1 5", "term 9 of output 1"},
+      {"bad weight", replace(good, "1 1, 7 1 5 (1) : 1", "1 1, 7 1 5 (1.5) : 1"), "(1.5)",
+       "weight"},
+      {"bad connection", replace(good, "1 1, 7 1 5 (1) : 1", "1 1, 7 1 5 (1) : 3"), ": 3",
+       "connection"},
+      {"malformed rule", replace(good, "1 1, 7 1 5 (1) : 1", "1 1 3 1 7"), "1 1 3 1 7",
+       "expected 'i1 i2"},
+      {"too many inputs", many_inputs, "NumInputs=9", "NumInputs must be in 1..8"},
+      {"too many mfs", many_mfs, "NumMFs=17", "more than 16"},
+      {"mf index over capacity", too_many_mf_lines, "MF17", "more than 16 membership functions"},
+      {"too many rules", many_rules, "", "more than 512 rules"},
+      {"missing system", good.substr(good.find("[Input1]")), "", "missing [System]"},
+      {"negated consequent", replace(good, "1 1, 7 1 5 (1) : 1", "1 1, -7 1 5 (1) : 1"), "-7 1 5",
+       "negated consequents"},
+  };
+  for (const auto& bad : cases) {
+    if (std::string(bad.what) == "too many rules") {
+      // The 513th rule line is the one refused.
+      SCOPED_TRACE(bad.what);
+      auto model = std::make_unique<Model>();
+      LoadError error;
+      ASSERT_FALSE(fuzzypid::io::parse_fis(bad.text, "bad.file", *model, error));
+      EXPECT_NE(error.message.find(bad.message), std::string::npos) << error.to_string();
+      EXPECT_GT(error.line, line_of(bad.text, "[Rules]") + 512) << error.to_string();
+      continue;
+    }
+    expect_error(Format::Fis, bad);
+  }
+}
+
+TEST(RuleFile, MalformedFllFilesNameTheLine) {
+  const std::string good = rulebase("paper.fll");
+  const std::string rule =
+      "  rule: if e is NL and ec is NL then dKp is P3 and dKi is N3 and dKd is P1";
+  std::string many_terms = good;
+  for (int k = 0; k < 10; ++k)
+    many_terms =
+        replace(many_terms, "  term: PL Trapezoid 0.2 0.3 inf inf\nInputVariable: ec",
+                "  term: X" + std::to_string(k) +
+                    " Triangle 0 1 2\n  term: PL Trapezoid 0.2 0.3 inf inf\nInputVariable: ec");
+  std::string many_inputs = good;
+  for (int k = 0; k < 7; ++k)
+    many_inputs = replace(many_inputs, "OutputVariable: dKp",
+                          "InputVariable: in" + std::to_string(k) +
+                              "\n  range: 0 1\n  term: a Triangle 0 0.5 1\nOutputVariable: dKp");
+  std::string many_rules = good;
+  for (int k = 0; k < 470; ++k)
+    many_rules += rule + "\n";
+  const std::vector<Bad> cases = {
+      {"truncated mid-term", good.substr(0, good.find("term: NS") + 12), "term: NS",
+       "unsupported term type 'Tri'"},
+      {"truncated before rules", good.substr(0, good.find("RuleBlock")), "", "no rules"},
+      {"unknown keyword", replace(good, "  lock-range: false", "  colour: blue"), "colour",
+       "unknown InputVariable property 'colour'"},
+      {"no colon", replace(good, "  lock-range: false", "  lock-range false"), "lock-range false",
+       "expected 'key: value'"},
+      {"unsupported term", replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Ramp -0.3 -0.2"),
+       "NM Ramp", "unsupported term type 'Ramp'"},
+      {"unsupported norm", replace(good, "conjunction: Minimum", "conjunction: EinsteinProduct"),
+       "EinsteinProduct", "unsupported conjunction 'EinsteinProduct'"},
+      {"unsupported defuzzifier",
+       replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Tsukamoto"), "Tsukamoto",
+       "Tsukamoto"},
+      {"unsupported hedge", replace(good, rule, "  rule: if e is very NL then dKp is P3"),
+       "very NL", "unsupported hedge 'very'"},
+      {"mixed and/or",
+       replace(good, rule, "  rule: if e is NL and ec is NL or e is PL then dKp is P3"),
+       "or e is PL", "mixing"},
+      {"parentheses", replace(good, rule, "  rule: if (e is NL and ec is NL) then dKp is P3"),
+       "(e is NL", "parentheses"},
+      {"lock-previous", replace(good, "  lock-previous: false", "  lock-previous: true"),
+       "lock-previous: true", "lock-previous"},
+      {"wrong parameter count",
+       replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Triangle -0.3 -0.2 -0.1 1"), "NM Triangle",
+       "takes 3 parameters"},
+      {"wrong linear count", replace(good, "N3 Constant -0.03", "N3 Linear 1 2 3 4"), "N3 Linear",
+       "Linear takes 2 or 3"},
+      {"reversed range", replace(good, "range: -0.3 0.3", "range: 0.3 -0.3"), "range: 0.3 -0.3",
+       "min < max"},
+      {"NaN parameter", replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Triangle nan -0.2 -0.1"),
+       "NM Triangle nan", "NaN parameter"},
+      {"NaN range", replace(good, "range: -0.3 0.3", "range: nan 0.3"), "range: nan",
+       "range takes two numbers"},
+      {"duplicate term", replace(good, "NM Triangle", "NL Triangle"), "NL Triangle",
+       "duplicate term name 'NL'"},
+      {"duplicate variable", replace(good, "InputVariable: ec", "InputVariable: e"),
+       "InputVariable: e\n  enabled: true\n  range: -0.3 0.3\n  lock-range: false\n  term: NL "
+       "Trapezoid -inf -inf -0.3 -0.2\n  term: NM Triangle -0.3 -0.2 -0.1\n  term: NS Triangle "
+       "-0.2 -0.1 0\n  term: ZE Triangle -0.1 0 0.1\n  term: PS Triangle 0 0.1 0.2\n  term: PM "
+       "Triangle 0.1 0.2 0.3\n  term: PL Trapezoid 0.2 0.3 inf inf\nOutputVariable",
+       "duplicate variable name 'e'"},
+      {"unknown input term", replace(good, rule, "  rule: if e is XL and ec is NL then dKp is P3"),
+       "e is XL", "unknown term 'XL' of input 'e'"},
+      {"unknown output term", replace(good, rule, "  rule: if e is NL and ec is NL then dKp is P9"),
+       "dKp is P9", "unknown term 'P9' of output 'dKp'"},
+      {"unknown variable", replace(good, rule, "  rule: if z is NL then dKp is P3"), "if z is",
+       "unknown input variable 'z'"},
+      {"bad weight", replace(good, rule, rule + " with 2"), "with 2", "weight"},
+      {"two rule blocks", good + "RuleBlock: again\n", "RuleBlock: again",
+       "more than one RuleBlock"},
+      {"missing engine", good.substr(good.find("InputVariable")), "InputVariable: e",
+       "'Engine:' must come first"},
+      {"too many terms", many_terms, "term: PL Trapezoid 0.2 0.3 inf inf\nInputVariable: ec",
+       "more than 16 terms"},
+      {"too many inputs", many_inputs, "InputVariable: in6", "more than 8 input"},
+      {"too many rules", many_rules, "", "more than 512 rules"},
+      {"sugeno term in mamdani", replace(good, "WeightedAverage TakagiSugeno", "Centroid 100"),
+       "OutputVariable: dKp", "must be a membership function"},
+  };
+  for (const auto& bad : cases) {
+    if (std::string(bad.what) == "too many rules") {
+      SCOPED_TRACE(bad.what);
+      auto model = std::make_unique<Model>();
+      LoadError error;
+      ASSERT_FALSE(fuzzypid::io::parse_fll(bad.text, "bad.file", *model, error));
+      EXPECT_NE(error.message.find(bad.message), std::string::npos) << error.to_string();
+      EXPECT_GT(error.line, line_of(bad.text, "RuleBlock") + 512) << error.to_string();
+      continue;
+    }
+    expect_error(Format::Fll, bad);
+  }
+}
+
+TEST(RuleFile, LoadRuleFileReportsMissingFilesAndUnknownExtensions) {
+  Model* model = new Model;
+  LoadError error;
+  EXPECT_FALSE(fuzzypid::io::load_rule_file("/nonexistent/x.fis", *model, error));
+  EXPECT_EQ(error.to_string(), "/nonexistent/x.fis: cannot open file");
+  EXPECT_FALSE(fuzzypid::io::load_rule_file("rules.txt", *model, error));
+  EXPECT_NE(error.message.find("extension"), std::string::npos);
+  EXPECT_TRUE(fuzzypid::io::load_rule_file(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
+      << error.to_string();
+  delete model;
+}
+
+// ---------------------------------------------------------------------------------------------
+// FuzzyPid driven by a loaded rule base.
+
+TEST(RuleFile, FuzzyPidWithALoadedPaperSystemTracksTheBuiltInOne) {
+  namespace control = fuzzypid::control;
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_TRUE(fuzzypid::io::load_fis(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
+      << error.to_string();
+  const fuzzypid::fuzzy::EngineSupervisor<double> supervisor(model.get());
+  ASSERT_TRUE(supervisor.valid());
+
+  auto config = control::paper_config<double>();
+  config.error_scale = 0.3;
+  config.error_rate_scale = 0.1;
+  auto loaded =
+      std::make_unique<control::FuzzyPid<double, fuzzypid::fuzzy::EngineSupervisor<double>>>(
+          supervisor, config);
+  control::FuzzyPid<double> builtin(fuzzypid::paper::make_system<double>(), config);
+
+  // A unit-inertia joint driven to 0.5 rad at 100 Hz.
+  double q = 0.0, v = 0.0;
+  const double dt = 0.01;
+  for (int k = 0; k < 500; ++k) {
+    fuzzypid::pid::Input<double> in;
+    in.setpoint = 0.5;
+    in.measurement = q;
+    const Status a = loaded->update(in, dt);
+    const Status b = builtin.update(in, dt);
+    ASSERT_EQ(a, b) << "tick " << k;
+    ASSERT_NEAR(loaded->output(), builtin.output(), 1e-9) << "tick " << k;
+    ASSERT_NEAR(loaded->gains().kp, builtin.gains().kp, 1e-12);
+    ASSERT_NEAR(loaded->gains().kd, builtin.gains().kd, 1e-12);
+    v += loaded->output() * dt;
+    q += v * dt;
+  }
+}
+
+TEST(RuleFile, SupervisorRejectsModelsOfTheWrongShape) {
+  const auto model = parse(Format::Fis, fixture("mamdani_mix.fis"));
+  ASSERT_TRUE(model);
+  const fuzzypid::fuzzy::EngineSupervisor<double> wrong(model.get());
+  EXPECT_FALSE(wrong.valid());
+  EXPECT_EQ(wrong.infer(0.0, 0.0).status, Status::InvalidConfig);
+  EXPECT_FALSE(fuzzypid::fuzzy::EngineSupervisor<double>(nullptr).valid());
+}
+
+}  // namespace
