@@ -16,8 +16,9 @@
 // printed as `allocations_in_loop`. Statistics are fixed-bucket histograms; the CSV is written
 // after the loop.
 //
-// Controller settings are those of the A/B simulation (sim::ExperimentOptions defaults, the
-// "paper" scenario; see apps/sim_ab and docs/reproduction.md): the paper's per-tick gains
+// Path, plant and controllers are built by sim::Experiment exactly as the A/B simulation builds
+// them (sim::ExperimentOptions defaults, the "paper" scenario; see apps/sim_ab and
+// docs/reproduction.md): the paper's per-tick gains
 // (Kp 4, Ki 0.001, Kd 100) converted to continuous form, acting on an inertia-normalised loop
 // (torque = J^_i u_i, J^_i the nominal joint inertia at the path start), derivative from the
 // measured rates, output limited to the URDF effort limit, start 0.05 rad behind the path.
@@ -489,67 +490,33 @@ int main(int argc, char** argv) {
     return 1;
   }
   const robot::RobotModel& model = *loaded.model;
-  Setup s;
-  s.path = robot::plan_joint_path(model, robot::paper_path_spec(), robot::IkSolver::Analytic,
-                                  robot::kPaperStartJoints);
-  if (!s.path.ok()) {
-    std::fprintf(stderr, "rt_loop: cannot plan the section 6 path: %s\n", s.path.message.c_str());
+  // The A/B simulation's experiment (scenario "paper"): same path, plant and controllers.
+  std::string error;
+  const auto experiment =
+      sim::Experiment::create(model, robot::paper_path_spec(), sim::ExperimentOptions{}, error);
+  if (!experiment) {
+    std::fprintf(stderr, "rt_loop: %s\n", error.c_str());
     return 1;
   }
-  const robot::JointVector links = model.inertia_diagonal(s.path.position_rad.front());
-  s.effort_limit = model.effort_limits_nm();
-  for (std::size_t j = 0; j < kJoints; ++j)
-    s.nominal_inertia[j] = links[j] + s.options.plant.armature_kgm2[j];
+  const sim::Scenario& scenario = *sim::find_scenario("paper");
+  Setup s;
+  s.path = experiment->path();
+  s.options = experiment->options();
+  s.nominal_inertia = experiment->nominal_inertia();
+  s.effort_limit = experiment->torque_limit(scenario);
 
-  robot::PlantConfig plant_config = s.options.plant;
-  plant_config.torque_limit_nm = s.effort_limit;
-  robot::JointPlant plant(model, plant_config);
+  robot::JointPlant plant(model, experiment->plant_config(scenario));
   if (!plant.valid()) {
     std::fprintf(stderr, "rt_loop: invalid plant configuration\n");
     return 1;
   }
-  robot::JointVector q0 = s.path.position_rad.front();
-  for (double& q : q0)
-    q -= s.options.initial_error_rad;
-  plant.reset(q0, robot::JointVector{});
+  plant.reset(experiment->initial_position(), robot::JointVector{});
 
-  // --- Controllers: the A/B simulation's settings (see the file comment).
-  const double tick = s.options.tick_s;
-  const bool per_tick = s.options.pid_form == sim::PidForm::PerTick;
-  const auto continuous = [&](const pid::Gains<double>& g) -> pid::Gains<double> {
-    return per_tick ? pid::Gains<double>{g.kp, g.ki / tick, g.kd * tick} : g;
-  };
-  const bool acceleration = s.options.gain_units == sim::GainUnits::Acceleration;
-  std::array<pid::Config<double>, kJoints> pid_configs{};
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    pid::Config<double>& c = pid_configs[j];
-    c.gains = continuous(s.options.gains);
-    c.derivative_source = s.options.derivative;
-    c.derivative_on = pid::DerivativeOn::Error;
-    c.anti_windup = pid::AntiWindup::Clamping;
-    const double u_max =
-        acceleration ? s.effort_limit[j] / s.nominal_inertia[j] : s.effort_limit[j];
-    c.output_min = -u_max;
-    c.output_max = u_max;
-  }
   using Fuzzy = control::FuzzyPid<double>;
-  std::array<Fuzzy, kJoints> fuzzy_joints;
-  std::array<pid::Pid<double>, kJoints> pid_joints;
-  const auto system = fuzzypid::paper::make_system<double>(s.options.conjunction, s.options.tables);
-  const pid::Gains<double> unit = continuous({1.0, 1.0, 1.0});
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    control::FuzzyPidConfig<double> fc;
-    fc.pid = pid_configs[j];
-    fc.error_scale = s.options.error_scale;
-    fc.error_rate_scale = s.options.error_rate_scale;
-    fc.gain_update = s.options.gain_update;
-    fc.output_scale = {s.options.output_scale[0] * unit.kp, s.options.output_scale[1] * unit.ki,
-                       s.options.output_scale[2] * unit.kd};
-    fuzzy_joints[j] = Fuzzy(system, fc);
-    pid_joints[j] = pid::Pid<double>(pid_configs[j]);
-  }
-  control::JointController<double, kJoints, Fuzzy> fuzzy_controller(fuzzy_joints);
-  control::JointController<double, kJoints, pid::Pid<double>> pid_controller(pid_joints);
+  control::JointController<double, kJoints, Fuzzy> fuzzy_controller(
+      experiment->make_fuzzy_pid(s.effort_limit));
+  control::JointController<double, kJoints, pid::Pid<double>> pid_controller(
+      experiment->make_pid(s.effort_limit));
 
   const std::uint64_t ticks = o.ticks.value_or(s.path.time_s.size());
   std::vector<TickRecord> csv;

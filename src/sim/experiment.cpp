@@ -103,46 +103,97 @@ pid::Gains<double> Experiment::to_paper_units(const pid::Gains<double>& g) const
   return {g.kp, g.ki * options_.tick_s, g.kd / options_.tick_s};
 }
 
-RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
-                          const std::optional<pid::Gains<double>>& gains) const {
-  RunResult result;
-  const ExperimentOptions& o = options_;
-  const bool acceleration = o.gain_units == GainUnits::Acceleration;
-
-  robot::PlantConfig plant_config = o.plant;
-  plant_config.inertia_scale.fill(scenario.inertia_scale);
+robot::JointVector Experiment::torque_limit(const Scenario& scenario) const {
   robot::JointVector limit = model_.effort_limits_nm();
-  for (std::size_t i = 0; i < kJoints; ++i) {
-    plant_config.damping_nms[i] = scenario.damping_per_s * nominal_inertia_[i];
-    if (scenario.accel_limit_rad_s2 > 0.0)
+  if (scenario.accel_limit_rad_s2 > 0.0)
+    for (std::size_t i = 0; i < kJoints; ++i)
       limit[i] = scenario.accel_limit_rad_s2 * nominal_inertia_[i];
-  }
-  plant_config.torque_limit_nm = limit;
-  robot::JointPlant plant(model_, plant_config);
-  if (!plant.valid()) {
-    result.error = "invalid plant configuration for scenario " + scenario.name;
-    return result;
-  }
+  return limit;
+}
 
-  // Per-joint PID configuration: the controller knows the actuator limit (in its own units), so
-  // conditional integration stops windup when the plant saturates.
-  const pid::Gains<double> base = to_continuous(gains.value_or(o.gains));
-  std::array<pid::Config<double>, kJoints> pid_configs{};
+robot::PlantConfig Experiment::plant_config(const Scenario& scenario) const {
+  robot::PlantConfig config = options_.plant;
+  config.inertia_scale.fill(scenario.inertia_scale);
+  for (std::size_t i = 0; i < kJoints; ++i)
+    config.damping_nms[i] = scenario.damping_per_s * nominal_inertia_[i];
+  config.torque_limit_nm = torque_limit(scenario);
+  return config;
+}
+
+robot::JointVector Experiment::initial_position() const {
+  robot::JointVector q0 = path_.position_rad.front();
+  for (double& q : q0)
+    q -= options_.initial_error_rad;
+  return q0;
+}
+
+std::array<pid::Config<double>, kJoints> Experiment::pid_configs(
+    const robot::JointVector& limit, const pid::Gains<double>& paper_gains) const {
+  // The controller knows the actuator limit (in its own units), so conditional integration stops
+  // windup when the plant saturates.
+  const bool acceleration = options_.gain_units == GainUnits::Acceleration;
+  std::array<pid::Config<double>, kJoints> configs{};
   for (std::size_t i = 0; i < kJoints; ++i) {
-    pid::Config<double>& c = pid_configs[i];
-    c.gains = base;
-    c.derivative_source = o.derivative;
+    pid::Config<double>& c = configs[i];
+    c.gains = to_continuous(paper_gains);
+    c.derivative_source = options_.derivative;
     c.derivative_on = pid::DerivativeOn::Error;
     c.anti_windup = pid::AntiWindup::Clamping;
     const double u_max = acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
     c.output_min = -u_max;
     c.output_max = u_max;
   }
+  return configs;
+}
 
-  robot::JointVector q0 = path_.position_rad.front();
-  for (double& q : q0)
-    q -= o.initial_error_rad;
-  plant.reset(q0, robot::JointVector{});
+std::array<pid::Pid<double>, kJoints> Experiment::make_pid(
+    const robot::JointVector& limit, const std::optional<pid::Gains<double>>& gains) const {
+  const auto configs = pid_configs(limit, gains.value_or(options_.gains));
+  std::array<pid::Pid<double>, kJoints> joints;
+  for (std::size_t i = 0; i < kJoints; ++i)
+    joints[i] = pid::Pid<double>(configs[i]);
+  return joints;
+}
+
+std::array<control::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
+    const robot::JointVector& limit, const std::optional<pid::Gains<double>>& gains) const {
+  const auto configs = pid_configs(limit, gains.value_or(options_.gains));
+  const auto system = paper::make_system<double>(options_.conjunction, options_.tables);
+  // dK is in the paper's units: convert it like the gains themselves.
+  const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0});
+  std::array<control::FuzzyPid<double>, kJoints> joints;
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    control::FuzzyPidConfig<double> fc;
+    fc.pid = configs[i];
+    fc.error_scale = options_.error_scale;
+    fc.error_rate_scale = options_.error_rate_scale;
+    fc.gain_update = options_.gain_update;
+    fc.output_scale = {options_.output_scale[0] * unit.kp, options_.output_scale[1] * unit.ki,
+                       options_.output_scale[2] * unit.kd};
+    joints[i] = control::FuzzyPid<double>(system, fc);
+  }
+  return joints;
+}
+
+robot::JointVector Experiment::torque_from_command(const robot::JointVector& u) const noexcept {
+  if (options_.gain_units != GainUnits::Acceleration) return u;
+  robot::JointVector torque{};
+  for (std::size_t i = 0; i < kJoints; ++i)
+    torque[i] = nominal_inertia_[i] * u[i];
+  return torque;
+}
+
+RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
+                          const std::optional<pid::Gains<double>>& gains) const {
+  RunResult result;
+  const ExperimentOptions& o = options_;
+  robot::JointPlant plant(model_, plant_config(scenario));
+  if (!plant.valid()) {
+    result.error = "invalid plant configuration for scenario " + scenario.name;
+    return result;
+  }
+  const robot::JointVector limit = torque_limit(scenario);
+  plant.reset(initial_position(), robot::JointVector{});
 
   Gaussian noise(o.noise_seed);
   const std::size_t ticks = path_.time_s.size();
@@ -161,7 +212,7 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
       }
       const auto command = controller.step(qd_ref, vd_ref, q_meas, v_meas, o.tick_s);
       if (is_fault(command.status)) ++result.controller_faults;
-      robot::JointVector torque{};
+      const robot::JointVector torque = torque_from_command(command.command);
       robot::JointVector disturbance{};
       for (std::size_t i = 0; i < kJoints; ++i) {
         TrajectoryRow row;
@@ -177,7 +228,6 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
         row.ki = g.ki;
         row.kd = g.kd;
         result.rows.push_back(row);
-        torque[i] = acceleration ? nominal_inertia_[i] * command.command[i] : command.command[i];
         disturbance[i] = scenario.pulses.at(t) * nominal_inertia_[i];
       }
       if (k + 1 == ticks) break;
@@ -193,28 +243,11 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
   };
 
   if (kind == ControllerKind::Fuzzy) {
-    using Fuzzy = control::FuzzyPid<double>;
-    const auto system = paper::make_system<double>(o.conjunction, o.tables);
-    std::array<Fuzzy, kJoints> joints;
-    for (std::size_t i = 0; i < kJoints; ++i) {
-      control::FuzzyPidConfig<double> fc;
-      fc.pid = pid_configs[i];
-      fc.error_scale = o.error_scale;
-      fc.error_rate_scale = o.error_rate_scale;
-      fc.gain_update = o.gain_update;
-      // dK is in the paper's units: convert like the gains themselves.
-      const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0});
-      fc.output_scale = {o.output_scale[0] * unit.kp, o.output_scale[1] * unit.ki,
-                         o.output_scale[2] * unit.kd};
-      joints[i] = Fuzzy(system, fc);
-    }
-    control::JointController<double, kJoints, Fuzzy> controller(joints);
+    control::JointController<double, kJoints, control::FuzzyPid<double>> controller(
+        make_fuzzy_pid(limit, gains));
     result.ok = simulate(controller);
   } else {
-    std::array<pid::Pid<double>, kJoints> joints;
-    for (std::size_t i = 0; i < kJoints; ++i)
-      joints[i] = pid::Pid<double>(pid_configs[i]);
-    control::JointController<double, kJoints, pid::Pid<double>> controller(joints);
+    control::JointController<double, kJoints, pid::Pid<double>> controller(make_pid(limit, gains));
     result.ok = simulate(controller);
   }
   return result;

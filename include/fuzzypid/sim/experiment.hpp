@@ -93,6 +93,29 @@ class Experiment {
   RunResult run(const Scenario& scenario, ControllerKind controller,
                 const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
 
+  // The pieces run() builds before its first tick, public so that a real-time loop or a soak test
+  // runs exactly the A/B simulation's settings.
+  //
+  // Torque limit of each joint in the scenario (N·m): the URDF effort limits, or the scenario's
+  // acceleration limit times J^_i.
+  robot::JointVector torque_limit(const Scenario& scenario) const;
+  // The plant configuration of the scenario (inertia scale, damping, torque limits applied).
+  robot::PlantConfig plant_config(const Scenario& scenario) const;
+  // Where the joints start: theta_d(0) - initial_error_rad, at rest.
+  robot::JointVector initial_position() const;
+  // The six controllers of a run, with output limits matching `torque_limit` (in the units of
+  // gain_units) and `gains` in the paper's units (default: the options' gains).
+  std::array<pid::Pid<double>, robot::kNumJoints> make_pid(
+      const robot::JointVector& torque_limit,
+      const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
+  std::array<control::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
+      const robot::JointVector& torque_limit,
+      const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
+  // The torque a controller output asks for: J^_i u_i with GainUnits::Acceleration, u_i else.
+  robot::JointVector torque_from_command(const robot::JointVector& u) const noexcept;
+  // Gains of the PID's continuous SI form expressed in the paper's units (for logging).
+  pid::Gains<double> to_paper_units(const pid::Gains<double>& g) const noexcept;
+
   const robot::JointPathResult& path() const noexcept { return path_; }
   const robot::JointVector& nominal_inertia() const noexcept { return nominal_inertia_; }
   const ExperimentOptions& options() const noexcept { return options_; }
@@ -104,7 +127,8 @@ class Experiment {
 
   // The paper-unit gains converted to the PID's continuous SI form.
   pid::Gains<double> to_continuous(const pid::Gains<double>& g) const noexcept;
-  pid::Gains<double> to_paper_units(const pid::Gains<double>& g) const noexcept;
+  std::array<pid::Config<double>, robot::kNumJoints> pid_configs(
+      const robot::JointVector& torque_limit, const pid::Gains<double>& paper_gains) const;
 
   robot::RobotModel model_;
   robot::JointPathResult path_;
