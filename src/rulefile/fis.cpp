@@ -334,7 +334,8 @@ class FisParser {
     if (v.name.empty()) return fail_at(v.line, what + " has no Name");
     if (!text::valid_identifier(v.name))
       return fail_at(v.name_line,
-                     "variable name '" + v.name + "' must be letters, digits, '_' or '.'");
+                     "variable name '" + v.name +
+                         "' must be letters, digits, '_' or '.' and not a rule keyword");
     if (v.name.size() > fuzzy::kMaxNameLength)
       return fail_at(v.name_line, "variable name longer than 31 bytes");
     if (!names_.insert({v.name, v.name_line}).second)
@@ -351,7 +352,8 @@ class FisParser {
     std::map<std::string, int> term_names;
     for (const auto& [k, mf] : v.mfs) {
       if (!text::valid_identifier(mf.name))
-        return fail_at(mf.line, "term name '" + mf.name + "' must be letters, digits, '_' or '.'");
+        return fail_at(mf.line, "term name '" + mf.name +
+                                    "' must be letters, digits, '_' or '.' and not a rule keyword");
       if (mf.name.size() > fuzzy::kMaxNameLength)
         return fail_at(mf.line, "term name longer than 31 bytes");
       if (!term_names.insert({mf.name, mf.line}).second)

@@ -115,7 +115,8 @@ class FllParser {
 
   bool check_new_variable_name(std::string_view name) {
     if (!text::valid_identifier(name))
-      return fail("variable name '" + std::string(name) + "' must be letters, digits, '_' or '.'");
+      return fail("variable name '" + std::string(name) +
+                  "' must be letters, digits, '_' or '.' and not a rule keyword");
     if (name.size() > fuzzy::kMaxNameLength) return fail("variable name longer than 31 bytes");
     for (std::size_t i = 0; i < model_.num_inputs; ++i)
       if (text::name_of(model_.inputs[i].name) == name)
@@ -139,8 +140,9 @@ class FllParser {
 
   bool variable_property(std::string_view key, std::string_view value) {
     const bool input = section_ == Section::Input;
-    auto& in = model_.inputs[model_.num_inputs - 1];
-    auto& out = model_.outputs[model_.num_outputs - 1];
+    // The current variable is the last one declared of its kind (the other kind may have none).
+    auto& in = model_.inputs[input ? model_.num_inputs - 1 : 0];
+    auto& out = model_.outputs[input ? 0 : model_.num_outputs - 1];
     if (key == "enabled") {
       bool enabled = true;
       if (!boolean(value, enabled)) return false;
@@ -239,7 +241,8 @@ class FllParser {
     const std::string_view name = words[0];
     const std::string_view type = words[1];
     if (!text::valid_identifier(name))
-      return fail("term name '" + std::string(name) + "' must be letters, digits, '_' or '.'");
+      return fail("term name '" + std::string(name) +
+                  "' must be letters, digits, '_' or '.' and not a rule keyword");
     if (name.size() > fuzzy::kMaxNameLength) return fail("term name longer than 31 bytes");
     std::vector<double> p;
     for (std::size_t k = 2; k < words.size(); ++k) {

@@ -61,7 +61,8 @@ bool parse_number(std::string_view s, double& value, bool allow_nan) {
   const double v = std::strtod(buffer, &end);
   if (end != buffer + s.size()) return false;
   if (std::isnan(v) && !allow_nan) return false;
-  if (errno == ERANGE && std::isfinite(v) && v != 0.0) return false;
+  // Overflow ("1e999") is an error; underflow to a subnormal or zero is kept as read.
+  if (errno == ERANGE && std::isinf(v)) return false;
   value = v;
   return true;
 }
@@ -95,6 +96,11 @@ std::string_view name_of(const fuzzy::Name& name) {
 
 bool valid_identifier(std::string_view s) {
   if (s.empty()) return false;
+  // Words of .fll rules (and fuzzylite's hedges) would make an exported rule ambiguous.
+  static const char* const reserved[] = {"if",   "is",  "not",       "and",    "or",       "then",
+                                         "with", "any", "extremely", "seldom", "somewhat", "very"};
+  for (const char* r : reserved)
+    if (s == r) return false;
   for (char c : s) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                     c == '_' || c == '.';

@@ -29,6 +29,7 @@ bool parse_count(std::string_view s, std::size_t& value);
 std::string format_number(double x);
 std::string quoted(std::string_view s);
 std::string_view name_of(const fuzzy::Name& name);
+// Letters, digits, '_' and '.', and not a word of the .fll rule grammar.
 bool valid_identifier(std::string_view s);
 
 }  // namespace fuzzypid::io::text

@@ -1,0 +1,6 @@
+// libFuzzer target for the fuzzylite .fll reader.
+#include "fuzz_rule_file.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fuzzypid::fuzz::run(data, size, &fuzzypid::io::parse_fll);
+}

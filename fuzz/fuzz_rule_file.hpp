@@ -1,0 +1,58 @@
+// Shared body of the rule-file fuzz targets: parse arbitrary bytes; when they load, the model must
+// export, re-import to an engine with identical outputs, and evaluate without sanitizer reports.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/io/rule_file.hpp"
+
+namespace fuzzypid::fuzz {
+
+using Parser = bool (*)(std::string_view, const std::string&, io::Model&, io::LoadError&,
+                        const io::LoadOptions&);
+
+inline void check_engine(const io::Model& model) {
+  auto a = std::make_unique<fuzzy::Engine<double>>(model);
+  double in[fuzzy::kMaxInputs] = {};
+  double out[fuzzy::kMaxOutputs] = {};
+  for (int k = 0; k < 4; ++k) {
+    for (std::size_t i = 0; i < model.num_inputs; ++i) {
+      const auto& v = model.inputs[i];
+      in[i] = v.min + (v.max - v.min) * (k - 0.5) / 2.0;
+    }
+    (void)a->evaluate(in, out);
+  }
+}
+
+inline int run(const std::uint8_t* data, std::size_t size, Parser parse) {
+  // Cap the resolution so a fuzzed "Centroid 100000000" cannot stall the run.
+  if (size > 1 << 16) return 0;
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  auto model = std::make_unique<io::Model>();
+  io::LoadError error;
+  io::LoadOptions options;
+  if (!parse(text, "fuzz", *model, error, options)) {
+    if (error.message.empty()) std::abort();  // every failure must say why
+    return 0;
+  }
+  for (std::size_t o = 0; o < model->num_outputs; ++o)
+    if (model->outputs[o].resolution > 10000) return 0;
+  check_engine(*model);
+  std::string fll, why;
+  if (!io::to_fll(*model, fll, why)) std::abort();  // every loaded model is expressible in .fll
+  auto again = std::make_unique<io::Model>();
+  if (!io::parse_fll(fll, "export", *again, error, options)) std::abort();
+  std::string fis;
+  if (io::to_fis(*model, fis, why) && !io::parse_fis(fis, "export", *again, error, options))
+    std::abort();
+  return 0;
+}
+
+}  // namespace fuzzypid::fuzz
