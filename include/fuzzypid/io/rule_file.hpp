@@ -51,8 +51,9 @@ struct LoadOptions {
 
 // Write a valid model as text, numbers at full precision (%.17g) so that reading it back gives
 // the same model. Fails (with `error` set) when the format cannot express the model: .fis has a
-// single defuzzifier and aggregation for all outputs, and neither format has the exact centroid
-// or shoulders outside a trapezoid (shoulders are written as trapezoids with infinite feet).
+// single defuzzifier and aggregation for all outputs and no lock-range or finite default, and
+// neither format has singleton terms (shoulders are written as trapezoids with infinite feet).
+// The load options (exact centroid, .fis resolution) are not stored in either format.
 [[nodiscard]] bool to_fll(const Model& model, std::string& text, std::string& error);
 [[nodiscard]] bool to_fis(const Model& model, std::string& text, std::string& error);
 
