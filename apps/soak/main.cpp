@@ -1,0 +1,509 @@
+// fuzzypid_soak: millions of ticks of the 6-joint fuzzy PID on the simulated ER50-C20 under
+// deliberate abuse, checking after every tick the invariants a controller left running unattended
+// must keep.
+//
+// The loop follows the section 6 path (A -> B -> A ..., 101 samples each way, closed-form IK)
+// with the controllers and the inertia-normalised loop of sim::Experiment (docs/reproduction.md):
+// the paper's per-tick gains, torque_i = J^_i u_i, and an actuator limit of 5 rad/s² x J^_i (so
+// that the paper's weak gains do saturate it; the integral is limited to the same range, and the
+// gains to [0, 3 K0]). Joints 1-3 use the paper's absolute gain update (K = K0 + dK, Eq. 6),
+// joints 4-6 the incremental one (K += dK every tick), which drifts until the gain bounds stop it:
+// both clamps are exercised.
+//
+// Abuse, drawn from one std::mt19937_64 (uniforms built from its bits, so every standard library
+// gives the same run for a seed):
+//   - dt jitter of +/-20 % around 50 ms on every tick, and about one tick in 1,000 a bad dt
+//     (0, negative, NaN or +inf) given to the controller (the plant then advances 50 ms);
+//   - about one tick in 500 a NaN, +/-inf or huge (+/-1e300) measured position or velocity on
+//     one joint;
+//   - disturbance torque pulses of 0.5-10 s, up to 2 rad/s² x J^_i (one in ten up to 1.5x the
+//     actuator limit, which the controller cannot hold);
+//   - setpoint jumps of up to +/-0.5 rad held 1-20 s, and every ~3 h of simulated time
+//     (200,000 ticks) a 3 rad jump held 100-300 s: long saturation periods.
+//
+// Invariants (any breach prints the tick and exits 1):
+//   - every command is finite;
+//   - no allocation after start-up (global operator new is replaced by a counting one here);
+//   - an injected NaN/inf measurement is reported as a fault on that joint, and a bad dt on every
+//     joint;
+//   - every gain stays finite and inside [gain_min, gain_max]; every integral inside its limits;
+//   - the plant state stays finite. The abuse can push the plant far off the path (a disturbance
+//     above the actuator limit is not recoverable); beyond 20 rad of error or 50 rad/s the plant
+//     is reset onto the path and the reset counted.
+//
+// The last stdout line is `key=value` pairs: ticks nonfinite allocations faults max_abs_integral
+// max_abs_gain, then plant_resets, injected counts and saturated_ticks.
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <new>
+#include <optional>
+#include <random>
+#include <string>
+
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/paper.hpp"
+#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/robot/path.hpp"
+#include "fuzzypid/robot/plant.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/status.hpp"
+
+// ---------------------------------------------------------------------------------------------
+// Counting allocator: every global allocation of this process goes through these.
+
+namespace {
+std::atomic<std::uint64_t> g_allocations{0};
+
+void* counted_alloc(std::size_t size) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size == 0 ? 1 : size);
+}
+
+void* counted_aligned_alloc(std::size_t size, std::align_val_t align) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  void* p = nullptr;
+  const std::size_t a = static_cast<std::size_t>(align) < sizeof(void*)
+                            ? sizeof(void*)
+                            : static_cast<std::size_t>(align);
+  return posix_memalign(&p, a, size == 0 ? 1 : size) == 0 ? p : nullptr;
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = counted_alloc(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  if (void* p = counted_alloc(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_alloc(size);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return counted_alloc(size);
+}
+void* operator new(std::size_t size, std::align_val_t align) {
+  if (void* p = counted_aligned_alloc(size, align)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size, std::align_val_t align) {
+  if (void* p = counted_aligned_alloc(size, align)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
+  return counted_aligned_alloc(size, align);
+}
+void* operator new[](std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
+  return counted_aligned_alloc(size, align);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+
+namespace {
+
+namespace control = fuzzypid::control;
+namespace pid = fuzzypid::pid;
+namespace robot = fuzzypid::robot;
+namespace sim = fuzzypid::sim;
+using fuzzypid::Status;
+
+constexpr std::size_t kJoints = robot::kNumJoints;
+constexpr double kTickS = 0.05;
+constexpr double kHuge = 1e300;
+constexpr double kAccelLimit = 5.0;  // rad/s², see build()
+// Beyond these the plant is considered lost to the abuse and put back on the path.
+constexpr double kMaxErrorRad = 20.0;
+constexpr double kMaxSpeedRadS = 50.0;
+
+using Fuzzy = control::FuzzyPid<double>;
+using Controller = control::JointController<double, kJoints, Fuzzy>;
+
+struct Options {
+  std::uint64_t ticks = 10'000'000;
+  std::uint64_t seed = 1;
+};
+
+bool parse_u64(const char* s, std::uint64_t& out) {
+  if (s == nullptr || *s == '\0' || *s == '-' || *s == '+') return false;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s, &end, 10);
+  if (errno == ERANGE || end == s || *end != '\0') return false;
+  out = v;
+  return true;
+}
+
+void usage(std::FILE* out) {
+  std::fputs(
+      "usage: fuzzypid_soak [--ticks N] [--seed S]\n"
+      "  --ticks N  controller ticks of 50 ms to run (default 10000000, about 5.8 days)\n"
+      "  --seed S   seed of the abuse schedule (default 1)\n"
+      "Exits 0 when every invariant held, 1 on the first breach, 2 on bad arguments.\n",
+      out);
+}
+
+// Returns 0 to run, 1 for --help, 2 on a bad argument (message printed).
+int parse_options(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (arg == "--help" || arg == "-h") {
+      usage(stdout);
+      return 1;
+    }
+    if (arg == "--ticks" || arg == "--seed") {
+      std::uint64_t v = 0;
+      if (!parse_u64(value, v) || (arg == "--ticks" && v == 0)) {
+        std::fprintf(stderr, "fuzzypid_soak: %s needs a positive integer, got '%s'\n", arg.c_str(),
+                     value != nullptr ? value : "");
+        return 2;
+      }
+      (arg == "--ticks" ? o.ticks : o.seed) = v;
+      ++i;
+      continue;
+    }
+    std::fprintf(stderr, "fuzzypid_soak: unknown argument '%s'\n", arg.c_str());
+    usage(stderr);
+    return 2;
+  }
+  return 0;
+}
+
+// Uniform draws from the raw 64-bit engine (std:: distributions are implementation-defined).
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : engine_(seed) {}
+  double uniform() noexcept { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }  // [0,1)
+  double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
+  std::uint64_t below(std::uint64_t n) noexcept { return engine_() % n; }
+  bool chance(double p) noexcept { return uniform() < p; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// The gain bounds: [0, 3 K0] on every gain. The absolute update stays well inside; the incremental
+// one walks into them.
+pid::Gains<double> gain_max_of(const pid::Gains<double>& k0) {
+  return {3.0 * k0.kp, 3.0 * k0.ki, 3.0 * k0.kd};
+}
+
+struct Soak {
+  sim::Experiment experiment;
+  robot::JointPlant plant;
+  Controller controller;
+  std::array<double, kJoints> u_max{};  // controller output limit, rad/s²
+  std::array<double, kJoints> t_max{};  // actuator torque limit, N·m
+  pid::Gains<double> gain_min{};
+  pid::Gains<double> gain_max{};
+};
+
+std::optional<Soak> build(std::string& error) {
+  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
+  if (!loaded.model) {
+    error = "cannot load the URDF: " + loaded.error;
+    return std::nullopt;
+  }
+  const robot::RobotModel& model = *loaded.model;
+  sim::ExperimentOptions options;  // the A/B simulation's defaults: per-tick paper gains
+  options.tick_s = kTickS;
+  auto experiment = sim::Experiment::create(model, robot::paper_path_spec(), options, error);
+  if (!experiment) return std::nullopt;
+
+  // As sim::Experiment::run builds its fuzzy controllers, plus explicit gain and integral bounds.
+  const double t = options.tick_s;
+  const pid::Gains<double> k0 = {options.gains.kp, options.gains.ki / t, options.gains.kd * t};
+  const robot::JointVector& inertia = experiment->nominal_inertia();
+  // Actuator limit kAccelLimit x J^_i, as the sim's "saturation" scenario limits it (there 0.1):
+  // the URDF effort limits allow ~100 rad/s², which the paper's Kp = 4 /s² never reaches.
+  robot::JointVector limit{};
+  for (std::size_t i = 0; i < kJoints; ++i)
+    limit[i] = kAccelLimit * inertia[i];
+  const auto system = fuzzypid::paper::make_system<double>();
+  std::array<Fuzzy, kJoints> joints;
+  std::array<double, kJoints> u_max{};
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    u_max[i] = limit[i] / inertia[i];
+    control::FuzzyPidConfig<double> c;
+    c.pid.gains = k0;
+    c.pid.derivative_source = pid::DerivativeSource::Rates;
+    c.pid.anti_windup = pid::AntiWindup::Clamping;
+    c.pid.output_min = -u_max[i];
+    c.pid.output_max = u_max[i];
+    c.pid.integral_min = -u_max[i];
+    c.pid.integral_max = u_max[i];
+    c.output_scale = {1.0, 1.0 / t, t};  // dK in per-tick units, like the gains
+    c.gain_update = i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
+    c.gain_min = {0.0, 0.0, 0.0};
+    c.gain_max = gain_max_of(k0);
+    joints[i] = Fuzzy(system, control::paper_config<double>());
+    if (joints[i].configure(c) != Status::Ok) {
+      error = "invalid controller configuration";
+      return std::nullopt;
+    }
+  }
+  robot::PlantConfig plant_config = options.plant;
+  plant_config.torque_limit_nm = limit;
+  robot::JointPlant plant(model, plant_config);
+  if (!plant.valid()) {
+    error = "invalid plant configuration";
+    return std::nullopt;
+  }
+  Soak soak{std::move(*experiment), std::move(plant), Controller(joints), u_max, limit,
+            {0.0, 0.0, 0.0},        gain_max_of(k0)};
+  return soak;
+}
+
+// Running figures of the soak, printed as the last line.
+struct Counters {
+  std::uint64_t ticks = 0;
+  std::uint64_t nonfinite = 0;
+  std::uint64_t allocations = 0;
+  std::uint64_t faults = 0;  // joint-ticks that returned a fault
+  double max_abs_integral = 0.0;
+  double max_abs_gain = 0.0;
+  std::uint64_t plant_resets = 0;
+  std::uint64_t injected_measurements = 0;  // NaN/inf (must fault) and huge (may not)
+  std::uint64_t injected_bad_dt = 0;
+  std::uint64_t saturated_ticks = 0;  // ticks in which a controller output was clamped
+};
+
+void print(const Counters& c, std::uint64_t seed, double seconds) {
+  std::printf(
+      "ticks=%llu nonfinite=%llu allocations=%llu faults=%llu max_abs_integral=%.6g "
+      "max_abs_gain=%.6g plant_resets=%llu injected_measurements=%llu injected_bad_dt=%llu "
+      "saturated_ticks=%llu seed=%llu wall_s=%.1f\n",
+      static_cast<unsigned long long>(c.ticks), static_cast<unsigned long long>(c.nonfinite),
+      static_cast<unsigned long long>(c.allocations), static_cast<unsigned long long>(c.faults),
+      c.max_abs_integral, c.max_abs_gain, static_cast<unsigned long long>(c.plant_resets),
+      static_cast<unsigned long long>(c.injected_measurements),
+      static_cast<unsigned long long>(c.injected_bad_dt),
+      static_cast<unsigned long long>(c.saturated_ticks), static_cast<unsigned long long>(seed),
+      seconds);
+}
+
+bool all_finite(const robot::JointVector& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// Runs the soak; returns the first invariant breach (a static string) or nullptr.
+const char* run(Soak& s, const Options& o, Counters& c) {
+  Random rng(o.seed);
+  const robot::JointPathResult& path = s.experiment.path();
+  const std::size_t samples = path.position_rad.size();
+  const std::size_t period = 2 * (samples - 1);  // A -> B -> A
+
+  s.plant.reset(path.position_rad.front(), robot::JointVector{});
+
+  // Abuse schedule: remaining ticks of the current pulse / jump and their values.
+  std::uint64_t pulse_left = 0;
+  std::uint64_t jump_left = 0;
+  robot::JointVector pulse{};
+  robot::JointVector jump{};
+  const std::uint64_t allocations_at_start = g_allocations.load(std::memory_order_relaxed);
+
+  for (std::uint64_t tick = 0; tick < o.ticks; ++tick) {
+    // Reference: the path played forwards then backwards, plus any setpoint jump.
+    const std::size_t phase = tick % period;
+    const bool back = phase >= samples - 1;
+    const std::size_t k = back ? period - phase : phase;
+    robot::JointVector ref = path.position_rad[k];
+    robot::JointVector ref_rate = path.velocity_rad_s[k];
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      if (back) ref_rate[i] = -ref_rate[i];
+      ref[i] += jump[i];
+    }
+
+    if (jump_left > 0) {
+      --jump_left;
+    } else if (tick % 200'000 == 100'000) {  // long saturation: 3 rad held 100-300 s
+      jump_left = 2'000 + rng.below(4'000);
+      for (double& j : jump)
+        j = rng.chance(0.5) ? 3.0 : -3.0;
+    } else if (rng.chance(1.0 / 2'000)) {
+      jump_left = 20 + rng.below(380);
+      for (double& j : jump)
+        j = rng.uniform(-0.5, 0.5);
+    } else {
+      jump.fill(0.0);
+    }
+    if (pulse_left > 0) {
+      --pulse_left;
+    } else if (rng.chance(1.0 / 1'000)) {
+      pulse_left = 10 + rng.below(190);
+      // Mostly contact-like pushes of up to 2 rad/s² x J^_i (four times the sim's deburring
+      // scenario, an error of ~0.5 rad against Kp = 4 /s²); one pulse in ten up to 1.5x the
+      // actuator limit, which the controller cannot hold.
+      const bool beyond = rng.chance(0.1);
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        const double amplitude =
+            beyond ? 1.5 * s.t_max[i] : 2.0 * s.experiment.nominal_inertia()[i];
+        pulse[i] = rng.uniform(-amplitude, amplitude);
+      }
+    } else {
+      pulse.fill(0.0);
+    }
+
+    // Measurements, possibly corrupted on one joint.
+    robot::JointVector q = s.plant.position();
+    robot::JointVector qd = s.plant.velocity();
+    std::size_t bad_joint = kJoints;  // none
+    if (rng.chance(1.0 / 500)) {
+      const std::size_t j = rng.below(kJoints);
+      const std::uint64_t kind = rng.below(5);
+      const double value = kind == 0   ? std::numeric_limits<double>::quiet_NaN()
+                           : kind == 1 ? std::numeric_limits<double>::infinity()
+                           : kind == 2 ? -std::numeric_limits<double>::infinity()
+                           : kind == 3 ? kHuge
+                                       : -kHuge;
+      (rng.chance(0.5) ? q : qd)[j] = value;
+      ++c.injected_measurements;
+      if (!std::isfinite(value)) bad_joint = j;
+    }
+
+    // The clock: jittered, occasionally nonsense for the controller only.
+    const double dt = kTickS * rng.uniform(0.8, 1.2);
+    double dt_controller = dt;
+    bool bad_dt = false;
+    if (rng.chance(1.0 / 1'000)) {
+      const std::uint64_t kind = rng.below(4);
+      dt_controller = kind == 0   ? 0.0
+                      : kind == 1 ? -dt
+                      : kind == 2 ? std::numeric_limits<double>::quiet_NaN()
+                                  : std::numeric_limits<double>::infinity();
+      bad_dt = true;
+      ++c.injected_bad_dt;
+    }
+
+    const auto command = s.controller.step(ref, ref_rate, q, qd, dt_controller);
+
+    robot::JointVector torque{};
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      const Status st = command.joint_status[i];
+      if (fuzzypid::is_fault(st)) ++c.faults;
+      if (bad_dt && st != Status::InvalidTimeStep)
+        return "bad dt not reported as invalid_time_step";
+      if (!bad_dt && i == bad_joint && st != Status::NonFiniteInput)
+        return "NaN/inf measurement not reported as non_finite_input";
+      const double u = command.command[i];
+      if (!std::isfinite(u)) {
+        ++c.nonfinite;
+        return "non-finite command";
+      }
+      if (std::fabs(u) > s.u_max[i]) return "command outside the output limits";
+      const Fuzzy& joint = s.controller.joint(i);
+      const pid::Gains<double>& g = joint.gains();
+      if (!g.finite() || g.kp < s.gain_min.kp || g.kp > s.gain_max.kp || g.ki < s.gain_min.ki ||
+          g.ki > s.gain_max.ki || g.kd < s.gain_min.kd || g.kd > s.gain_max.kd)
+        return "gain outside its bounds";
+      const double integral = joint.pid().integral();
+      if (!std::isfinite(integral) || std::fabs(integral) > s.u_max[i])
+        return "integral outside its limits";
+      c.max_abs_integral = std::fmax(c.max_abs_integral, std::fabs(integral));
+      c.max_abs_gain = std::fmax(c.max_abs_gain, std::fmax(g.kp, std::fmax(g.ki, g.kd)));
+      torque[i] = s.experiment.nominal_inertia()[i] * u;
+    }
+
+    bool saturated = false;
+    for (std::size_t i = 0; i < kJoints; ++i)
+      saturated = saturated || s.controller.joint(i).pid().saturated();
+    if (saturated) ++c.saturated_ticks;
+
+    const robot::PlantStatus ps = s.plant.step(torque, dt, pulse);
+    if (ps == robot::PlantStatus::InvalidInput) return "the plant rejected a finite torque";
+    if (!all_finite(s.plant.position()) || !all_finite(s.plant.velocity()))
+      return "non-finite plant state";
+    bool lost = ps == robot::PlantStatus::NumericalError;
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      lost = lost || std::fabs(s.plant.position()[i] - ref[i]) > kMaxErrorRad ||
+             std::fabs(s.plant.velocity()[i]) > kMaxSpeedRadS;
+    }
+    if (lost) {
+      s.plant.reset(path.position_rad[k], robot::JointVector{});
+      ++c.plant_resets;
+    }
+
+    c.ticks = tick + 1;
+    c.allocations = g_allocations.load(std::memory_order_relaxed) - allocations_at_start;
+    if (c.allocations != 0) return "allocation in the control loop";
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (const int rc = parse_options(argc, argv, o); rc != 0) return rc == 1 ? 0 : 2;
+
+  std::string error;
+  std::optional<Soak> soak = build(error);
+  if (!soak) {
+    std::fprintf(stderr, "fuzzypid_soak: %s\n", error.c_str());
+    return 2;
+  }
+  std::printf("fuzzypid_soak: %llu ticks of 50 ms (%.2f days simulated), seed %llu\n",
+              static_cast<unsigned long long>(o.ticks),
+              static_cast<double>(o.ticks) * kTickS / 86'400.0,
+              static_cast<unsigned long long>(o.seed));
+  std::fflush(stdout);
+
+  Counters c;
+  const auto start = std::chrono::steady_clock::now();
+  const char* breach = run(*soak, o, c);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (breach != nullptr)
+    std::fprintf(stderr, "fuzzypid_soak: invariant broken at tick %llu: %s\n",
+                 static_cast<unsigned long long>(c.ticks), breach);
+  print(c, o.seed, seconds);
+  return breach != nullptr ? 1 : 0;
+}
