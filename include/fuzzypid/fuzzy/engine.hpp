@@ -361,7 +361,8 @@ Status evaluate(const EngineModel<Scalar>& model, EngineWorkspace<Scalar>& ws, c
   return status;
 }
 
-// A model with its own workspace. Large (~93 kB for double): create it once, e.g. on the heap at start-up.
+// A model with its own workspace. Large (~93 kB for double): create it once, e.g. on the heap at
+// start-up.
 template <class Scalar>
 class Engine {
  public:
