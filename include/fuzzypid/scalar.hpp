@@ -19,12 +19,18 @@ inline constexpr bool is_supported_scalar_v =
 
 namespace detail {
 
-// constexpr, exception-free finiteness test (std::isfinite is not constexpr in C++17). NaN fails
-// the self-comparison; infinities fail the range test.
+// constexpr, exception-free finiteness test (std::isfinite is not constexpr in C++17). GCC and
+// Clang's builtin is constexpr and compiles to |x| <= max without branches (one mask, one quiet
+// compare), about half the instructions of the portable form, which the control tick calls a
+// dozen times per joint. Portable form: NaN fails the self-comparison, infinities the range test.
 template <class Scalar>
 constexpr bool is_finite(Scalar x) noexcept {
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_isfinite(x);
+#else
   return x == x && x <= std::numeric_limits<Scalar>::max() &&
          x >= std::numeric_limits<Scalar>::lowest();
+#endif
 }
 
 template <class Scalar>

@@ -16,11 +16,26 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
+
+namespace fuzzypid::detail {
+
+// Whether System offers infer_outputs(e, ec): infer()'s outputs and status without its other
+// fields (fuzzy::TskSystem does).
+template <class System, class Scalar, class = void>
+struct has_infer_outputs : std::false_type {};
+template <class System, class Scalar>
+struct has_infer_outputs<System, Scalar,
+                         std::void_t<decltype(std::declval<const System&>().infer_outputs(
+                             std::declval<Scalar>(), std::declval<Scalar>()))>> : std::true_type {};
+
+}  // namespace fuzzypid::detail
 
 namespace fuzzypid::control {
 
@@ -35,7 +50,7 @@ enum class GainUpdate : std::uint8_t {
 
 template <class Scalar>
 struct FuzzyPidConfig {
-  pid::Config<Scalar> pid{};      // inner PID; pid.gains are the nominal gains K0
+  pid::Config<Scalar> pid{};            // inner PID; pid.gains are the nominal gains K0
   Scalar error_scale = Scalar(1);       // Ke, universe units per unit of e (e.g. per rad)
   Scalar error_rate_scale = Scalar(1);  // Kec, universe units per unit of ec (e.g. per rad/s)
   std::array<Scalar, 3> output_scale{Scalar(1), Scalar(1), Scalar(1)};  // Sp, Si, Sd
@@ -48,9 +63,9 @@ struct FuzzyPidConfig {
     using detail::is_finite;
     const auto ordered = [](Scalar lo, Scalar hi) { return lo == lo && hi == hi && lo <= hi; };
     return pid.valid() && is_finite(error_scale) && is_finite(error_rate_scale) &&
-           is_finite(output_scale[0]) && is_finite(output_scale[1]) &&
-           is_finite(output_scale[2]) && ordered(gain_min.kp, gain_max.kp) &&
-           ordered(gain_min.ki, gain_max.ki) && ordered(gain_min.kd, gain_max.kd);
+           is_finite(output_scale[0]) && is_finite(output_scale[1]) && is_finite(output_scale[2]) &&
+           ordered(gain_min.kp, gain_max.kp) && ordered(gain_min.ki, gain_max.ki) &&
+           ordered(gain_min.kd, gain_max.kd);
   }
 };
 
@@ -102,8 +117,8 @@ class FuzzyPid {
     const bool rates = config_.pid.derivative_source == pid::DerivativeSource::Rates;
     if (!detail::is_finite(in.setpoint) || !detail::is_finite(in.measurement) ||
         !detail::is_finite(in.feed_forward) ||
-        (rates && (!detail::is_finite(in.setpoint_rate) ||
-                   !detail::is_finite(in.measurement_rate))))
+        (rates &&
+         (!detail::is_finite(in.setpoint_rate) || !detail::is_finite(in.measurement_rate))))
       return Status::NonFiniteInput;
 
     const Scalar e = in.setpoint - in.measurement;
@@ -113,20 +128,20 @@ class FuzzyPid {
     } else if (pid_.has_previous()) {
       ec = (e - pid_.previous_error()) / dt_s;
     }
-    const auto inference = system_.infer(config_.error_scale * e, config_.error_rate_scale * ec);
+    const auto inference = infer_tick(config_.error_scale * e, config_.error_rate_scale * ec);
     if (is_fault(inference.status)) return Status::NumericOverflow;
 
-    const Gains base = config_.gain_update == GainUpdate::Absolute ? config_.pid.gains : gains_;
+    const Gains& base = config_.gain_update == GainUpdate::Absolute ? config_.pid.gains : gains_;
     const Gains next = clamp_gains({base.kp + config_.output_scale[0] * inference.output[0],
                                     base.ki + config_.output_scale[1] * inference.output[1],
                                     base.kd + config_.output_scale[2] * inference.output[2]});
-    const Gains previous = gains_;
-    if (pid_.set_gains(next) != Status::Ok) return Status::NumericOverflow;
-    const Status s = pid_.update(in, dt_s);
-    if (is_fault(s)) {
-      (void)pid_.set_gains(previous);
-      return s;
-    }
+    if (!next.finite()) return Status::NumericOverflow;
+    // The inputs and dt passed the PID's own checks above (same conditions, same derivative
+    // source), and pid_ is always configured (configure() only accepts a configuration it took),
+    // so the step runs unchecked; it adopts `next` only on success, as set_gains() + update()
+    // with a restore on fault did.
+    const Status s = pid_.template step<true>(in, dt_s, next);
+    if (is_fault(s)) return s;
     gains_ = next;
     delta_ = inference.output;
     return inference.status == Status::NoRuleFired ? Status::NoRuleFired : s;
@@ -180,6 +195,16 @@ class FuzzyPid {
   const Config& config() const noexcept { return config_; }
 
  private:
+  // The inference of one tick: only its outputs and status are read, so use the system's
+  // infer_outputs() where it has one (same values, no fuzzified inputs to build).
+  auto infer_tick(Scalar e, Scalar ec) const noexcept {
+    if constexpr (detail::has_infer_outputs<System, Scalar>::value) {
+      return system_.infer_outputs(e, ec);
+    } else {
+      return system_.infer(e, ec);
+    }
+  }
+
   Gains clamp_gains(const Gains& g) const noexcept {
     return {detail::clamp(g.kp, config_.gain_min.kp, config_.gain_max.kp),
             detail::clamp(g.ki, config_.gain_min.ki, config_.gain_max.ki),

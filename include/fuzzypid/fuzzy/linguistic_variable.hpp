@@ -41,7 +41,8 @@ class LinguisticVariable {
     v.max_ = max;
     v.uniform_ = true;
     const Scalar h = (max - min) / Scalar(N - 1);
-    for (std::size_t k = 0; k < N; ++k) v.peak_[k] = k + 1 == N ? max : min + Scalar(k) * h;
+    for (std::size_t k = 0; k < N; ++k)
+      v.peak_[k] = k + 1 == N ? max : min + Scalar(k) * h;
     v.terms_[0] = Term<Scalar>::left_shoulder(v.peak_[0], v.peak_[1]);
     v.terms_[N - 1] = Term<Scalar>::right_shoulder(v.peak_[N - 2], v.peak_[N - 1]);
     for (std::size_t k = 1; k + 1 < N; ++k)
@@ -60,7 +61,8 @@ class LinguisticVariable {
     v.max_ = max;
     v.uniform_ = false;
     v.terms_ = terms;
-    for (std::size_t k = 0; k < N; ++k) v.peak_[k] = terms[k].center();
+    for (std::size_t k = 0; k < N; ++k)
+      v.peak_[k] = terms[k].center();
     return v;
   }
 
@@ -93,22 +95,21 @@ class LinguisticVariable {
   template <class, std::size_t, std::size_t, std::size_t>
   friend struct TskSystem;
 
-  // fuzzify() written into `out`, which must be default-constructed (all degrees 0, empty span).
-  // TskSystem fuzzifies straight into its result with it, saving two copies of the degrees.
-  void fuzzify_into(Scalar x, Fuzzified<Scalar, N>& out) const noexcept {
-    if (x != x) return;
-    if (!uniform_) {
-      fuzzify_each(x, out);
-      return;
-    }
-    if (x <= min_) {
-      set_single(out, 0);
-      return;
-    }
-    if (x >= max_) {
-      set_single(out, N - 1);
-      return;
-    }
+  // The two adjacent terms k, k + 1 of a uniform partition whose interval holds x, and x's
+  // degrees in them (every other term's degree is 0). Outside the universe it is the edge term
+  // with degree 1 and its neighbour with degree 0. A term whose degree here is not > 0 does not
+  // hold x (it is left out of the span [first, last]).
+  struct Adjacent {
+    std::size_t k;
+    Scalar lower;  // degree of term k
+    Scalar upper;  // degree of term k + 1
+  };
+
+  // Requires a uniform partition and x not NaN. Shared by fuzzify_into() and
+  // TskSystem::infer_outputs(), so both see exactly the same degrees.
+  Adjacent locate(Scalar x) const noexcept {
+    if (x <= min_) return {0, Scalar(1), Scalar(0)};
+    if (x >= max_) return {N - 2, Scalar(0), Scalar(1)};
     // Index of the left peak of the interval holding x, corrected for rounding so that
     // peak_[k] <= x <= peak_[k + 1]. The estimate multiplies by 1/h rather than dividing by h (a
     // division costs as much as the rest of this function); like the quotient it can be off by
@@ -120,10 +121,22 @@ class LinguisticVariable {
     if (x > peak_[k + 1] && k < N - 2) ++k;
     // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
     const Scalar width = peak_[k + 1] - peak_[k];
-    out.degree[k] = (peak_[k + 1] - x) / width;
-    out.degree[k + 1] = (x - peak_[k]) / width;
-    out.first = out.degree[k] > Scalar(0) ? k : k + 1;
-    out.last = out.degree[k + 1] > Scalar(0) ? k + 1 : k;
+    return {k, (peak_[k + 1] - x) / width, (x - peak_[k]) / width};
+  }
+
+  // fuzzify() written into `out`, which must be default-constructed (all degrees 0, empty span).
+  // TskSystem fuzzifies straight into its result with it, saving two copies of the degrees.
+  void fuzzify_into(Scalar x, Fuzzified<Scalar, N>& out) const noexcept {
+    if (x != x) return;
+    if (!uniform_) {
+      fuzzify_each(x, out);
+      return;
+    }
+    const Adjacent a = locate(x);
+    out.degree[a.k] = a.lower;
+    out.degree[a.k + 1] = a.upper;
+    out.first = a.lower > Scalar(0) ? a.k : a.k + 1;
+    out.last = a.upper > Scalar(0) ? a.k + 1 : a.k;
   }
 
   // Every term evaluated (custom partitions); out of line so the uniform path inlines.
@@ -136,11 +149,6 @@ class LinguisticVariable {
         out.last = k;
       }
     }
-  }
-
-  static constexpr void set_single(Fuzzified<Scalar, N>& out, std::size_t k) noexcept {
-    out.degree[k] = Scalar(1);
-    out.first = out.last = k;
   }
 
   std::array<Term<Scalar>, N> terms_{};

@@ -38,6 +38,11 @@
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
+namespace fuzzypid::control {
+template <class Scalar, class System>
+class FuzzyPid;
+}  // namespace fuzzypid::control
+
 namespace fuzzypid::pid {
 
 enum class DerivativeOn : std::uint8_t { Error, Measurement };
@@ -148,15 +153,41 @@ class Pid {
     if (configured_ != Status::Ok) return configured_;
     if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
     if (!finite(in)) return Status::NonFiniteInput;
+    return step<false>(in, dt_s, config_.gains);
+  }
 
-    const Gains& g = config_.gains;
+  // Last output (held through faults), in output units.
+  constexpr Scalar output() const noexcept { return output_; }
+  // Last output before clamping.
+  constexpr Scalar unsaturated_output() const noexcept { return unsaturated_; }
+  constexpr bool saturated() const noexcept { return saturated_; }
+  // Integral term I (output units).
+  constexpr Scalar integral() const noexcept { return integral_; }
+  // Filtered derivative signal d (units of e per second).
+  constexpr Scalar derivative() const noexcept { return derivative_; }
+  constexpr const Terms<Scalar>& terms() const noexcept { return terms_; }
+  constexpr const Gains& gains() const noexcept { return config_.gains; }
+  constexpr const Config& config() const noexcept { return config_; }
+  // Whether a previous sample exists (false after construction and reset()).
+  constexpr bool has_previous() const noexcept { return has_previous_; }
+  constexpr Scalar previous_error() const noexcept { return previous_error_; }
+
+ private:
+  template <class, class>
+  friend class control::FuzzyPid;
+
+  // The body of update() once the controller is known to be configured, dt_s finite and
+  // positive, and `in` finite (finite(in)), with gains g. With kSetGains, g become the gains
+  // (set_gains) only if the step succeeds, so a fault still changes nothing. FuzzyPid, which has
+  // already made these checks and validated g, calls it directly instead of set_gains() + update().
+  template <bool kSetGains>
+  constexpr Status step(const Input& in, Scalar dt_s, const Gains& g) noexcept {
     const Scalar e = in.setpoint - in.measurement;
 
     Scalar d_raw = Scalar(0);
     if (config_.derivative_source == DerivativeSource::Rates) {
-      d_raw = config_.derivative_on == DerivativeOn::Error
-                  ? in.setpoint_rate - in.measurement_rate
-                  : -in.measurement_rate;
+      d_raw = config_.derivative_on == DerivativeOn::Error ? in.setpoint_rate - in.measurement_rate
+                                                           : -in.measurement_rate;
     } else if (has_previous_) {
       d_raw = config_.derivative_on == DerivativeOn::Error
                   ? (e - previous_error_) / dt_s
@@ -173,8 +204,8 @@ class Pid {
     const Scalar lo = config_.output_min;
     const Scalar hi = config_.output_max;
 
-    Scalar integral = detail::clamp(integral_ + increment, config_.integral_min,
-                                    config_.integral_max);
+    Scalar integral =
+        detail::clamp(integral_ + increment, config_.integral_min, config_.integral_max);
     if (config_.anti_windup == AntiWindup::Clamping) {
       // Keep only the part of the increment that brings the output up to the limit: dropping all
       // of it would leave the output below the limit, unsaturated, with integral action stopped.
@@ -203,26 +234,10 @@ class Pid {
     output_ = u;
     saturated_ = u != v;
     terms_ = {p_term, integral, d_term};
+    if constexpr (kSetGains) config_.gains = g;
     return Status::Ok;
   }
 
-  // Last output (held through faults), in output units.
-  constexpr Scalar output() const noexcept { return output_; }
-  // Last output before clamping.
-  constexpr Scalar unsaturated_output() const noexcept { return unsaturated_; }
-  constexpr bool saturated() const noexcept { return saturated_; }
-  // Integral term I (output units).
-  constexpr Scalar integral() const noexcept { return integral_; }
-  // Filtered derivative signal d (units of e per second).
-  constexpr Scalar derivative() const noexcept { return derivative_; }
-  constexpr const Terms<Scalar>& terms() const noexcept { return terms_; }
-  constexpr const Gains& gains() const noexcept { return config_.gains; }
-  constexpr const Config& config() const noexcept { return config_; }
-  // Whether a previous sample exists (false after construction and reset()).
-  constexpr bool has_previous() const noexcept { return has_previous_; }
-  constexpr Scalar previous_error() const noexcept { return previous_error_; }
-
- private:
   constexpr bool finite(const Input& in) const noexcept {
     using detail::is_finite;
     const bool rates = config_.derivative_source == DerivativeSource::Rates;
