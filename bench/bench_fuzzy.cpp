@@ -105,6 +105,22 @@ void BM_FuzzyInference(benchmark::State& state) {
 }
 BENCHMARK(BM_FuzzyInference)->Name("BM_FuzzyInference/paper");
 
+// The same inference through infer_outputs(): the three outputs and the status only, without the
+// fuzzified inputs kept for reading firing strengths -- the path FuzzyPid takes every tick.
+void BM_FuzzyInferenceOutputs(benchmark::State& state) {
+  const auto system = fuzzypid::paper::make_system<double>();
+  const auto table = make_error_table();
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const auto& p = table[k++ & kTableMask];
+    const auto r = system.infer_outputs(p.e, p.ec);
+    benchmark::DoNotOptimize(r.output);
+    benchmark::DoNotOptimize(r.status);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FuzzyInferenceOutputs)->Name("BM_FuzzyInference/paper_outputs");
+
 void BM_Fuzzylite(benchmark::State& state) {
   fl::fuzzylite::setMachEps(0.0);
   auto engine = make_fuzzylite_engine();
