@@ -52,92 +52,8 @@
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/experiment.hpp"
-
-// ---------------------------------------------------------------------------------------------
-// Counting allocator: every global allocation of this process goes through these.
-
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-
-void* counted_alloc(std::size_t size) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* counted_aligned_alloc(std::size_t size, std::align_val_t align) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  void* p = nullptr;
-  const std::size_t a = static_cast<std::size_t>(align) < sizeof(void*)
-                            ? sizeof(void*)
-                            : static_cast<std::size_t>(align);
-  return posix_memalign(&p, a, size == 0 ? 1 : size) == 0 ? p : nullptr;
-}
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (void* p = counted_alloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  if (void* p = counted_alloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_alloc(size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_alloc(size);
-}
-void* operator new(std::size_t size, std::align_val_t align) {
-  if (void* p = counted_aligned_alloc(size, align)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t align) {
-  if (void* p = counted_aligned_alloc(size, align)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return counted_aligned_alloc(size, align);
-}
-void* operator new[](std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return counted_aligned_alloc(size, align);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+// Counts every allocation of this process (replaces the global operator new/delete).
+#include "fuzzypid_support/counting_new.hpp"
 
 namespace {
 
@@ -399,7 +315,7 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
   const robot::JointVector zero{};
   const bool acceleration = s.options.gain_units == sim::GainUnits::Acceleration;
 
-  const std::uint64_t allocations_before = g_allocations.load(std::memory_order_relaxed);
+  const std::uint64_t allocations_before = fuzzypid::support::allocation_count();
   std::int64_t deadline = now_ns() + (free_running ? 0 : period_ns);
   for (std::uint64_t k = 0; k < ticks && g_stop == 0; ++k) {
     std::int64_t latency = 0;
@@ -450,7 +366,7 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
       }
     }
   }
-  r.allocations = g_allocations.load(std::memory_order_relaxed) - allocations_before;
+  r.allocations = fuzzypid::support::allocation_count() - allocations_before;
   return r;
 }
 

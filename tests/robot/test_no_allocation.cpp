@@ -1,6 +1,6 @@
 // The real-time calls allocate nothing after construction. Global operator new/delete are replaced
 // by counting versions, which is why this test is its own executable.
-#include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <new>
@@ -11,72 +11,7 @@
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-
-void* counted_malloc(std::size_t size) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* counted_aligned(std::size_t size, std::align_val_t alignment) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  const auto a = static_cast<std::size_t>(alignment);
-  return std::aligned_alloc(a, ((size == 0 ? 1 : size) + a - 1) / a * a);
-}
-
-// Out of line so that GCC does not pair an inlined free() with a visible operator new and warn
-// (-Wmismatched-new-delete).
-[[gnu::noinline]] void release(void* p) noexcept {
-  std::free(p);
-}
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (void* p = counted_malloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return operator new(size);
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_malloc(size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_malloc(size);
-}
-void* operator new(std::size_t size, std::align_val_t a) {
-  if (void* p = counted_aligned(size, a)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t a) {
-  return operator new(size, a);
-}
-void operator delete(void* p) noexcept {
-  release(p);
-}
-void operator delete[](void* p) noexcept {
-  release(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  release(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  release(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  release(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  release(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  release(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  release(p);
-}
+#include "fuzzypid_support/counting_new.hpp"
 
 namespace fuzzypid::robot {
 namespace {
@@ -88,18 +23,18 @@ const RobotModel& model() {
 
 class AllocationCounter {
  public:
-  AllocationCounter() : start_(g_allocations.load()) {}
-  long count() const { return g_allocations.load() - start_; }
+  AllocationCounter() : start_(support::allocation_count()) {}
+  std::uint64_t count() const { return support::allocation_count() - start_; }
 
  private:
-  long start_;
+  std::uint64_t start_;
 };
 
 TEST(NoAllocation, CountingOperatorNewSeesAllocations) {
   AllocationCounter c;
   void* volatile p = ::operator new(16);  // an explicit call cannot be elided
   ::operator delete(p);
-  EXPECT_EQ(c.count(), 1);
+  EXPECT_EQ(c.count(), 1u);
 }
 
 TEST(NoAllocation, DecoupledPlantStep) {
@@ -110,7 +45,7 @@ TEST(NoAllocation, DecoupledPlantStep) {
     (void)plant.step({100, -50, 20, 1, 1, 0.5}, 0.05, {1, 0, 0, 0, 0, 0});
   }
   (void)plant.step({0, 0, 0, 0, 0, 0}, -1.0);  // the rejection path too
-  EXPECT_EQ(c.count(), 0);
+  EXPECT_EQ(c.count(), 0u);
 }
 
 TEST(NoAllocation, CoupledPlantStepWithGravity) {
@@ -122,7 +57,7 @@ TEST(NoAllocation, CoupledPlantStepWithGravity) {
   AllocationCounter c;
   for (int k = 0; k < 20; ++k)
     (void)plant.step({100, -50, 20, 1, 1, 0.5}, 0.05);
-  EXPECT_EQ(c.count(), 0);
+  EXPECT_EQ(c.count(), 0u);
 }
 
 TEST(NoAllocation, KinematicsAndDynamicsQueries) {
@@ -138,7 +73,7 @@ TEST(NoAllocation, KinematicsAndDynamicsQueries) {
     sink += m.coriolis_torque(q, q)[2];
     sink += m.gravity_torque(q)[1];
   }
-  EXPECT_EQ(c.count(), 0);
+  EXPECT_EQ(c.count(), 0u);
   EXPECT_TRUE(sink != 0.0);
 }
 
@@ -152,7 +87,7 @@ TEST(NoAllocation, ClosedFormIkSolve) {
   for (int k = 0; k < 100; ++k)
     ok += ik->solve(target, JointVector{}, out) == IkStatus::Ok;
   (void)ik->solve_all(target);
-  EXPECT_EQ(c.count(), 0);
+  EXPECT_EQ(c.count(), 0u);
   EXPECT_EQ(ok, 100);
 }
 

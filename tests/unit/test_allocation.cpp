@@ -18,96 +18,13 @@
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
-
-namespace {
-
-std::size_t g_allocations = 0;  // the tests are single-threaded
-
-void* counted_allocate(std::size_t size) noexcept {
-  ++g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* counted_allocate_aligned(std::size_t size, std::align_val_t alignment) noexcept {
-  ++g_allocations;
-  const auto align = static_cast<std::size_t>(alignment);
-  const std::size_t rounded = ((size == 0 ? 1 : size) + align - 1) / align * align;
-  return std::aligned_alloc(align, rounded);
-}
-
-void* or_throw(void* p) {
-  if (p == nullptr) throw std::bad_alloc();
-  return p;
-}
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  return or_throw(counted_allocate(size));
-}
-void* operator new[](std::size_t size) {
-  return or_throw(counted_allocate(size));
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_allocate(size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_allocate(size);
-}
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  return or_throw(counted_allocate_aligned(size, alignment));
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) {
-  return or_throw(counted_allocate_aligned(size, alignment));
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return counted_allocate_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return counted_allocate_aligned(size, alignment);
-}
-
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+#include "fuzzypid_support/counting_new.hpp"
 
 namespace {
 
 using fuzzypid::Status;
 using fuzzypid::control::JointController;
+using fuzzypid::support::allocation_count;
 
 constexpr int kTicks = 100000;
 constexpr std::uint64_t kSeed = 0xa110c;
@@ -121,29 +38,29 @@ struct alignas(64) OverAligned {
 };
 
 TEST(Allocation, TheCounterCountsEveryFormOfNew) {
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   g_int_sink = new int(42);
-  EXPECT_EQ(g_allocations, start + 1);
+  EXPECT_EQ(allocation_count(), start + 1);
   delete g_int_sink;
   g_int_sink = new int[4];
-  EXPECT_EQ(g_allocations, start + 2);
+  EXPECT_EQ(allocation_count(), start + 2);
   delete[] g_int_sink;
   g_int_sink = new (std::nothrow) int(7);
-  EXPECT_EQ(g_allocations, start + 3);
+  EXPECT_EQ(allocation_count(), start + 3);
   delete g_int_sink;
   auto* aligned = new OverAligned;
   g_sink = aligned;
-  EXPECT_EQ(g_allocations, start + 4);
+  EXPECT_EQ(allocation_count(), start + 4);
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(aligned) % 64, 0u);
   delete aligned;
   auto* aligned_array = new OverAligned[3];
   g_sink = aligned_array;
-  EXPECT_EQ(g_allocations, start + 5);
+  EXPECT_EQ(allocation_count(), start + 5);
   delete[] aligned_array;
   {
     std::string heap(1000, 'x');  // a library allocation goes through the same functions
     g_sink = heap.data();
-    EXPECT_EQ(g_allocations, start + 6);
+    EXPECT_EQ(allocation_count(), start + 6);
   }
 }
 
@@ -175,14 +92,14 @@ void report(const char* what, std::size_t allocations, std::uint64_t seed) {
 TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
   const auto trajectory = std::make_unique<Trajectory>(kSeed);
   SCOPED_TRACE("seed " + std::to_string(kSeed));
-  const std::size_t before_construction = g_allocations;
+  const std::size_t before_construction = allocation_count();
   JointController<double, 6> controller;
-  EXPECT_EQ(g_allocations, before_construction);
+  EXPECT_EQ(allocation_count(), before_construction);
   const std::array<double, 6> feed_forward{0.1, -0.1, 0.2, -0.2, 0.0, 0.3};
 
   Status worst = Status::Ok;
   double checksum = 0.0;
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & (Trajectory::kSamples - 1);
     const auto out = controller.step(trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
@@ -190,7 +107,7 @@ TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
     worst = fuzzypid::worst(worst, out.status);
     checksum += out.command[k % 6] + controller.joint(k % 6).gains().kd;
   }
-  const std::size_t allocations = g_allocations - start;
+  const std::size_t allocations = allocation_count() - start;
   report("joint_controller_fuzzy", allocations, kSeed);
   EXPECT_EQ(allocations, 0u);
   EXPECT_EQ(worst, Status::Ok);
@@ -201,13 +118,13 @@ TEST(Allocation, FaultyTicksNeverAllocateEither) {
   JointController<double, 6> controller;
   std::array<double, 6> qd{}, vd{}, q{}, v{};
   q[3] = std::nan("");
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   Status worst = Status::Ok;
   for (int k = 0; k < kTicks; ++k) {
     qd[0] = 1e-5 * k;
     worst = fuzzypid::worst(worst, controller.step(qd, vd, q, v, k % 3 == 0 ? 0.0 : 0.05).status);
   }
-  EXPECT_EQ(g_allocations - start, 0u);
+  EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(fuzzypid::is_fault(worst));
 }
 
@@ -222,7 +139,7 @@ TEST(Allocation, PidTicksNeverAllocate) {
   JointController<double, 6, fuzzypid::pid::Pid<double>> joints(pid);
   const auto trajectory = std::make_unique<Trajectory>(kSeed + 1);
   double checksum = 0.0;
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & (Trajectory::kSamples - 1);
     fuzzypid::pid::Input<double> in;
@@ -233,7 +150,7 @@ TEST(Allocation, PidTicksNeverAllocate) {
                                  trajectory->v[s], 0.001);
     checksum += pid.output() + out.command[5];
   }
-  const std::size_t allocations = g_allocations - start;
+  const std::size_t allocations = allocation_count() - start;
   report("pid", allocations, kSeed + 1);
   EXPECT_EQ(allocations, 0u);
   EXPECT_TRUE(std::isfinite(checksum));
@@ -251,14 +168,14 @@ TEST(Allocation, PaperSystemInferenceNeverAllocates) {
     ec[k] = u(rng);
   }
   double checksum = 0.0;
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & 1023u;
     const auto r = system_min.infer(e[s], ec[s]);
     const auto f = system_prod.infer(static_cast<float>(e[s]), static_cast<float>(ec[s]));
     checksum += r.output[0] + r.firing_strength(3, 3) + static_cast<double>(f.output[2]);
   }
-  const std::size_t allocations = g_allocations - start;
+  const std::size_t allocations = allocation_count() - start;
   report("paper_system_infer", allocations, kSeed + 2);
   EXPECT_EQ(allocations, 0u);
   EXPECT_TRUE(std::isfinite(checksum));
@@ -267,7 +184,7 @@ TEST(Allocation, PaperSystemInferenceNeverAllocates) {
 TEST(Allocation, FloatFuzzyJointControllerNeverAllocates) {
   JointController<float, 6> controller;
   std::array<float, 6> qd{}, vd{}, q{}, v{};
-  const std::size_t start = g_allocations;
+  const std::size_t start = allocation_count();
   float checksum = 0.0f;
   for (int k = 0; k < kTicks; ++k) {
     for (std::size_t i = 0; i < 6; ++i) {
@@ -277,7 +194,7 @@ TEST(Allocation, FloatFuzzyJointControllerNeverAllocates) {
     }
     checksum += controller.step(qd, vd, q, v, 0.05f).command[k % 6];
   }
-  EXPECT_EQ(g_allocations - start, 0u);
+  EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(std::isfinite(checksum));
 }
 

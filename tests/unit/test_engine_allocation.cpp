@@ -13,44 +13,14 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/io/rule_file.hpp"
-
-namespace {
-std::size_t g_allocations = 0;  // the tests are single-threaded
-}  // namespace
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  return ::operator new(size);
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  ++g_allocations;
-  return std::malloc(size == 0 ? 1 : size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t& t) noexcept {
-  return ::operator new(size, t);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
+#include "fuzzypid_support/counting_new.hpp"
 
 namespace {
 
 using fuzzypid::io::LoadError;
 using fuzzypid::io::LoadOptions;
 using fuzzypid::io::Model;
+using fuzzypid::support::allocation_count;
 
 std::unique_ptr<Model> load(const std::string& path, const LoadOptions& options = {}) {
   auto model = std::make_unique<Model>();
@@ -73,7 +43,7 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
     auto engine = std::make_unique<fuzzypid::fuzzy::Engine<double>>(*model);
     double in[fuzzypid::fuzzy::kMaxInputs] = {};
     double out[fuzzypid::fuzzy::kMaxOutputs] = {};
-    const std::size_t before = g_allocations;
+    const std::size_t before = allocation_count();
     double checksum = 0.0;
     for (int n = 0; n < 100000; ++n) {
       for (std::size_t i = 0; i < model->num_inputs; ++i) {
@@ -83,7 +53,7 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
       (void)engine->evaluate(in, out);
       checksum += out[0];
     }
-    EXPECT_EQ(g_allocations, before) << "allocations in 100,000 evaluations";
+    EXPECT_EQ(allocation_count(), before) << "allocations in 100,000 evaluations";
     EXPECT_TRUE(checksum == checksum);
   }
 }
@@ -93,14 +63,14 @@ TEST(EngineAllocation, FuzzyPidWithALoadedSystemAllocatesNothingPerTick) {
   using Supervisor = fuzzypid::fuzzy::EngineSupervisor<double>;
   auto controller = std::make_unique<fuzzypid::control::FuzzyPid<double, Supervisor>>(
       Supervisor(model.get()), fuzzypid::control::paper_config<double>());
-  const std::size_t before = g_allocations;
+  const std::size_t before = allocation_count();
   fuzzypid::pid::Input<double> in;
   in.setpoint = 0.1;
   for (int n = 0; n < 100000; ++n) {
     in.measurement = 0.1 * static_cast<double>(n % 100) / 100.0;
     (void)controller->update(in, 0.001);
   }
-  EXPECT_EQ(g_allocations, before);
+  EXPECT_EQ(allocation_count(), before);
 }
 
 }  // namespace
