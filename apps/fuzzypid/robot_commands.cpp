@@ -121,7 +121,8 @@ int run_ik(int argc, char** argv) {
     target.position_m = {row.values[0], row.values[1], row.values[2]};
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
-        target.rotation(r, c) = row.values[static_cast<std::size_t>(3 + 3 * r + c)];
+        target.rotation(r, c) =
+            row.values[3 + 3 * static_cast<std::size_t>(r) + static_cast<std::size_t>(c)];
     if (!robot::is_valid_pose(target)) {
       return input_error("ik", "line " + std::to_string(row.line) +
                                    ": the rotation is not orthonormal with determinant +1");

@@ -144,9 +144,9 @@ LoadResult fail(std::string message) {
 
 std::string default_urdf_path() {
   if (const char* env = std::getenv("FUZZYPID_URDF"); env != nullptr && env[0] != '\0') return env;
-  const std::string source = std::string(FUZZYPID_URDF_SOURCE_DIR) + "/" + kDefaultUrdfName;
+  std::string source = std::string(FUZZYPID_URDF_SOURCE_DIR) + "/" + kDefaultUrdfName;
   if (file_exists(source)) return source;
-  const std::string installed = std::string(FUZZYPID_URDF_INSTALL_DIR) + "/" + kDefaultUrdfName;
+  std::string installed = std::string(FUZZYPID_URDF_INSTALL_DIR) + "/" + kDefaultUrdfName;
   if (file_exists(installed)) return installed;
   return source;  // loading it reports the missing file by name
 }

@@ -169,6 +169,7 @@ TEST(AnalyticIk, SolveTakesMicroseconds) {
   const RobotModel& m = bundled_model();
   auto rng = test::seeded_rng(3, "AnalyticIk.SolveTakesMicroseconds");
   std::vector<Pose> targets;
+  targets.reserve(2000);
   for (int n = 0; n < 2000; ++n)
     targets.push_back(m.forward_kinematics(test::random_within(m, rng)));
   JointVector out{};

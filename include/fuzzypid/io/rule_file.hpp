@@ -54,7 +54,7 @@ struct LoadOptions {
 // single defuzzifier and aggregation for all outputs and no lock-range or finite default, and
 // neither format has singleton terms (shoulders are written as trapezoids with infinite feet).
 // The load options (exact centroid, .fis resolution) are not stored in either format.
-[[nodiscard]] bool to_fll(const Model& model, std::string& text, std::string& error);
-[[nodiscard]] bool to_fis(const Model& model, std::string& text, std::string& error);
+[[nodiscard]] bool to_fll(const Model& m, std::string& out, std::string& error);
+[[nodiscard]] bool to_fis(const Model& m, std::string& out, std::string& error);
 
 }  // namespace fuzzypid::io

@@ -90,7 +90,7 @@ class Experiment {
 
   // Runs one controller on one scenario from the initial state. `gains` are the fixed PID's (or
   // the fuzzy PID's nominal K0) in the paper's units; by default the options' gains.
-  RunResult run(const Scenario& scenario, ControllerKind controller,
+  RunResult run(const Scenario& scenario, ControllerKind kind,
                 const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
 
   // The pieces run() builds before its first tick, public so that a real-time loop or a soak test
