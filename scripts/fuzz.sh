@@ -1,21 +1,47 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the .fis and .fll readers with clang (ASan + UBSan) in
-# build-fuzz/ and runs each for a bounded time from the seed corpus in fuzz/corpus/.
-#   FUZZ_SECONDS  time per target (default 30)
-# Exits non-zero on any crash, leak or sanitizer report; the failing input is written to
-# build-fuzz/crash-* (replay: build-fuzz/bin/fuzz_fis FILE).
+# Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz/ and runs each for a bounded
+# time from its seed corpus in fuzz/corpus/<name>/:
+#   fis, fll       the .fis / .fll rule-file readers
+#   csv            the command-line tools' CSV reader
+#   urdf           the URDF loader (robot::RobotModel::load)
+#   sim_ab_args    sim_ab's command-line parser
+#   FUZZ_SECONDS   time per target (default 30)
+#   FUZZ_TARGETS   space-separated subset of the names above (default: all)
+# Exits non-zero on any crash, leak, timeout or sanitizer report; the failing input is left in
+# build-fuzz/ (crash-*, leak-*, timeout-*). Prints the executions run per target.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
+targets="${FUZZ_TARGETS:-fis fll csv urdf sim_ab_args}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFUZZYPID_BUILD_FUZZERS=ON -DFUZZYPID_BUILD_TESTS=OFF -DFUZZYPID_BUILD_APPS=OFF \
-  -DFUZZYPID_BUILD_BENCH=OFF -DFUZZYPID_WITH_ROBOT=OFF >/dev/null
-cmake --build build-fuzz --target fuzz_fis fuzz_fll
-for format in fis fll; do
-  work="build-fuzz/corpus-${format}"
+  -DFUZZYPID_BUILD_BENCH=OFF -DFUZZYPID_WITH_ROBOT=ON >/dev/null
+build_targets=()
+for name in ${targets}; do build_targets+=("fuzz_${name}"); done
+cmake --build build-fuzz -j "$(nproc)" --target "${build_targets[@]}"
+
+summary=()
+for name in ${targets}; do
+  work="build-fuzz/corpus-${name}"
+  log="build-fuzz/fuzz_${name}.log"
   mkdir -p "${work}"
-  echo "fuzz_${format}: ${seconds} s"
-  # New inputs go to the work corpus; the checked-in seeds are only read.
-  build-fuzz/bin/fuzz_${format} -max_total_time="${seconds}" -max_len=8192 -timeout=10 \
-    -print_final_stats=1 -artifact_prefix=build-fuzz/ "${work}" "fuzz/corpus/${format}" 2>&1 | tail -n 12
+  echo "fuzz_${name}: ${seconds} s"
+  max_len=8192
+  if [ "${name}" = urdf ]; then max_len=16384; fi
+  if [ "${name}" = sim_ab_args ]; then max_len=512; fi
+  # New inputs go to the work corpus; the checked-in seeds are only read. Artifacts (crash-*,
+  # leak-*, timeout-*) land in build-fuzz/.
+  status=0
+  (cd build-fuzz && "bin/fuzz_${name}" -max_total_time="${seconds}" -max_len="${max_len}" \
+    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "corpus-${name}" "../fuzz/corpus/${name}") \
+    >"${log}" 2>&1 || status=$?
+  tail -n 12 "${log}"
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "${log}" | tail -n 1)
+  summary+=("fuzz_${name}: ${execs:-?} executions in ${seconds} s, exit ${status}")
+  if [ "${status}" -ne 0 ]; then
+    echo "fuzz_${name} FAILED (see ${log})" >&2
+    printf '%s\n' "${summary[@]}"
+    exit 1
+  fi
 done
+printf '%s\n' "${summary[@]}"
