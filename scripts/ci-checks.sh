@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# CI hardening stages, run by .ci/run after scripts/test.sh (docs/robustness.md explains each):
+#   1. asan      GCC build with ASan + UBSan (-fno-sanitize-recover=all) and -Werror on the
+#                project's own targets, in build-asan/; the whole ctest suite runs under it.
+#   2. werror    covered by stage 1 (FUZZYPID_WERROR=ON in the same build).
+#   3. tidy      clang-tidy (.clang-tidy) over the project's .cpp files and, through the
+#                standalone-header test sources, every public core header.
+#   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/ and the headers.
+#   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
+#   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 5,000,000, about a minute).
+# Any error, finding or sanitizer report fails the run. Environment:
+#   CI_FUZZ_SECONDS  per fuzz target (default 60)
+#   CI_SOAK_TICKS    soak length (default 5000000)
+#   CI_STAGES        space-separated subset of the stage names (default: all)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root="$(pwd)"
+jobs="$(nproc)"
+stages="${CI_STAGES:-asan werror tidy cppcheck fuzz soak}"
+
+bash scripts/install-deps.sh
+
+run_stage() {
+  local name="$1"
+  shift
+  case " ${stages} " in *" ${name} "*) ;; *) return 0 ;; esac
+  echo
+  echo "==================================================================================="
+  echo "== ci-checks: ${name}"
+  echo "==================================================================================="
+  local start=${SECONDS}
+  "$@"
+  echo "== ci-checks: ${name} passed in $((SECONDS - start)) s"
+}
+
+configure_asan() {
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFUZZYPID_SANITIZE=ON \
+    -DFUZZYPID_WERROR=ON -DFUZZYPID_BUILD_BENCH=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
+}
+
+stage_asan() {
+  configure_asan
+  cmake --build build-asan -j "${jobs}"
+  # detect_leaks: LeakSanitizer at exit; abort_on_error/halt_on_error: the first report fails the
+  # test (the build already has -fno-sanitize-recover=all, halt_on_error covers any recoverable
+  # check left). The allocation-counting tests replace operator new; ASan still intercepts the
+  # malloc/free underneath, so they run unchanged.
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    ctest --test-dir build-asan --output-on-failure -j "${jobs}" --timeout 900
+}
+
+stage_werror() {
+  echo "-Werror is on for every project target of the stage 'asan' build (FUZZYPID_WERROR=ON)."
+  grep -q '^FUZZYPID_WERROR:BOOL=ON' build-asan/CMakeCache.txt
+}
+
+stage_tidy() {
+  [ -f build-asan/compile_commands.json ] || configure_asan
+  # GCC 12 compiles C++17 without an -std flag; clang-tidy 14 defaults to C++14, so pass it.
+  # GoogleTest's TYPED_TEST_SUITE(Suite, Types) leaves its variadic part empty, which clang
+  # -Wpedantic flags and GCC (the build compiler) accepts.
+  run-clang-tidy -p build-asan -j "${jobs}" -quiet -extra-arg=-std=c++17 \
+    -extra-arg=-Wno-gnu-zero-variadic-macro-arguments \
+    "${root}/(src|apps|tests)/.*\\.cpp\$" "${root}/build-asan/tests/headers/standalone/.*\\.cpp\$" \
+    >build-asan/clang-tidy.log 2>&1 || {
+    grep -E 'warning:|error:' build-asan/clang-tidy.log | sort -u
+    echo "clang-tidy found issues (full log: build-asan/clang-tidy.log)" >&2
+    return 1
+  }
+  echo "clang-tidy: clean ($(grep -c '^clang-tidy' build-asan/clang-tidy.log || true) files)"
+}
+
+stage_cppcheck() {
+  # Third-party code (Eigen, KDL, urdfdom, GoogleTest) is not given to cppcheck; the reasons of
+  # each suppression are in scripts/cppcheck-suppressions.txt.
+  cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr \
+    --std=c++17 --language=c++ --quiet -j "${jobs}" \
+    --suppressions-list=scripts/cppcheck-suppressions.txt \
+    -I include -I apps/common -I src/rulefile -I src/robot \
+    src apps fuzz
+  echo "cppcheck: clean"
+}
+
+stage_fuzz() {
+  FUZZ_SECONDS="${CI_FUZZ_SECONDS:-60}" bash scripts/fuzz.sh
+}
+
+stage_soak() {
+  local soak=build/bin/fuzzypid_soak
+  if [ ! -x "${soak}" ]; then
+    cmake -S . -B build-soak -G Ninja -DCMAKE_BUILD_TYPE=Release -DFUZZYPID_BUILD_TESTS=OFF \
+      -DFUZZYPID_BUILD_BENCH=OFF >/dev/null
+    cmake --build build-soak -j "${jobs}" --target fuzzypid_soak
+    soak=build-soak/bin/fuzzypid_soak
+  fi
+  "${soak}" --ticks "${CI_SOAK_TICKS:-5000000}" --seed 2
+}
+
+total_start=${SECONDS}
+run_stage asan stage_asan
+run_stage werror stage_werror
+run_stage tidy stage_tidy
+run_stage cppcheck stage_cppcheck
+run_stage fuzz stage_fuzz
+run_stage soak stage_soak
+echo
+echo "== ci-checks: all stages passed in $((SECONDS - total_start)) s"
