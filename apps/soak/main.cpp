@@ -200,7 +200,8 @@ int parse_options(int argc, char** argv, Options& o) {
     if (arg == "--ticks" || arg == "--seed") {
       std::uint64_t v = 0;
       if (!parse_u64(value, v) || (arg == "--ticks" && v == 0)) {
-        std::fprintf(stderr, "fuzzypid_soak: %s needs a positive integer, got '%s'\n", arg.c_str(),
+        std::fprintf(stderr, "fuzzypid_soak: %s needs %s integer, got '%s'\n", arg.c_str(),
+                     arg == "--ticks" ? "a positive" : "a non-negative",
                      value != nullptr ? value : "");
         return 2;
       }
