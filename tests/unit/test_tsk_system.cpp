@@ -66,6 +66,35 @@ TEST(TskSystem, WeightedAverageEqualsBruteForceOverAllRules) {
   }
 }
 
+// FuzzyPid takes the outputs-only path every tick; it must be the very same function as infer(),
+// bit for bit, including on peaks, outside the universe and for non-finite inputs.
+TEST(TskSystem, InferOutputsIsExactlyInfer) {
+  const std::uint64_t seed = 37;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  std::uniform_int_distribution<int> peak(-3, 3);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto conjunction : kConjunctions) {
+    for (const auto tables : {paper::Tables::Printed, paper::Tables::Corrected}) {
+      const auto s = paper::make_system<double>(conjunction, tables);
+      for (int k = 0; k < 20000; ++k) {
+        double e = u(rng);
+        double ec = u(rng);
+        if (k % 5 == 0) e = 0.1 * peak(rng);
+        if (k % 7 == 0) ec = 0.1 * peak(rng);
+        if (k == 1) e = inf;
+        if (k == 2) ec = std::numeric_limits<double>::quiet_NaN();
+        const auto full = s.infer(e, ec);
+        const auto fast = s.infer_outputs(e, ec);
+        ASSERT_EQ(fast.status, full.status) << "e=" << e << " ec=" << ec;
+        for (std::size_t o = 0; o < 3; ++o)
+          ASSERT_EQ(fast.output[o], full.output[o]) << "e=" << e << " ec=" << ec;
+      }
+    }
+  }
+}
+
 TEST(TskSystem, WeightedSumIsTheWeightedAverageTimesTotalStrength) {
   const std::uint64_t seed = 32;
   SCOPED_TRACE("seed " + std::to_string(seed));
