@@ -7,10 +7,10 @@
 #                standalone-header test sources, every public core header.
 #   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/ and the headers.
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
-#   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 5,000,000, about a minute).
+#   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
 # Any error, finding or sanitizer report fails the run. Environment:
 #   CI_FUZZ_SECONDS  per fuzz target (default 60)
-#   CI_SOAK_TICKS    soak length (default 5000000)
+#   CI_SOAK_TICKS    soak length (default 10000000)
 #   CI_STAGES        space-separated subset of the stage names (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -94,7 +94,7 @@ stage_soak() {
     cmake --build build-soak -j "${jobs}" --target fuzzypid_soak
     soak=build-soak/bin/fuzzypid_soak
   fi
-  "${soak}" --ticks "${CI_SOAK_TICKS:-5000000}" --seed 2
+  "${soak}" --ticks "${CI_SOAK_TICKS:-10000000}" --seed 2
 }
 
 total_start=${SECONDS}
