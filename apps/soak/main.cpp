@@ -23,7 +23,8 @@
 //
 // Invariants (any breach prints the tick and exits 1):
 //   - every command is finite;
-//   - no allocation after start-up (global operator new is replaced by a counting one here);
+//   - no allocation after start-up (global operator new is replaced by a counting one in this
+//     binary, fuzzypid_support/counting_new.hpp);
 //   - an injected NaN/inf measurement is reported as a fault on that joint, and a bad dt on every
 //     joint;
 //   - every gain stays finite and inside [gain_min, gain_max]; every integral inside its limits;
@@ -34,7 +35,6 @@
 // The last stdout line is `key=value` pairs: ticks nonfinite allocations faults max_abs_integral
 // max_abs_gain, then plant_resets, injected counts and saturated_ticks.
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -44,7 +44,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <new>
 #include <optional>
 #include <random>
 #include <string>
@@ -58,92 +57,7 @@
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/status.hpp"
-
-// ---------------------------------------------------------------------------------------------
-// Counting allocator: every global allocation of this process goes through these.
-
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-
-void* counted_alloc(std::size_t size) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* counted_aligned_alloc(std::size_t size, std::align_val_t align) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  void* p = nullptr;
-  const std::size_t a = static_cast<std::size_t>(align) < sizeof(void*)
-                            ? sizeof(void*)
-                            : static_cast<std::size_t>(align);
-  return posix_memalign(&p, a, size == 0 ? 1 : size) == 0 ? p : nullptr;
-}
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (void* p = counted_alloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  if (void* p = counted_alloc(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_alloc(size);
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  return counted_alloc(size);
-}
-void* operator new(std::size_t size, std::align_val_t align) {
-  if (void* p = counted_aligned_alloc(size, align)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t align) {
-  if (void* p = counted_aligned_alloc(size, align)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return counted_aligned_alloc(size, align);
-}
-void* operator new[](std::size_t size, std::align_val_t align, const std::nothrow_t&) noexcept {
-  return counted_aligned_alloc(size, align);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
+#include "fuzzypid_support/counting_new.hpp"  // replaces global operator new: counts allocations
 
 namespace {
 
@@ -349,7 +263,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
   std::uint64_t jump_left = 0;
   robot::JointVector pulse{};
   robot::JointVector jump{};
-  const std::uint64_t allocations_at_start = g_allocations.load(std::memory_order_relaxed);
+  const std::uint64_t allocations_at_start = fuzzypid::support::allocation_count();
 
   for (std::uint64_t tick = 0; tick < o.ticks; ++tick) {
     // Reference: the path played forwards then backwards, plus any setpoint jump.
@@ -473,7 +387,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
     }
 
     c.ticks = tick + 1;
-    c.allocations = g_allocations.load(std::memory_order_relaxed) - allocations_at_start;
+    c.allocations = fuzzypid::support::allocation_count() - allocations_at_start;
     if (c.allocations != 0) return "allocation in the control loop";
   }
   return nullptr;
