@@ -199,7 +199,11 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
     std::string tip = tip_link;
     if (tip.empty()) {
       urdf::LinkConstSharedPtr link = urdf_model->getLink(root);
+      // Every walk below is bounded by the number of links, so even a cyclic model that slipped
+      // past urdfdom and KDL could not make the loader loop forever.
+      std::size_t steps = 0;
       while (!link->child_links.empty()) {
+        if (++steps > urdf_model->links_.size()) return fail("the URDF's link tree has a cycle");
         if (link->child_links.size() > 1) {
           return fail("the URDF branches at link '" + link->name +
                       "'; name the tip link explicitly");
@@ -218,8 +222,10 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
       return fail("no chain from root link '" + root + "' to tip link '" + tip + "'");
     }
     // KDL's getChain also walks up the tree; require tip to lie below root, as an arm does.
+    std::size_t steps = 0;
     for (urdf::LinkConstSharedPtr link = urdf_model->getLink(tip);; link = link->getParent()) {
       if (link->name == root) break;
+      if (++steps > urdf_model->links_.size()) return fail("the URDF's link tree has a cycle");
       if (!link->getParent()) {
         return fail("tip link '" + tip + "' is not below root link '" + root + "'");
       }
