@@ -5,7 +5,7 @@
 // PL = Trapezoid(0.2, 0.3, inf, inf) and triangles NM..PM; one Constant output term per distinct
 // table value; aggregation none (every rule keeps its own activation); WeightedAverage. Its
 // comparison tolerance macheps is set to 0, otherwise fuzzylite snaps degrees within 1e-6 of a
-// peak and drops rules weaker than 1e-6 (NOTES.md). fuzzylite is used in tests only.
+// peak and drops rules weaker than 1e-6. fuzzylite is used in tests only.
 #include <fl/Headers.h>
 #include <gtest/gtest.h>
 
