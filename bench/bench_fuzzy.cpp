@@ -91,33 +91,33 @@ double max_difference(fl::Engine& engine) {
   return worst;
 }
 
-void BM_FuzzyInference(benchmark::State& state) {
+// One inference of the paper's system per iteration, through `Infer` (TskSystem::infer or
+// infer_outputs, a compile-time constant so the call inlines), over the varied input table.
+template <auto Infer>
+void run_inference(benchmark::State& state) {
   const auto system = fuzzypid::paper::make_system<double>();
   const auto table = make_error_table();
   std::size_t k = 0;
   for (auto _ : state) {
     const auto& p = table[k++ & kTableMask];
-    const auto r = system.infer(p.e, p.ec);
+    const auto r = (system.*Infer)(p.e, p.ec);
     benchmark::DoNotOptimize(r.output);
     benchmark::DoNotOptimize(r.status);
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+using PaperSystem = fuzzypid::paper::System<double>;
+
+void BM_FuzzyInference(benchmark::State& state) {
+  run_inference<&PaperSystem::infer>(state);
 }
 BENCHMARK(BM_FuzzyInference)->Name("BM_FuzzyInference/paper");
 
 // The same inference through infer_outputs(): the three outputs and the status only, without the
 // fuzzified inputs kept for reading firing strengths -- the path FuzzyPid takes every tick.
 void BM_FuzzyInferenceOutputs(benchmark::State& state) {
-  const auto system = fuzzypid::paper::make_system<double>();
-  const auto table = make_error_table();
-  std::size_t k = 0;
-  for (auto _ : state) {
-    const auto& p = table[k++ & kTableMask];
-    const auto r = system.infer_outputs(p.e, p.ec);
-    benchmark::DoNotOptimize(r.output);
-    benchmark::DoNotOptimize(r.status);
-  }
-  state.SetItemsProcessed(state.iterations());
+  run_inference<&PaperSystem::infer_outputs>(state);
 }
 BENCHMARK(BM_FuzzyInferenceOutputs)->Name("BM_FuzzyInference/paper_outputs");
 
