@@ -57,8 +57,8 @@ class CsvReader {
         error_ = "line " + std::to_string(line_) + ": " + first_bad + " is not a finite number";
         return false;
       }
-      if (expected_columns_min_ != 0 &&
-          (row.values.size() < expected_columns_min_ || row.values.size() > expected_columns_max_)) {
+      if (expected_columns_min_ != 0 && (row.values.size() < expected_columns_min_ ||
+                                         row.values.size() > expected_columns_max_)) {
         error_ = "line " + std::to_string(line_) + ": expected " + columns_text() + ", got " +
                  std::to_string(row.values.size());
         return false;
@@ -91,7 +91,8 @@ class CsvReader {
     std::size_t start = 0;
     for (;;) {
       const auto comma = s.find(',', start);
-      out.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      out.push_back(
+          s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
@@ -125,7 +126,8 @@ class CsvReader {
 
 // Writes one CSV line of numbers with round-trip precision.
 inline void write_row(std::FILE* out, const double* values, std::size_t count) {
-  for (std::size_t k = 0; k < count; ++k) std::fprintf(out, k == 0 ? "%.17g" : ",%.17g", values[k]);
+  for (std::size_t k = 0; k < count; ++k)
+    std::fprintf(out, k == 0 ? "%.17g" : ",%.17g", values[k]);
   std::fputc('\n', out);
 }
 

@@ -10,9 +10,9 @@
 int main() {
   using namespace fuzzypid;
   constexpr double kInertia = 10.0;  // kg·m²
-  constexpr double kDt = 0.05;      // s, the paper's tick
-  constexpr double kStep = 0.1;     // rad
-  constexpr int kTicks = 400;  // 20 s
+  constexpr double kDt = 0.05;       // s, the paper's tick
+  constexpr double kStep = 0.1;      // rad
+  constexpr int kTicks = 400;        // 20 s
 
   control::FuzzyPidConfig<double> config = control::paper_config<double>();
   config.pid.derivative_source = pid::DerivativeSource::Rates;

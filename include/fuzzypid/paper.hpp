@@ -103,7 +103,8 @@ template <class Scalar>
 constexpr fuzzy::RuleTable<Scalar, kNumTerms, kNumTerms> cast(const Table& t) noexcept {
   fuzzy::RuleTable<Scalar, kNumTerms, kNumTerms> out{};
   for (std::size_t i = 0; i < kNumTerms; ++i)
-    for (std::size_t j = 0; j < kNumTerms; ++j) out[i][j] = static_cast<Scalar>(t[i][j]);
+    for (std::size_t j = 0; j < kNumTerms; ++j)
+      out[i][j] = static_cast<Scalar>(t[i][j]);
   return out;
 }
 }  // namespace detail
@@ -116,7 +117,7 @@ constexpr System<Scalar> make_system(fuzzy::Conjunction conjunction = fuzzy::Con
                                      Tables tables = Tables::Printed) noexcept {
   System<Scalar> s;
   s.e = fuzzy::LinguisticVariable<Scalar, kNumTerms>::uniform(Scalar(kUniformMin),
-                                                               Scalar(kUniformMax));
+                                                              Scalar(kUniformMax));
   s.ec = s.e;
   const bool corrected = tables == Tables::Corrected;
   s.consequents[kDeltaKp] = detail::cast<Scalar>(corrected ? kDeltaKpCorrected : kDeltaKpPrinted);

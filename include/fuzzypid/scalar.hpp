@@ -13,7 +13,7 @@ inline constexpr bool is_supported_scalar_v =
     std::is_same_v<Scalar, float> || std::is_same_v<Scalar, double> ||
     std::is_same_v<Scalar, long double>;
 
-#define FUZZYPID_ASSERT_SCALAR(Scalar)                  \
+#define FUZZYPID_ASSERT_SCALAR(Scalar)                     \
   static_assert(::fuzzypid::is_supported_scalar_v<Scalar>, \
                 "fuzzypid: Scalar must be float, double or long double")
 
@@ -39,16 +39,24 @@ constexpr Scalar clamp(Scalar x, Scalar lo, Scalar hi) noexcept {
 }
 
 template <class Scalar>
-constexpr Scalar min(Scalar a, Scalar b) noexcept { return b < a ? b : a; }
+constexpr Scalar min(Scalar a, Scalar b) noexcept {
+  return b < a ? b : a;
+}
 
 template <class Scalar>
-constexpr Scalar max(Scalar a, Scalar b) noexcept { return a < b ? b : a; }
+constexpr Scalar max(Scalar a, Scalar b) noexcept {
+  return a < b ? b : a;
+}
 
 template <class Scalar>
-constexpr Scalar abs(Scalar x) noexcept { return x < Scalar(0) ? -x : x; }
+constexpr Scalar abs(Scalar x) noexcept {
+  return x < Scalar(0) ? -x : x;
+}
 
 template <class Scalar>
-constexpr Scalar infinity() noexcept { return std::numeric_limits<Scalar>::infinity(); }
+constexpr Scalar infinity() noexcept {
+  return std::numeric_limits<Scalar>::infinity();
+}
 
 }  // namespace detail
 }  // namespace fuzzypid

@@ -11,29 +11,39 @@ enum class Status : std::uint8_t {
   // Informational: the call succeeded but something is worth knowing.
   NoRuleFired,  // no rule had a non-zero firing strength; the outputs are 0
   // Faults: the call changed nothing and the last output is held.
-  NonFiniteInput,    // a NaN or infinite input
-  InvalidTimeStep,   // dt is not a finite positive number
-  InvalidConfig,     // a configuration failed validation
-  NumericOverflow,   // finite inputs produced a non-finite result (e.g. huge gains x huge error)
+  NonFiniteInput,   // a NaN or infinite input
+  InvalidTimeStep,  // dt is not a finite positive number
+  InvalidConfig,    // a configuration failed validation
+  NumericOverflow,  // finite inputs produced a non-finite result (e.g. huge gains x huge error)
 };
 
 // True for the faults, false for Ok and the informational codes.
-[[nodiscard]] constexpr bool is_fault(Status s) noexcept { return s >= Status::NonFiniteInput; }
+[[nodiscard]] constexpr bool is_fault(Status s) noexcept {
+  return s >= Status::NonFiniteInput;
+}
 
 [[nodiscard]] constexpr const char* to_string(Status s) noexcept {
   switch (s) {
-    case Status::Ok: return "ok";
-    case Status::NoRuleFired: return "no_rule_fired";
-    case Status::NonFiniteInput: return "non_finite_input";
-    case Status::InvalidTimeStep: return "invalid_time_step";
-    case Status::InvalidConfig: return "invalid_config";
-    case Status::NumericOverflow: return "numeric_overflow";
+    case Status::Ok:
+      return "ok";
+    case Status::NoRuleFired:
+      return "no_rule_fired";
+    case Status::NonFiniteInput:
+      return "non_finite_input";
+    case Status::InvalidTimeStep:
+      return "invalid_time_step";
+    case Status::InvalidConfig:
+      return "invalid_config";
+    case Status::NumericOverflow:
+      return "numeric_overflow";
   }
   return "unknown";
 }
 
 // The more severe of two statuses (faults outrank notes, notes outrank Ok); used to fold per-joint
 // results into one.
-[[nodiscard]] constexpr Status worst(Status a, Status b) noexcept { return a >= b ? a : b; }
+[[nodiscard]] constexpr Status worst(Status a, Status b) noexcept {
+  return a >= b ? a : b;
+}
 
 }  // namespace fuzzypid

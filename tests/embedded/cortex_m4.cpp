@@ -14,6 +14,7 @@ extern "C" float fuzzypid_tick(const float* desired, const float* measured, floa
     q[i] = measured[i];
   }
   const auto out = controller.step(qd, zero, q, zero, 0.05f);
-  for (int i = 0; i < 6; ++i) command[i] = out.command[i];
+  for (int i = 0; i < 6; ++i)
+    command[i] = out.command[i];
   return fuzzypid::is_fault(out.status) ? -1.0f : 0.0f;
 }

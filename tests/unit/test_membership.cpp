@@ -380,7 +380,8 @@ TEST(PaperPartition, HasTheTermsOfFigure4) {
   for (std::size_t k = 1; k < 6; ++k)
     EXPECT_EQ(v.term(k).shape, Shape::Triangle);
   const double peaks[7] = {-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3};
-  for (std::size_t k = 0; k < 7; ++k) EXPECT_NEAR(v.centers()[k], peaks[k], 2e-16);
+  for (std::size_t k = 0; k < 7; ++k)
+    EXPECT_NEAR(v.centers()[k], peaks[k], 2e-16);
 }
 
 TEST(LinguisticVariable, NaNBelongsToNoTerm) {

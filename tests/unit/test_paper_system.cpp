@@ -51,8 +51,8 @@ TEST(PaperSystem, InputsOutsideTheUniverseSaturateAtTheOuterSets) {
 
 TEST(PaperSystem, NonFiniteInputsAreReportedWithZeroOutputs) {
   const auto system = paper::make_system<double>();
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     const auto r = system.infer(bad, 0.0);
     EXPECT_EQ(r.status, Status::NonFiniteInput);
     EXPECT_EQ(r.output[0], 0.0);

@@ -65,7 +65,8 @@ class JointController {
   }
 
   void reset() noexcept {
-    for (auto& j : joints_) j.reset();
+    for (auto& j : joints_)
+      j.reset();
   }
 
   static constexpr std::size_t size() noexcept { return N; }

@@ -137,13 +137,20 @@ struct Term {
   // Degree of membership of x (see the shape structs for the formulas).
   Scalar operator()(Scalar x) const noexcept {
     switch (shape) {
-      case Shape::Triangle: return Triangle<Scalar>{p[0], p[1], p[2]}(x);
-      case Shape::Trapezoid: return Trapezoid<Scalar>{p[0], p[1], p[2], p[3]}(x);
-      case Shape::LeftShoulder: return LeftShoulder<Scalar>{p[0], p[1]}(x);
-      case Shape::RightShoulder: return RightShoulder<Scalar>{p[0], p[1]}(x);
-      case Shape::Gaussian: return Gaussian<Scalar>{p[0], p[1]}(x);
-      case Shape::Bell: return Bell<Scalar>{p[0], p[1], p[2]}(x);
-      case Shape::Singleton: return Singleton<Scalar>{p[0]}(x);
+      case Shape::Triangle:
+        return Triangle<Scalar>{p[0], p[1], p[2]}(x);
+      case Shape::Trapezoid:
+        return Trapezoid<Scalar>{p[0], p[1], p[2], p[3]}(x);
+      case Shape::LeftShoulder:
+        return LeftShoulder<Scalar>{p[0], p[1]}(x);
+      case Shape::RightShoulder:
+        return RightShoulder<Scalar>{p[0], p[1]}(x);
+      case Shape::Gaussian:
+        return Gaussian<Scalar>{p[0], p[1]}(x);
+      case Shape::Bell:
+        return Bell<Scalar>{p[0], p[1], p[2]}(x);
+      case Shape::Singleton:
+        return Singleton<Scalar>{p[0]}(x);
     }
     return Scalar(0);
   }
@@ -153,13 +160,20 @@ struct Term {
   // edge(s).
   constexpr Scalar center() const noexcept {
     switch (shape) {
-      case Shape::Triangle: return p[1];
-      case Shape::Trapezoid: return (p[1] + p[2]) / Scalar(2);
-      case Shape::LeftShoulder: return p[0];
-      case Shape::RightShoulder: return p[1];
-      case Shape::Gaussian: return p[0];
-      case Shape::Bell: return p[2];
-      case Shape::Singleton: return p[0];
+      case Shape::Triangle:
+        return p[1];
+      case Shape::Trapezoid:
+        return (p[1] + p[2]) / Scalar(2);
+      case Shape::LeftShoulder:
+        return p[0];
+      case Shape::RightShoulder:
+        return p[1];
+      case Shape::Gaussian:
+        return p[0];
+      case Shape::Bell:
+        return p[2];
+      case Shape::Singleton:
+        return p[0];
     }
     return Scalar(0);
   }
@@ -176,12 +190,15 @@ struct Term {
         return p[0] == p[0] && p[1] == p[1] && p[2] == p[2] && p[3] == p[3] && p[0] <= p[1] &&
                p[1] <= p[2] && p[2] <= p[3] && (is_finite(p[1]) || is_finite(p[2]));
       case Shape::LeftShoulder:
-      case Shape::RightShoulder: return is_finite(p[0]) && is_finite(p[1]) && p[0] < p[1];
-      case Shape::Gaussian: return is_finite(p[0]) && is_finite(p[1]) && p[1] > Scalar(0);
+      case Shape::RightShoulder:
+        return is_finite(p[0]) && is_finite(p[1]) && p[0] < p[1];
+      case Shape::Gaussian:
+        return is_finite(p[0]) && is_finite(p[1]) && p[1] > Scalar(0);
       case Shape::Bell:
         return is_finite(p[0]) && is_finite(p[1]) && is_finite(p[2]) && p[0] != Scalar(0) &&
                p[1] > Scalar(0);
-      case Shape::Singleton: return is_finite(p[0]);
+      case Shape::Singleton:
+        return is_finite(p[0]);
     }
     return false;
   }
