@@ -114,16 +114,11 @@ class FuzzyPid {
   [[gnu::flatten]] Status update(const Input& in, Scalar dt_s) noexcept {
     if (configured_ != Status::Ok) return configured_;
     if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
-    const bool rates = config_.pid.derivative_source == pid::DerivativeSource::Rates;
-    if (!detail::is_finite(in.setpoint) || !detail::is_finite(in.measurement) ||
-        !detail::is_finite(in.feed_forward) ||
-        (rates &&
-         (!detail::is_finite(in.setpoint_rate) || !detail::is_finite(in.measurement_rate))))
-      return Status::NonFiniteInput;
+    if (!pid_.finite(in)) return Status::NonFiniteInput;  // the PID's own input check
 
     const Scalar e = in.setpoint - in.measurement;
     Scalar ec = Scalar(0);
-    if (rates) {
+    if (config_.pid.derivative_source == pid::DerivativeSource::Rates) {
       ec = in.setpoint_rate - in.measurement_rate;
     } else if (pid_.has_previous()) {
       ec = (e - pid_.previous_error()) / dt_s;
@@ -132,9 +127,7 @@ class FuzzyPid {
     if (is_fault(inference.status)) return Status::NumericOverflow;
 
     const Gains& base = config_.gain_update == GainUpdate::Absolute ? config_.pid.gains : gains_;
-    const Gains next = clamp_gains({base.kp + config_.output_scale[0] * inference.output[0],
-                                    base.ki + config_.output_scale[1] * inference.output[1],
-                                    base.kd + config_.output_scale[2] * inference.output[2]});
+    const Gains next = retuned(base, inference.output);
     if (!next.finite()) return Status::NumericOverflow;
     // The inputs and dt passed the PID's own checks above (same conditions, same derivative
     // source), and pid_ is always configured (configure() only accepts a configuration it took),
@@ -167,10 +160,7 @@ class FuzzyPid {
                           : Scalar(0);  // the difference source sees e twice: ec = 0
     if (detail::is_finite(e) && detail::is_finite(ec)) {
       const auto inference = system_.infer(config_.error_scale * e, config_.error_rate_scale * ec);
-      if (!is_fault(inference.status))
-        next = clamp_gains({config_.pid.gains.kp + config_.output_scale[0] * inference.output[0],
-                            config_.pid.gains.ki + config_.output_scale[1] * inference.output[1],
-                            config_.pid.gains.kd + config_.output_scale[2] * inference.output[2]});
+      if (!is_fault(inference.status)) next = retuned(config_.pid.gains, inference.output);
     }
     const Gains previous = pid_.gains();
     if (pid_.set_gains(next) != Status::Ok) return Status::NumericOverflow;
@@ -203,6 +193,13 @@ class FuzzyPid {
     } else {
       return system_.infer(e, ec);
     }
+  }
+
+  // K = base + S dK, clamped into the gain bounds (Eqs. 6-7; base is K0 or the last gains).
+  Gains retuned(const Gains& base, const std::array<Scalar, 3>& delta) const noexcept {
+    return clamp_gains({base.kp + config_.output_scale[0] * delta[0],
+                        base.ki + config_.output_scale[1] * delta[1],
+                        base.kd + config_.output_scale[2] * delta[2]});
   }
 
   Gains clamp_gains(const Gains& g) const noexcept {
