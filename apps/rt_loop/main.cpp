@@ -282,13 +282,6 @@ struct TickRecord {
   std::int64_t controller_ns;
 };
 
-struct Setup {
-  robot::JointPathResult path;
-  robot::JointVector nominal_inertia{};
-  robot::JointVector effort_limit{};
-  sim::ExperimentOptions options;
-};
-
 struct LoopResult {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;
@@ -305,15 +298,15 @@ Histogram g_controller;
 
 template <class Controller>
 LoopResult run_loop(control::JointController<double, kJoints, Controller>& controller,
-                    robot::JointPlant& plant, const Setup& s, const Options& o, std::uint64_t ticks,
-                    std::vector<TickRecord>* csv) {
+                    robot::JointPlant& plant, const sim::Experiment& experiment, const Options& o,
+                    std::uint64_t ticks, std::vector<TickRecord>* csv) {
   LoopResult r;
-  const std::size_t samples = s.path.time_s.size();
-  const double dt_s = s.options.tick_s;
+  const robot::JointPathResult& path = experiment.path();
+  const std::size_t samples = path.time_s.size();
+  const double dt_s = experiment.options().tick_s;
   const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(o.period_ms * 1e6));
   const bool free_running = period_ns == 0;
   const robot::JointVector zero{};
-  const bool acceleration = s.options.gain_units == sim::GainUnits::Acceleration;
 
   const std::uint64_t allocations_before = fuzzypid::support::allocation_count();
   std::int64_t deadline = now_ns() + (free_running ? 0 : period_ns);
@@ -331,17 +324,16 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
 
     const std::size_t i = o.loop_path ? k % samples : (k < samples ? k : samples - 1);
     const bool holding = !o.loop_path && k >= samples;
-    const robot::JointVector& qd = s.path.position_rad[i];
-    const robot::JointVector& vd = holding ? zero : s.path.velocity_rad_s[i];
+    const robot::JointVector& qd = path.position_rad[i];
+    const robot::JointVector& vd = holding ? zero : path.velocity_rad_s[i];
 
     const std::int64_t c0 = now_ns();
     const auto command = controller.step(qd, vd, plant.position(), plant.velocity(), dt_s);
     const std::int64_t c1 = now_ns();
     if (fuzzypid::is_fault(command.status)) ++r.controller_faults;
 
-    robot::JointVector torque{};
+    const robot::JointVector torque = experiment.torque_from_command(command.command);
     for (std::size_t j = 0; j < kJoints; ++j) {
-      torque[j] = acceleration ? s.nominal_inertia[j] * command.command[j] : command.command[j];
       const double err = std::fabs(qd[j] - plant.position()[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
@@ -415,11 +407,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const sim::Scenario& scenario = *sim::find_scenario("paper");
-  Setup s;
-  s.path = experiment->path();
-  s.options = experiment->options();
-  s.nominal_inertia = experiment->nominal_inertia();
-  s.effort_limit = experiment->torque_limit(scenario);
+  const robot::JointVector torque_limit = experiment->torque_limit(scenario);
 
   robot::JointPlant plant(model, experiment->plant_config(scenario));
   if (!plant.valid()) {
@@ -430,11 +418,11 @@ int main(int argc, char** argv) {
 
   using Fuzzy = control::FuzzyPid<double>;
   control::JointController<double, kJoints, Fuzzy> fuzzy_controller(
-      experiment->make_fuzzy_pid(s.effort_limit));
+      experiment->make_fuzzy_pid(torque_limit));
   control::JointController<double, kJoints, pid::Pid<double>> pid_controller(
-      experiment->make_pid(s.effort_limit));
+      experiment->make_pid(torque_limit));
 
-  const std::uint64_t ticks = o.ticks.value_or(s.path.time_s.size());
+  const std::uint64_t ticks = o.ticks.value_or(experiment->path().time_s.size());
   std::vector<TickRecord> csv;
   if (!o.csv.empty()) csv.assign(ticks, TickRecord{0, 0, 0});
 
@@ -488,7 +476,7 @@ int main(int argc, char** argv) {
   const char* controller_name = o.controller == ControllerChoice::Fuzzy ? "fuzzy" : "pid";
   std::printf("rt_loop: controller %s, period %.3f ms%s, ticks %llu, path %zu samples%s\n",
               controller_name, o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "",
-              static_cast<unsigned long long>(ticks), s.path.time_s.size(),
+              static_cast<unsigned long long>(ticks), experiment->path().time_s.size(),
               o.loop_path ? " (looped)" : " (held at its end)");
   std::printf("cpu: %s\nmemory: %s\nscheduler: %s\n", cpu_state.c_str(), lock_state.c_str(),
               fifo_state.c_str());
@@ -496,8 +484,8 @@ int main(int argc, char** argv) {
 
   std::vector<TickRecord>* csv_buffer = o.csv.empty() ? nullptr : &csv;
   const LoopResult r = o.controller == ControllerChoice::Fuzzy
-                           ? run_loop(fuzzy_controller, plant, s, o, ticks, csv_buffer)
-                           : run_loop(pid_controller, plant, s, o, ticks, csv_buffer);
+                           ? run_loop(fuzzy_controller, plant, *experiment, o, ticks, csv_buffer)
+                           : run_loop(pid_controller, plant, *experiment, o, ticks, csv_buffer);
 
   // --- After the loop: summary and CSV.
   if (g_stop != 0) std::printf("interrupted: stopped at the next tick\n");

@@ -34,12 +34,6 @@ class Gaussian {
   std::mt19937_64 engine_;
 };
 
-// Gains of one joint's controller as the paper's units, whatever the controller type.
-template <class Controller>
-pid::Gains<double> current_gains(const Controller& c) {
-  return c.gains();
-}
-
 }  // namespace
 
 const char* to_string(GainUnits g) noexcept {
@@ -223,7 +217,7 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
         row.error = qd_ref[i] - plant.position()[i];
         row.error_rate = vd_ref[i] - plant.velocity()[i];
         row.u = command.command[i];
-        const pid::Gains<double> g = to_paper_units(current_gains(controller.joint(i)));
+        const pid::Gains<double> g = to_paper_units(controller.joint(i).gains());
         row.kp = g.kp;
         row.ki = g.ki;
         row.kd = g.kd;
