@@ -20,7 +20,7 @@
 //   EinsteinSum         (a + b) / (1 + a b)                       -        EinsteinSum / ESUM
 //   HamacherSum         (a + b - 2 a b) / (1 - a b), 1 if a b = 1 -        HamacherSum / HSUM
 //   NilpotentMaximum    max(a, b) if a + b < 1, else 1            -        NilpotentMaximum / NMAX
-//   NormalizedSum       (a + b) / max(1, max(a, b))               -        NormalizedSum / NSUM
+//   NormalizedSum       (a + b) / max(1, a + b)                   -        NormalizedSum / NSUM
 //   UnboundedSum        a + b                                     sum      UnboundedSum / SUM
 //
 //   hedge       h(mu)
@@ -124,7 +124,7 @@ constexpr Scalar apply(SNorm op, Scalar a, Scalar b) noexcept {
     case SNorm::NilpotentMaximum:
       return a + b < Scalar(1) ? detail::max(a, b) : Scalar(1);
     case SNorm::NormalizedSum:
-      return (a + b) / detail::max(Scalar(1), detail::max(a, b));
+      return (a + b) / detail::max(Scalar(1), a + b);
     case SNorm::UnboundedSum:
       return a + b;
   }
