@@ -682,6 +682,11 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       error = "output '" + std::string(text::name_of(v.name)) + "' has an infinite range";
       return false;
     }
+    if (!fuzzy::is_sugeno(v.defuzzifier) && v.resolution != 100) {
+      error = "output '" + std::string(text::name_of(v.name)) + "' has resolution " +
+              std::to_string(v.resolution) + "; .fis has none (readers use 100)";
+      return false;
+    }
   }
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     if (m.inputs[i].lock_range || !std::isfinite(m.inputs[i].min) ||

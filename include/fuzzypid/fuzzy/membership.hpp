@@ -466,8 +466,9 @@ struct Term {
         return two && p[0] < p[1];
       case Shape::Sigmoid:
       case Shape::Ramp:
-      case Shape::Binary:
         return two;
+      case Shape::Binary:  // the direction may be +-inf, as fuzzylite writes it
+        return is_finite(p[0]) && p[1] == p[1] && p[1] != p[0];
       case Shape::SigmoidDifference:
       case Shape::SigmoidProduct:
         return all4;
