@@ -52,12 +52,12 @@ std::string shape_error(std::string_view type, Shape s) {
   const std::string t = "'" + std::string(type) + "' ";
   switch (s) {
     case Shape::Triangle:
-      return t + "needs a <= b <= c, a < c and a finite peak b";
+      return t + "needs finite a <= b <= c with a < c";
     case Shape::Trapezoid:
       return t + "needs a <= b <= c <= d and a finite b or c";
     case Shape::Gaussian:
     case Shape::GaussianProduct:
-      return t + "needs finite parameters and a non-zero standard deviation";
+      return t + "needs finite parameters and a positive standard deviation";
     case Shape::Bell:
       return t + "needs finite parameters, a non-zero width and a positive slope";
     case Shape::PiShape:

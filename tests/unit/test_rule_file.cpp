@@ -631,13 +631,13 @@ TEST(RuleFile, FuzzyPidWithALoadedPaperSystemTracksTheBuiltInOne) {
   const fuzzypid::control::EngineSupervisor<double> supervisor(model.get());
   ASSERT_TRUE(supervisor.valid());
 
-  auto config = control::paper_config<double>();
+  auto config = fuzzypid::paper::paper_config<double>();
   config.error_scale = 0.3;
   config.error_rate_scale = 0.1;
   auto loaded =
       std::make_unique<control::FuzzyPid<double, fuzzypid::control::EngineSupervisor<double>>>(
-          supervisor, config);
-  control::FuzzyPid<double> builtin(fuzzypid::paper::make_system<double>(), config);
+          &supervisor, config);
+  fuzzypid::paper::FuzzyPid<double> builtin(&fuzzypid::paper::kSystem<double>, config);
 
   // A unit-inertia joint driven to 0.5 rad at 100 Hz.
   double q = 0.0, v = 0.0;
@@ -662,7 +662,10 @@ TEST(RuleFile, SupervisorRejectsModelsOfTheWrongShape) {
   ASSERT_TRUE(model);
   const fuzzypid::control::EngineSupervisor<double> wrong(model.get());
   EXPECT_FALSE(wrong.valid());
-  EXPECT_EQ(wrong.infer(0.0, 0.0).status, Status::InvalidConfig);
+  auto ws = wrong.make_workspace();
+  std::array<double, 3> delta{1.0, 1.0, 1.0};
+  EXPECT_EQ(wrong.infer(0.0, 0.0, ws, delta), Status::InvalidConfig);
+  EXPECT_EQ(delta, (std::array<double, 3>{}));
   EXPECT_FALSE(fuzzypid::control::EngineSupervisor<double>(nullptr).valid());
 }
 

@@ -1,5 +1,5 @@
-// A loaded rule base (fuzzy::EngineModel) as the supervisor of FuzzyPid: two inputs (e, ec, in
-// this order) and three outputs (dKp, dKi, dKd).
+// A loaded rule base (fuzzy::EngineModel) as a supervisor of FuzzyPid (the concept of
+// control/supervisor.hpp): two inputs (e, ec, in this order) and three outputs (dKp, dKi, dKd).
 //
 // The model is immutable and shared by every joint; the supervisor keeps a non-owning pointer to
 // it, so the model must outlive the supervisor and every controller using it. Per-joint scratch
@@ -57,28 +57,18 @@ struct DynamicWorkspace {
 
 namespace fuzzypid::control {
 
-// The result FuzzyPid expects from its supervisor: outputs (dKp, dKi, dKd) and a status.
-template <class Scalar>
-struct SupervisorResult {
-  std::array<Scalar, 3> output{};
-  Status status = Status::Ok;
-};
-
 template <class Scalar, class Cap = fuzzy::DefaultCapacity>
 class EngineSupervisor {
  public:
   using Model = fuzzy::EngineModel<Scalar, Cap>;
   using Workspace = fuzzy::DynamicWorkspace<Scalar>;
-  using Result = SupervisorResult<Scalar>;
 
   EngineSupervisor() noexcept = default;
   // `model` must outlive the supervisor and its controllers.
   explicit EngineSupervisor(const Model* model)
       : model_(model),
         valid_(model != nullptr && model->num_inputs == 2 && model->num_outputs == 3 &&
-               !model->validate()) {
-    if (valid_) ws_ = make_workspace();
-  }
+               !model->validate()) {}
 
   // True when the model is present, valid and has the 2 inputs and 3 outputs FuzzyPid needs.
   bool valid() const noexcept { return valid_; }
@@ -86,7 +76,8 @@ class EngineSupervisor {
   // Set-up: a workspace sized to the model (allocates).
   Workspace make_workspace() const { return valid_ ? Workspace(*model_) : Workspace(); }
 
-  // One inference: delta = (dKp, dKi, dKd). Ok, NoRuleFired (delta = 0) or a fault.
+  // One inference: delta = (dKp, dKi, dKd). Ok, NoRuleFired (delta = 0) or a fault
+  // (InvalidConfig for an invalid supervisor or a workspace not made for this model).
   [[nodiscard]] Status infer(Scalar e, Scalar ec, Workspace& ws,
                              std::array<Scalar, 3>& delta) const noexcept {
     delta = {};
@@ -95,18 +86,9 @@ class EngineSupervisor {
     return fuzzy::evaluate(*model_, ws.view(), in, delta.data());
   }
 
-  // The interface of the current FuzzyPid: uses the supervisor's own workspace, so one
-  // supervisor per controller (not thread-safe).
-  Result infer(Scalar e, Scalar ec) const noexcept {
-    Result r;
-    r.status = infer(e, ec, ws_, r.output);
-    return r;
-  }
-
  private:
   const Model* model_ = nullptr;
   bool valid_ = false;
-  mutable Workspace ws_{};
 };
 
 }  // namespace fuzzypid::control

@@ -441,7 +441,7 @@ struct Term {
     if (!(height == height && height >= Scalar(0) && is_finite(height))) return false;
     switch (shape) {
       case Shape::Triangle:
-        return p[0] == p[0] && is_finite(p[1]) && p[2] == p[2] && p[0] <= p[1] &&
+        return is_finite(p[0]) && is_finite(p[1]) && is_finite(p[2]) && p[0] <= p[1] &&
                p[1] <= p[2] && p[0] < p[2];
       case Shape::Trapezoid:
         return p[0] == p[0] && p[1] == p[1] && p[2] == p[2] && p[3] == p[3] && p[0] <= p[1] &&
@@ -450,7 +450,7 @@ struct Term {
       case Shape::RightShoulder:
         return two && p[0] < p[1];
       case Shape::Gaussian:
-        return two && p[1] != Scalar(0);
+        return two && p[1] > Scalar(0);
       case Shape::Bell:
         return two && is_finite(p[2]) && p[0] != Scalar(0) && p[1] > Scalar(0);
       case Shape::Singleton:
@@ -458,7 +458,7 @@ struct Term {
       case Shape::Rectangle:
         return p[0] == p[0] && p[1] == p[1] && p[0] <= p[1];
       case Shape::GaussianProduct:
-        return all4 && p[1] != Scalar(0) && p[3] != Scalar(0);
+        return all4 && p[1] > Scalar(0) && p[3] > Scalar(0);
       case Shape::PiShape:
         return all4 && p[0] < p[1] && p[1] <= p[2] && p[2] < p[3];
       case Shape::SShape:
