@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 
@@ -19,15 +20,16 @@ using Parser = bool (*)(std::string_view, const std::string&, rulefile::Model&, 
                         const rulefile::LoadOptions&);
 
 inline void check_engine(const rulefile::Model& model) {
-  auto a = std::make_unique<fuzzy::Engine<double>>(model);
+  fuzzy::DynamicWorkspace<double> ws(model);
   double in[fuzzy::kMaxInputs] = {};
   double out[fuzzy::kMaxOutputs] = {};
   for (int k = 0; k < 4; ++k) {
     for (std::size_t i = 0; i < model.num_inputs; ++i) {
       const auto& v = model.inputs[i];
-      in[i] = v.min + (v.max - v.min) * (k - 0.5) / 2.0;
+      const double lo = v.min > -1e300 ? v.min : -1.0, hi = v.max < 1e300 ? v.max : 1.0;
+      in[i] = lo + (hi - lo) * (k - 0.5) / 2.0;
     }
-    (void)a->evaluate(in, out);
+    (void)fuzzy::evaluate(model, ws.view(), in, out);
   }
 }
 
@@ -49,8 +51,10 @@ inline int run(const std::uint8_t* data, std::size_t size, Parser parse) {
   if (!rulefile::to_fll(*model, fll, why)) std::abort();  // every loaded model is expressible in .fll
   auto again = std::make_unique<rulefile::Model>();
   if (!rulefile::parse_fll(fll, "export", *again, error, options)) std::abort();
-  std::string fis;
+  std::string fis, fcl;
   if (rulefile::to_fis(*model, fis, why) && !rulefile::parse_fis(fis, "export", *again, error, options))
+    std::abort();
+  if (rulefile::to_fcl(*model, fcl, why) && !rulefile::parse_fcl(fcl, "export", *again, error, options))
     std::abort();
   return 0;
 }

@@ -9,7 +9,7 @@
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
 #   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
 # Any error, finding or sanitizer report fails the run. Environment:
-#   CI_FUZZ_SECONDS  per fuzz target (default 60)
+#   CI_FUZZ_SECONDS  per fuzz target (default 45)
 #   CI_SOAK_TICKS    soak length (default 10000000)
 #   CI_STAGES        space-separated subset of the stage names (default: all)
 set -euo pipefail
@@ -83,7 +83,7 @@ stage_cppcheck() {
 }
 
 stage_fuzz() {
-  FUZZ_SECONDS="${CI_FUZZ_SECONDS:-60}" bash scripts/fuzz.sh
+  FUZZ_SECONDS="${CI_FUZZ_SECONDS:-45}" bash scripts/fuzz.sh
 }
 
 stage_soak() {

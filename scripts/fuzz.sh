@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz/ and runs each for a bounded
 # time from its seed corpus in fuzz/corpus/<name>/:
-#   fis, fll       the .fis / .fll rule-file readers
+#   fis, fll, fcl  the .fis / .fll / .fcl rule-file readers
 #   csv            the command-line tools' CSV reader
 #   urdf           the URDF loader (robot::RobotModel::load)
 #   sim_ab_args    sim_ab's command-line parser
@@ -12,7 +12,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
-targets="${FUZZ_TARGETS:-fis fll csv urdf sim_ab_args}"
+targets="${FUZZ_TARGETS:-fis fll fcl csv urdf sim_ab_args}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFUZZYPID_BUILD_FUZZERS=ON -DFUZZYPID_BUILD_TESTS=OFF -DFUZZYPID_BUILD_APPS=OFF \
   -DFUZZYPID_BUILD_BENCH=OFF -DFUZZYPID_WITH_ROBOT=ON >/dev/null

@@ -181,6 +181,7 @@ class FclParser {
                     (kw == "fuzzify" ? "VAR_INPUT" : "VAR_OUTPUT"));
       current_ = static_cast<std::size_t>(i);
       block_ = kw == "fuzzify" ? Block::Fuzzify : Block::Defuzzify;
+      (kw == "fuzzify" ? lines_.inputs : lines_.outputs)[current_] = line_;
       return true;
     }
     if (kw == "end_fuzzify" || kw == "end_defuzzify") {

@@ -669,4 +669,242 @@ TEST(RuleFile, SupervisorRejectsModelsOfTheWrongShape) {
   EXPECT_FALSE(fuzzypid::control::EngineSupervisor<double>(nullptr).valid());
 }
 
+
+// ---------------------------------------------------------------------------------------------
+// .fis as MATLAB reads it, FCL, rule grammar, capacity.
+
+namespace more {
+
+using fuzzypid::fuzzy::Token;
+
+std::string corpus(const std::string& name) {
+  return read(FUZZYPID_RULEFILES_DIR "/corpus/" + name);
+}
+
+std::unique_ptr<Model> load_text(const std::string& name, const std::string& text) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  const std::string ext = name.substr(name.rfind('.'));
+  const bool ok = ext == ".fis"   ? fuzzypid::rulefile::parse_fis(text, name, *model, error)
+                  : ext == ".fll" ? fuzzypid::rulefile::parse_fll(text, name, *model, error)
+                                  : fuzzypid::rulefile::parse_fcl(text, name, *model, error);
+  EXPECT_TRUE(ok) << error.to_string();
+  return ok ? std::move(model) : nullptr;
+}
+
+TEST(RuleFileFis, MfLinesAreTakenInLineOrderAsMatlabReadsThem) {
+  // MF2 'mid' is the first MF line of x and MF3 'big' the first of y: rule "1, 1" reads
+  // "if x is mid then y is big", as in MATLAB's readfis and fuzzylite.
+  const auto model = load_text("order.fis", corpus("matlab_out_of_order_mfs.fis"));
+  ASSERT_TRUE(model);
+  EXPECT_STREQ(model->inputs[0].term_names[0].data(), "mid");
+  EXPECT_STREQ(model->inputs[0].term_names[1].data(), "low");
+  EXPECT_STREQ(model->outputs[0].term_names[0].data(), "big");
+  Engine<double> engine(*model);
+  const double x = 0.5;
+  double y = 0;
+  ASSERT_EQ(engine.evaluate(&x, &y), Status::Ok);
+  // Only "mid" holds at 0.5, so y is the centroid of "big" (0.5 .. 1 .. 1.5) on [0, 1]: 5/6.
+  EXPECT_NEAR(y, 5.0 / 6.0, 1e-3);
+}
+
+TEST(RuleFileFis, NamesKeepTheirCharactersAndAreSanitisedForFll) {
+  const auto model = load_text("names.fis", corpus("octave_names_with_spaces_utf8.fis"));
+  ASSERT_TRUE(model);
+  EXPECT_STREQ(model->inputs[0].name.data(), "Füllstand Fehler");
+  EXPECT_STREQ(model->inputs[1].term_names[0].data(), "fällt");
+  std::string fis, fll, error;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, error)) << error;
+  EXPECT_NE(fis.find("Name='Änderung (m/s)'"), std::string::npos);
+  ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, error)) << error;
+  EXPECT_NE(fll.find("InputVariable: FllstandFehler"), std::string::npos) << fll;
+  EXPECT_NE(fll.find("rule: if FllstandFehler is zuniedrig and nderungms is fllt"),
+            std::string::npos)
+      << fll;
+}
+
+TEST(RuleFileFis, ZeroPaddedMatlab1xListsAndUnusedInputsLoad) {
+  const auto padded = load_text("padded.fis", corpus("matlab1x_tank_padded.fis"));
+  ASSERT_TRUE(padded);
+  EXPECT_EQ(padded->inputs[0].terms[0].shape, fuzzypid::fuzzy::Shape::Gaussian);
+  EXPECT_EQ(padded->inputs[0].terms[0].height, 1.0);  // the padding is not a height
+  EXPECT_EQ(padded->inputs[0].terms[0].p[0], -1.0);
+  const auto unused = load_text("unused.fis", corpus("matlab_unused_input.fis"));
+  ASSERT_TRUE(unused);
+  EXPECT_EQ(unused->inputs[1].num_terms, 0u);
+}
+
+TEST(RuleFileGrammar, AndBindsTighterThanOrAndParenthesesGroup) {
+  const std::string base = corpus("handmade_mixed_and_or_parentheses.fll");
+  const auto model = load_text("mixed.fll", base);
+  ASSERT_TRUE(model);
+  // Rule 1: "x is low and y is low or w is neg" = (x.low and y.low) or w.neg.
+  const auto& r0 = model->rules[0];
+  ASSERT_EQ(r0.num_tokens, 5u);
+  EXPECT_EQ(model->tokens[r0.first_token + 2].kind, Token::Kind::And);
+  EXPECT_EQ(model->tokens[r0.first_token + 4].kind, Token::Kind::Or);
+  // Rule 2: "x is low or y is high and w is pos" = x.low or (y.high and w.pos).
+  const auto& r1 = model->rules[1];
+  EXPECT_EQ(model->tokens[r1.first_token + 3].kind, Token::Kind::And);
+  EXPECT_EQ(model->tokens[r1.first_token + 4].kind, Token::Kind::Or);
+  // Rule 3: "(x is high or y is high) and w is pos".
+  const auto& r2 = model->rules[2];
+  EXPECT_EQ(model->tokens[r2.first_token + 2].kind, Token::Kind::Or);
+  EXPECT_EQ(model->tokens[r2.first_token + 4].kind, Token::Kind::And);
+  // Written back, the rules parse to the same postfix form.
+  std::string fll, error;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, error)) << error;
+  EXPECT_NE(fll.find("rule: if x is low or y is high and w is pos then out is b"),
+            std::string::npos)
+      << fll;
+  EXPECT_NE(fll.find("rule: if (x is high or y is high) and w is pos then out is c"),
+            std::string::npos)
+      << fll;
+}
+
+TEST(RuleFileFcl, LoadsByExtensionAndRoundTrips) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_TRUE(fuzzypid::rulefile::load_rule_file(
+      FUZZYPID_RULEFILES_DIR "/corpus/iec_tipper_uppercase.fcl", *model, error))
+      << error.to_string();
+  EXPECT_EQ(model->num_inputs, 2u);
+  EXPECT_EQ(model->inputs[0].terms[0].shape, fuzzypid::fuzzy::Shape::Discrete);
+  std::string fcl, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, why)) << why;
+  const auto again = load_text("again.fcl", fcl);
+  ASSERT_TRUE(again);
+  expect_same_model(*model, *again);
+  expect_same_outputs(*model, *again);
+}
+
+void expect_fcl_error(const Bad& bad) {
+  SCOPED_TRACE(bad.what);
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_FALSE(fuzzypid::rulefile::parse_fcl(bad.text, "bad.file", *model, error));
+  const int expected = bad.marker.empty() ? 0 : line_of(bad.text, bad.marker);
+  ASSERT_GE(expected, 0) << "marker not found: " << bad.marker;
+  EXPECT_EQ(error.line, expected) << error.to_string();
+  EXPECT_NE(error.message.find(bad.message), std::string::npos) << error.to_string();
+}
+
+TEST(RuleFileFcl, MalformedFilesNameTheLineAndTheConstruct) {
+  const std::string good = corpus("plc_temperature_singletons.fcl");
+  const std::vector<Bad> cases = {
+      {"no function block", replace(good, "FUNCTION_BLOCK heating", "BLOCK heating"),
+       "BLOCK heating", "expected FUNCTION_BLOCK"},
+      {"truncated", good.substr(0, good.find("RULEBLOCK")), "", "missing END_FUNCTION_BLOCK"},
+      {"text after the end", good + "RULE 1 : if a is b then c is d;\n", "RULE 1 : if a is b then c",
+       "text after END_FUNCTION_BLOCK"},
+      {"undeclared variable", replace(good, "FUZZIFY temp_trend", "FUZZIFY humidity"),
+       "FUZZIFY humidity", "not declared in VAR_INPUT"},
+      {"variable type", replace(good, "temp_trend : REAL", "temp_trend : INT"), "temp_trend : INT",
+       "variable type 'INT'"},
+      {"unknown statement", replace(good, "RANGE := (-10 .. 10);", "SCALE := 2;"), "SCALE",
+       "unknown FUZZIFY statement"},
+      {"bad range", replace(good, "RANGE := (-10 .. 10);", "RANGE := (10 .. -10);"),
+       "RANGE := (10 .. -10)", "min < max"},
+      {"unsupported method", replace(good, "METHOD : COGS;", "METHOD : MAGIC;"), "MAGIC",
+       "unsupported METHOD 'MAGIC'"},
+      {"default NC", replace(good, "DEFAULT := 50;", "DEFAULT := NC;"), "DEFAULT := NC",
+       "NC"},
+      {"lock previous", replace(good, "LOCK : RANGE;", "LOCK : PREVIOUS;"), "LOCK : PREVIOUS",
+       "LOCK : PREVIOUS is not supported"},
+      {"unsupported norm", replace(good, "AND : PROD;", "AND : FANCY;"), "AND : FANCY",
+       "unsupported and operator 'FANCY'"},
+      {"function term", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := Function x*x;"),
+       "TERM ok", "'Function' terms"},
+      {"bad term parameters", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := Triangle 3 0 -3;"),
+       "TERM ok", "needs finite a <= b <= c"},
+      {"singleton input", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := 0;"), "TERM ok",
+       "not a membership function of an input"},
+      {"unknown term in rule", replace(good, "then valve is open;", "then valve is wide_open;"),
+       "wide_open", "unknown term 'wide_open' of output 'valve'"},
+      {"unterminated comment", replace(good, "FUNCTION_BLOCK heating", "FUNCTION_BLOCK heating (* oops"),
+       "(* oops", "unterminated comment"},
+      {"tsukamoto via COGS", replace(good, "TERM closed := 0;", "TERM closed := Ramp 0 10;"),
+       "DEFUZZIFY valve", "constant/linear terms"},
+  };
+  for (const auto& bad : cases)
+    expect_fcl_error(bad);
+}
+
+TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
+  using Small = fuzzypid::fuzzy::EngineModel<float, fuzzypid::fuzzy::SmallCapacity>;
+  auto small = std::make_unique<Small>();
+  small->num_inputs = 2;
+  small->num_outputs = 1;
+  for (std::size_t i = 0; i < 2; ++i) {
+    small->inputs[i].min = -1;
+    small->inputs[i].max = 1;
+    small->inputs[i].num_terms = 7;
+    for (std::size_t t = 0; t < 7; ++t) {
+      const float c = -1.0f + static_cast<float>(t) / 3.0f;
+      small->inputs[i].terms[t] = fuzzypid::fuzzy::Term<float>::triangle(c - 1.0f / 3, c, c + 1.0f / 3);
+    }
+  }
+  auto& out = small->outputs[0];
+  out.min = -1;
+  out.max = 1;
+  out.defuzzifier = fuzzypid::fuzzy::Defuzzifier::WeightedAverage;
+  out.num_terms = 7;
+  for (std::size_t t = 0; t < 7; ++t) {
+    out.terms[t].kind = fuzzypid::fuzzy::OutputTermKind::Constant;
+    out.terms[t].coefficients[0] = -1.0f + static_cast<float>(t) / 3.0f;
+  }
+  for (std::uint8_t i = 0; i < 7; ++i)
+    for (std::uint8_t j = 0; j < 7; ++j) {
+      const Token tokens[3] = {{Token::Kind::Proposition, 0, i, 0, {}},
+                               {Token::Kind::Proposition, 1, j, 0, {}},
+                               {Token::Kind::And, 0, 0, 0, {}}};
+      const fuzzypid::fuzzy::Conclusion c{0, static_cast<std::uint8_t>((i + j) / 2), 0, {}};
+      ASSERT_TRUE(small->add_rule(tokens, 3, &c, 1));
+    }
+  const Token one{Token::Kind::Proposition, 0, 0, 0, {}};
+  const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}};
+  EXPECT_FALSE(small->add_rule(&one, 1, &c, 1)) << "a 50th rule exceeds SmallCapacity";
+  EXPECT_FALSE(small->validate());
+  fuzzypid::fuzzy::Engine<float, fuzzypid::fuzzy::SmallCapacity> engine(*small);
+  // Against the definition: w_ij = min(mu_i(e), mu_j(ec)), y = sum w_ij c_(i+j)/2 / sum w_ij.
+  const float in[2] = {0.1f, -0.2f};
+  float y = 0;
+  EXPECT_EQ(engine.evaluate(in, &y), Status::Ok);
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < 7; ++i)
+    for (std::size_t j = 0; j < 7; ++j) {
+      const double w = std::min(small->inputs[0].terms[i](in[0]), small->inputs[1].terms[j](in[1]));
+      num += w * out.terms[(i + j) / 2].coefficients[0];
+      den += w;
+    }
+  EXPECT_NEAR(y, num / den, 1e-6);
+  std::cout << "sizeof EngineModel<float, SmallCapacity> = " << sizeof(Small)
+            << " B, Engine<float, SmallCapacity> = " << sizeof(engine) << " B\n"
+            << "sizeof EngineModel<double> = " << sizeof(Model)
+            << " B, EngineWorkspace<double> = " << sizeof(fuzzypid::fuzzy::EngineWorkspace<double>)
+            << " B, Engine<double> = " << sizeof(Engine<double>) << " B\n";
+}
+
+TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
+  static_assert(fuzzypid::control::is_supervisor_v<fuzzypid::control::EngineSupervisor<double>, double>);
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_TRUE(fuzzypid::rulefile::load_fis(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error));
+  const fuzzypid::control::EngineSupervisor<double> supervisor(model.get());
+  auto ws = supervisor.make_workspace();
+  EXPECT_EQ(ws.strength.size(), 49u);
+  EXPECT_EQ(ws.membership.size(), 2u * 7u);
+  std::size_t bytes = 0;
+  for (const auto* v : {&ws.membership, &ws.input, &ws.strength, &ws.stack, &ws.level})
+    bytes += v->size() * sizeof(double);
+  bytes += ws.activations.size() * sizeof(ws.activations[0]);
+  std::cout << "paper.fis workspace: " << bytes << " B of scratch per joint\n";
+  std::array<double, 3> delta{};
+  EXPECT_EQ(supervisor.infer(0.05, -0.12, ws, delta), Status::Ok);
+  fuzzypid::fuzzy::DynamicWorkspace<double> wrong;  // not made for this model
+  EXPECT_EQ(supervisor.infer(0.05, -0.12, wrong, delta), Status::InvalidConfig);
+}
+
+}  // namespace more
+
 }  // namespace
