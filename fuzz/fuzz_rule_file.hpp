@@ -16,8 +16,8 @@
 
 namespace fuzzypid::fuzz {
 
-using Parser = bool (*)(std::string_view, const std::string&, rulefile::Model&, rulefile::LoadError&,
-                        const rulefile::LoadOptions&);
+using Parser = bool (*)(std::string_view, const std::string&, rulefile::Model&,
+                        rulefile::LoadError&, const rulefile::LoadOptions&);
 
 inline void check_engine(const rulefile::Model& model) {
   fuzzy::DynamicWorkspace<double> ws(model);
@@ -48,13 +48,16 @@ inline int run(const std::uint8_t* data, std::size_t size, Parser parse) {
     if (model->outputs[o].resolution > 10000) return 0;
   check_engine(*model);
   std::string fll, why;
-  if (!rulefile::to_fll(*model, fll, why)) std::abort();  // every loaded model is expressible in .fll
+  if (!rulefile::to_fll(*model, fll, why))
+    std::abort();  // every loaded model is expressible in .fll
   auto again = std::make_unique<rulefile::Model>();
   if (!rulefile::parse_fll(fll, "export", *again, error, options)) std::abort();
   std::string fis, fcl;
-  if (rulefile::to_fis(*model, fis, why) && !rulefile::parse_fis(fis, "export", *again, error, options))
+  if (rulefile::to_fis(*model, fis, why) &&
+      !rulefile::parse_fis(fis, "export", *again, error, options))
     std::abort();
-  if (rulefile::to_fcl(*model, fcl, why) && !rulefile::parse_fcl(fcl, "export", *again, error, options))
+  if (rulefile::to_fcl(*model, fcl, why) &&
+      !rulefile::parse_fcl(fcl, "export", *again, error, options))
     std::abort();
   return 0;
 }

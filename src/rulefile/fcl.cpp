@@ -30,7 +30,6 @@ namespace fuzzypid::rulefile {
 
 namespace {
 
-using fuzzy::Defuzzifier;
 using fuzzy::SNorm;
 using fuzzy::TNorm;
 using Cap = Model::Capacity;
@@ -150,7 +149,9 @@ class FclParser {
       if (block_ != Block::None) return fail("FUNCTION_BLOCK must come first, once");
       block_ = Block::Function;
       const std::string name = text::sanitized(rest);
-      if (!rest.empty()) (void)fuzzy::set_name(model_.name, name.data(), std::min(name.size(), fuzzy::kMaxNameLength));
+      if (!rest.empty())
+        (void)fuzzy::set_name(model_.name, name.data(),
+                              std::min(name.size(), fuzzy::kMaxNameLength));
       return true;
     }
     if (block_ == Block::None) return fail("expected FUNCTION_BLOCK, got '" + s + "'");
@@ -294,8 +295,7 @@ class FclParser {
     if (input) return fail("unknown FUZZIFY statement '" + s + "'");
     if (kw == "method") {
       if (!value_of(s, value, false)) return false;
-      if (!fuzzy::parse(text::lower(value) == value ? value : value, fuzzy::Naming::Fcl,
-                        out.defuzzifier))
+      if (!fuzzy::parse(value, fuzzy::Naming::Fcl, out.defuzzifier))
         return fail("unsupported METHOD '" + value + "' (COG, COA, MM, LM, RM, COGS, COGSS)");
       method_seen_[current_] = true;
       return true;
@@ -321,7 +321,8 @@ class FclParser {
 
   static bool snorm(const std::string& v, SNorm& out) {
     return fuzzy::parse(v, fuzzy::Naming::Fcl, out) ||
-           fuzzy::parse(v, fuzzy::Naming::Fuzzylite, out) || (v == "SUM" && (out = SNorm::UnboundedSum, true));
+           fuzzy::parse(v, fuzzy::Naming::Fuzzylite, out) ||
+           (v == "SUM" && (out = SNorm::UnboundedSum, true));
   }
   static bool tnorm(const std::string& v, TNorm& out) {
     return fuzzy::parse(v, fuzzy::Naming::Fcl, out) ||
@@ -331,13 +332,12 @@ class FclParser {
   bool term(const std::string& s, bool input) {
     const std::size_t assign = s.find(":=");
     if (assign == std::string::npos) return fail("expected 'TERM name := ...', got '" + s + "'");
-    const std::string name =
-        text::sanitized(text::trim(std::string_view(s).substr(4, assign - 4)));
+    const std::string name = text::sanitized(text::trim(std::string_view(s).substr(4, assign - 4)));
     std::string spec(text::trim(std::string_view(s).substr(assign + 2)));
     if (name.empty() || text::is_reserved(name) || name.size() > fuzzy::kMaxNameLength)
       return fail("term name '" + name + "' is empty, a rule keyword or longer than 31 bytes");
-    std::size_t& count = input ? model_.inputs[current_].num_terms
-                               : model_.outputs[current_].num_terms;
+    std::size_t& count =
+        input ? model_.inputs[current_].num_terms : model_.outputs[current_].num_terms;
     auto& names = input ? model_.inputs[current_].term_names : model_.outputs[current_].term_names;
     for (std::size_t t = 0; t < count; ++t)
       if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
@@ -391,8 +391,8 @@ class FclParser {
         if (type == "Linear" && p.size() != n && p.size() != n + 1)
           return fail("term '" + name + "': Linear takes " + std::to_string(n) + " or " +
                       std::to_string(n + 1) + " coefficients, got " + std::to_string(p.size()));
-        t.kind = type == "Constant" ? fuzzy::OutputTermKind::Constant
-                                    : fuzzy::OutputTermKind::Linear;
+        t.kind =
+            type == "Constant" ? fuzzy::OutputTermKind::Constant : fuzzy::OutputTermKind::Linear;
         for (std::size_t k = 0; k < p.size(); ++k)
           t.coefficients[k] = p[k];
       } else {
@@ -447,7 +447,8 @@ class FclParser {
 
   bool finish() {
     if (block_ == Block::None) return fail_at(0, "missing FUNCTION_BLOCK");
-    if (block_ != Block::Done) return fail_at(0, "missing END_FUNCTION_BLOCK or an END_ of a block");
+    if (block_ != Block::Done)
+      return fail_at(0, "missing END_FUNCTION_BLOCK or an END_ of a block");
     if (model_.num_inputs == 0) return fail_at(0, "no VAR_INPUT variable");
     if (model_.num_outputs == 0) return fail_at(0, "no VAR_OUTPUT variable");
     if (model_.num_blocks == 0) {

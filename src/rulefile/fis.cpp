@@ -326,12 +326,14 @@ class FisParser {
                   "'");
     for (std::string_view w : text::split_words(s.substr(0, comma))) {
       double v = 0;
-      if (!integer_code(w, v)) return fail("rule antecedent '" + std::string(w) + "' is not a number");
+      if (!integer_code(w, v))
+        return fail("rule antecedent '" + std::string(w) + "' is not a number");
       r.antecedent.push_back(v);
     }
     for (std::string_view w : text::split_words(s.substr(comma + 1, open - comma - 1))) {
       double v = 0;
-      if (!integer_code(w, v)) return fail("rule consequent '" + std::string(w) + "' is not a number");
+      if (!integer_code(w, v))
+        return fail("rule consequent '" + std::string(w) + "' is not a number");
       r.consequent.push_back(v);
     }
     if (!text::parse_number(text::trim(s.substr(open + 1, close - open - 1)), r.weight) ||
@@ -399,15 +401,15 @@ class FisParser {
     if (!v.has_range) return fail_at(v.line, what + " has no Range");
     if (!v.has_num_mfs) return fail_at(v.line, what + " has no NumMFs");
     if (v.num_mfs > Cap::terms)
-      return fail_at(v.num_mfs_line, "more membership functions than the capacity (" +
-                                         capacity_text() + ")");
+      return fail_at(v.num_mfs_line,
+                     "more membership functions than the capacity (" + capacity_text() + ")");
     if (v.mfs.size() != v.num_mfs)
       return fail_at(v.num_mfs_line, "NumMFs=" + std::to_string(v.num_mfs) + " but " +
                                          std::to_string(v.mfs.size()) + " MF lines follow");
     for (const auto& mf : v.mfs)
       if (mf.k > v.num_mfs)
-        return fail_at(mf.line, "MF" + std::to_string(mf.k) + " beyond NumMFs=" +
-                                    std::to_string(v.num_mfs));
+        return fail_at(mf.line,
+                       "MF" + std::to_string(mf.k) + " beyond NumMFs=" + std::to_string(v.num_mfs));
     const bool sugeno = type_ == "sugeno";
     for (std::size_t t = 0; t < v.mfs.size(); ++t) {
       const auto& mf = v.mfs[t];
@@ -423,8 +425,7 @@ class FisParser {
         auto& term = out.terms[t];
         (void)fuzzy::set_name(out.term_names[t], mf.name.data(), mf.name.size());
         if (mf.type == "constant" || mf.type == "linear") {
-          if (!sugeno)
-            why = "'" + mf.type + "' terms need Type='sugeno'";
+          if (!sugeno) why = "'" + mf.type + "' terms need Type='sugeno'";
           for (double x : mf.params)
             if (why.empty() && !std::isfinite(x)) why = "coefficients must be finite";
           std::vector<double> p = mf.params;
@@ -488,8 +489,7 @@ class FisParser {
     if (num_inputs_ < 1 || num_inputs_ > Cap::inputs)
       return fail_at(num_inputs_line_, "NumInputs must be in 1.." + std::to_string(Cap::inputs));
     if (num_outputs_ < 1 || num_outputs_ > Cap::outputs)
-      return fail_at(num_outputs_line_,
-                     "NumOutputs must be in 1.." + std::to_string(Cap::outputs));
+      return fail_at(num_outputs_line_, "NumOutputs must be in 1.." + std::to_string(Cap::outputs));
     if (num_rules_ > Cap::rules)
       return fail_at(num_rules_line_, "NumRules above the capacity (" + capacity_text() + ")");
     if (options_.fis_resolution < 1) return fail_at(0, "LoadOptions::fis_resolution must be >= 1");
@@ -773,7 +773,8 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       outs[c.output] = c.term + 1.0;
     }
     if (degree_hedges > 0) {
-      error = "rule " + std::to_string(r + 1) + " has hedged conclusions, which .fis cannot express";
+      error =
+          "rule " + std::to_string(r + 1) + " has hedged conclusions, which .fis cannot express";
       return false;
     }
     std::string line;

@@ -19,7 +19,6 @@ namespace fuzzypid::rulefile {
 namespace {
 
 using fuzzy::Defuzzifier;
-using fuzzy::SNorm;
 using fuzzy::TNorm;
 using Cap = Model::Capacity;
 

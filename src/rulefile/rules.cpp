@@ -65,8 +65,8 @@ class Parser {
     if (tokens_.size() > Model::Capacity::rule_tokens)
       return "antecedent longer than " + std::to_string(Model::Capacity::rule_tokens) +
              " propositions and connectives";
-    if (!model_.add_rule(tokens_.data(), tokens_.size(), conclusions_.data(),
-                         conclusions_.size(), weight_, block))
+    if (!model_.add_rule(tokens_.data(), tokens_.size(), conclusions_.data(), conclusions_.size(),
+                         weight_, block))
       return "more rules or propositions than the capacity (" +
              std::to_string(Model::Capacity::rules) + " rules)";
     return {};
@@ -206,8 +206,7 @@ std::string fll_name(const fuzzy::Name& name) {
   return text::sanitized(text::name_of(name));
 }
 
-std::string parse_rule(std::string_view rule_text, Model& model, std::size_t block,
-                       bool any_case) {
+std::string parse_rule(std::string_view rule_text, Model& model, std::size_t block, bool any_case) {
   return Parser(tokenize(rule_text), model, any_case).parse(block);
 }
 

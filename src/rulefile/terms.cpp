@@ -14,9 +14,9 @@ using fuzzy::Shape;
 
 struct Spec {
   Shape shape;
-  const char* fll;            // fuzzylite class name
-  const char* fis;            // .fis name
-  std::size_t n;              // parameters (without height)
+  const char* fll;              // fuzzylite class name
+  const char* fis;              // .fis name
+  std::size_t n;                // parameters (without height)
   std::array<int, 4> from_fll;  // internal p[k] = fll[from_fll[k]]
   std::array<int, 4> from_fis;  // internal p[k] = fis[from_fis[k]]
 };

@@ -53,9 +53,9 @@ std::string ext(const fs::path& p) {
 // MATLAB 1.x padding and MATLAB-only names, rewritten for fuzzylite's FisImporter.
 std::string fis_for_fuzzylite(const std::string& text) {
   static const std::map<std::string, std::size_t> count = {
-      {"trimf", 3}, {"trapmf", 4}, {"gaussmf", 2}, {"gauss2mf", 4}, {"gbellmf", 3},
-      {"pimf", 4},  {"smf", 2},    {"zmf", 2},     {"sigmf", 2},    {"dsigmf", 4},
-      {"psigmf", 4}, {"constant", 1}, {"linzmf", 2}, {"linsmf", 2}};
+      {"trimf", 3},  {"trapmf", 4},   {"gaussmf", 2}, {"gauss2mf", 4}, {"gbellmf", 3},
+      {"pimf", 4},   {"smf", 2},      {"zmf", 2},     {"sigmf", 2},    {"dsigmf", 4},
+      {"psigmf", 4}, {"constant", 1}, {"linzmf", 2},  {"linsmf", 2}};
   std::istringstream in(text);
   std::ostringstream out;
   std::string line;
@@ -94,13 +94,8 @@ std::string fcl_for_fuzzylite(std::string text) {
   std::vector<std::string> lines;
   while (std::getline(in, line))
     lines.push_back(line);
-  for (const auto& l : lines)
-    if (std::regex_search(l, std::regex(R"(^\s*ACCU\s*:)")) && block_accu.empty()) {
-      // Is it inside a RULEBLOCK? Find by scanning backwards later; collect candidates here.
-    }
   bool in_rules = false, in_defuzz = false, defuzz_has_accu = false;
   std::vector<std::string> result;
-  std::size_t defuzz_end = 0;
   std::vector<std::size_t> defuzz_ends_without_accu;
   for (const auto& l0 : lines) {
     std::string l = l0;
@@ -114,24 +109,18 @@ std::string fcl_for_fuzzylite(std::string text) {
       defuzz_has_accu = true;
     if (std::regex_search(l, std::regex(R"(^\s*END_DEFUZZIFY)"))) {
       in_defuzz = false;
-      defuzz_end = result.size();
-      if (!defuzz_has_accu) defuzz_ends_without_accu.push_back(defuzz_end);
+      if (!defuzz_has_accu) defuzz_ends_without_accu.push_back(result.size());
     }
     if (in_rules && std::regex_search(l, std::regex(R"(^\s*ACCU\s*:)"))) {
       block_accu = l;
       continue;
     }
     if (in_rules && std::regex_search(l, std::regex(R"(^\s*RULE\s)"))) {
-      static const char* const words[] = {"IF", "IS", "AND", "OR", "THEN", "WITH", "NOT"};
-      for (const char* w : words)
-        l = std::regex_replace(l, std::regex(std::string("\\b") + w + "\\b"),
-                               std::string(fuzzypid::rulefile::LoadError{}.file.empty() ? "" : "") +
-                                   [w] {
-                                     std::string s(w);
-                                     for (char& c : s)
-                                       c = static_cast<char>(std::tolower(c));
-                                     return s;
-                                   }());
+      static const char* const words[][2] = {{"IF", "if"},  {"IS", "is"},     {"AND", "and"},
+                                             {"OR", "or"},  {"THEN", "then"}, {"WITH", "with"},
+                                             {"NOT", "not"}};
+      for (const auto& w : words)
+        l = std::regex_replace(l, std::regex(std::string("\\b") + w[0] + "\\b"), w[1]);
       l = std::regex_replace(l, std::regex(R"(\s*;\s*$)"), "");
     }
     result.push_back(l);
@@ -144,7 +133,8 @@ std::string fcl_for_fuzzylite(std::string text) {
   return out.str();
 }
 
-std::unique_ptr<fl::Engine> fuzzylite_import(const std::string& extension, const std::string& text) {
+std::unique_ptr<fl::Engine> fuzzylite_import(const std::string& extension,
+                                             const std::string& text) {
   fl::fuzzylite::setMachEps(1e-6);  // the importers' default (FisImporter decodes hedges with it)
   std::unique_ptr<fl::Engine> e;
   if (extension == ".fis") e.reset(fl::FisImporter().fromString(fis_for_fuzzylite(text)));
@@ -248,8 +238,7 @@ TEST(RuleFileCorpus, LoadsAndEqualsFuzzyliteOnEveryFile) {
     if (name.rfind("refuse_", 0) == 0) {
       EXPECT_FALSE(ok) << "expected a refusal";
       EXPECT_GT(error.line, 0) << error.to_string();
-      std::cout << "  refused  " << error.to_string().substr(error.to_string().find(name))
-                << "\n";
+      std::cout << "  refused  " << error.to_string().substr(error.to_string().find(name)) << "\n";
       ++refused;
       continue;
     }
@@ -266,35 +255,41 @@ TEST(RuleFileCorpus, LoadsAndEqualsFuzzyliteOnEveryFile) {
       worst = c.max_diff;
       worst_file = name;
     }
-    std::cout << "  loaded   " << name << ": " << c.points << " points, max |ours - fuzzylite| = "
-              << c.max_diff << "\n";
+    std::cout << "  loaded   " << name << ": " << c.points
+              << " points, max |ours - fuzzylite| = " << c.max_diff << "\n";
 
     // Round trips through our three writers, and fuzzylite reading our .fll.
     std::string fll, fcl, fis, why;
     ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, why)) << why;
     auto again = std::make_unique<Model>();
-    ASSERT_TRUE(fuzzypid::rulefile::parse_fll(fll, "export.fll", *again, error)) << error.to_string() << "\n" << fll;
+    ASSERT_TRUE(fuzzypid::rulefile::parse_fll(fll, "export.fll", *again, error))
+        << error.to_string() << "\n"
+        << fll;
     EXPECT_EQ(self_compare(*model, *again, seed), 0.0) << "via .fll";
     auto fl_again = fuzzylite_import(".fll", fll);
     ASSERT_TRUE(fl_again);
     const Comparison d = compare(*model, *fl_again, 300, seed++);
     EXPECT_LE(d.max_diff, 1e-9) << "fuzzylite on our .fll";
     if (fuzzypid::rulefile::to_fcl(*model, fcl, why)) {
-      ASSERT_TRUE(fuzzypid::rulefile::parse_fcl(fcl, "export.fcl", *again, error)) << error.to_string() << "\n" << fcl;
+      ASSERT_TRUE(fuzzypid::rulefile::parse_fcl(fcl, "export.fcl", *again, error))
+          << error.to_string() << "\n"
+          << fcl;
       EXPECT_EQ(self_compare(*model, *again, seed), 0.0) << "via .fcl";
     } else {
       std::cout << "    (.fcl export: " << why << ")\n";
     }
     if (fuzzypid::rulefile::to_fis(*model, fis, why)) {
-      ASSERT_TRUE(fuzzypid::rulefile::parse_fis(fis, "export.fis", *again, error)) << error.to_string() << "\n" << fis;
+      ASSERT_TRUE(fuzzypid::rulefile::parse_fis(fis, "export.fis", *again, error))
+          << error.to_string() << "\n"
+          << fis;
       EXPECT_EQ(self_compare(*model, *again, seed), 0.0) << "via .fis";
     } else {
       std::cout << "    (.fis export: " << why << ")\n";
     }
   }
   std::cout << "corpus: " << loaded << " of " << files.size() << " files load ("
-            << 100.0 * static_cast<double>(loaded) / static_cast<double>(files.size())
-            << " %), " << refused << " refused with a message; " << points
+            << 100.0 * static_cast<double>(loaded) / static_cast<double>(files.size()) << " %), "
+            << refused << " refused with a message; " << points
             << " points, largest |ours - fuzzylite| = " << worst << " (" << worst_file << "); "
             << allocations << " allocations in our evaluations\n";
   EXPECT_EQ(allocations, 0u);

@@ -84,8 +84,12 @@ TEST(OperatorsOracle, EveryMembershipFunctionEqualsFuzzylite) {
       {"Rectangle", {-0.5, 0.5, 0.3}, T::make(Shape::Rectangle, -0.5, 0.5, 0, 0, 0.3)},
       {"Gaussian", {0.2, 0.3}, T::make(Shape::Gaussian, 0.2, 0.3)},
       {"Gaussian", {0.2, 0.3, 0.9}, T::make(Shape::Gaussian, 0.2, 0.3, 0, 0, 0.9)},
-      {"GaussianProduct", {-0.2, 0.3, 0.4, 0.1}, T::make(Shape::GaussianProduct, -0.2, 0.3, 0.4, 0.1)},
-      {"GaussianProduct", {0.4, 0.3, -0.2, 0.1}, T::make(Shape::GaussianProduct, 0.4, 0.3, -0.2, 0.1)},
+      {"GaussianProduct",
+       {-0.2, 0.3, 0.4, 0.1},
+       T::make(Shape::GaussianProduct, -0.2, 0.3, 0.4, 0.1)},
+      {"GaussianProduct",
+       {0.4, 0.3, -0.2, 0.1},
+       T::make(Shape::GaussianProduct, 0.4, 0.3, -0.2, 0.1)},
       // Bell: fuzzylite (center, width, slope); ours p = {width, slope, center}.
       {"Bell", {0.5, 2, 3}, T::make(Shape::Bell, 2, 3, 0.5)},
       {"Bell", {0.5, 2, 0.5, 0.8}, T::make(Shape::Bell, 2, 0.5, 0.5, 0, 0.8)},
@@ -115,7 +119,8 @@ TEST(OperatorsOracle, EveryMembershipFunctionEqualsFuzzylite) {
   double worst = 0;
   for (const Case& c : cases) {
     SCOPED_TRACE(std::string(c.fl_class) + " " + join(c.fl_params));
-    std::unique_ptr<fl::Term> oracle(fl::FactoryManager::instance()->term()->constructObject(c.fl_class));
+    std::unique_ptr<fl::Term> oracle(
+        fl::FactoryManager::instance()->term()->constructObject(c.fl_class));
     oracle->configure(join(c.fl_params));
     for (double x : sample_points(c.fl_params, rng)) {
       const double expected = oracle->membership(x);
@@ -134,15 +139,16 @@ TEST(OperatorsOracle, EveryMembershipFunctionEqualsFuzzylite) {
   // Discrete: the points live in a pool the term refers to.
   {
     Term<double> ours{Shape::Discrete, {}, 1.0, 0, 4};
-    std::unique_ptr<fl::Term> oracle(fl::FactoryManager::instance()->term()->constructObject("Discrete"));
+    std::unique_ptr<fl::Term> oracle(
+        fl::FactoryManager::instance()->term()->constructObject("Discrete"));
     oracle->configure("-1 0 0.5 0.5 1 1 3 0");
     for (double x : sample_points({-1, 0.5, 1, 3}, rng)) {
       ++points;
       ASSERT_EQ(ours(x, pts), oracle->membership(x)) << "Discrete at " << x;
     }
   }
-  std::cout << cases.size() + 1 << " terms, " << points << " points: max |ours - fuzzylite| = "
-            << worst << "\n";
+  std::cout << cases.size() + 1 << " terms, " << points
+            << " points: max |ours - fuzzylite| = " << worst << "\n";
 }
 
 std::vector<double> degrees(std::mt19937_64& rng) {
@@ -160,8 +166,8 @@ TEST(OperatorsOracle, EveryNormEqualsFuzzylite) {
   std::size_t n = 0;
   for (int k = 0; k < 7; ++k) {
     const auto t = static_cast<TNorm>(k);
-    std::unique_ptr<fl::TNorm> oracle(
-        fl::FactoryManager::instance()->tnorm()->constructObject(fuzzypid::fuzzy::names(t).fuzzylite));
+    std::unique_ptr<fl::TNorm> oracle(fl::FactoryManager::instance()->tnorm()->constructObject(
+        fuzzypid::fuzzy::names(t).fuzzylite));
     ASSERT_TRUE(oracle) << fuzzypid::fuzzy::names(t).fuzzylite;
     for (double a : d)
       for (double b : d) {
@@ -172,8 +178,8 @@ TEST(OperatorsOracle, EveryNormEqualsFuzzylite) {
   }
   for (int k = 0; k < 9; ++k) {
     const auto s = static_cast<SNorm>(k);
-    std::unique_ptr<fl::SNorm> oracle(
-        fl::FactoryManager::instance()->snorm()->constructObject(fuzzypid::fuzzy::names(s).fuzzylite));
+    std::unique_ptr<fl::SNorm> oracle(fl::FactoryManager::instance()->snorm()->constructObject(
+        fuzzypid::fuzzy::names(s).fuzzylite));
     ASSERT_TRUE(oracle) << fuzzypid::fuzzy::names(s).fuzzylite;
     for (double a : d)
       for (double b : d) {
@@ -196,7 +202,8 @@ TEST(OperatorsOracle, EveryHedgeEqualsFuzzylite) {
     ASSERT_TRUE(oracle) << fuzzypid::fuzzy::to_string(h);
     for (double x : degrees(rng)) {
       ++n;
-      ASSERT_EQ(fuzzypid::fuzzy::apply(h, x), oracle->hedge(x)) << oracle->name() << "(" << x << ")";
+      ASSERT_EQ(fuzzypid::fuzzy::apply(h, x), oracle->hedge(x))
+          << oracle->name() << "(" << x << ")";
     }
   }
   std::cout << "6 hedges, " << n << " degrees: all equal to fuzzylite\n";
@@ -208,7 +215,9 @@ TEST(OperatorsOracle, NamesParseBackInEveryNaming) {
     for (const Naming naming : {Naming::Fuzzylite, Naming::Fis, Naming::Fcl}) {
       TNorm t{};
       const auto& n = fuzzypid::fuzzy::kTNormNames[k];
-      const char* name = naming == Naming::Fuzzylite ? n.fuzzylite : naming == Naming::Fis ? n.fis : n.fcl;
+      const char* name = naming == Naming::Fuzzylite ? n.fuzzylite
+                         : naming == Naming::Fis     ? n.fis
+                                                     : n.fcl;
       ASSERT_TRUE(fuzzypid::fuzzy::parse(name, naming, t));
       EXPECT_EQ(static_cast<int>(t), k);
     }

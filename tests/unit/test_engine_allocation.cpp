@@ -27,7 +27,8 @@ using fuzzypid::support::allocation_count;
 std::unique_ptr<Model> load(const std::string& path, const LoadOptions& options = {}) {
   auto model = std::make_unique<Model>();
   LoadError error;
-  EXPECT_TRUE(fuzzypid::rulefile::load_rule_file(path, *model, error, options)) << error.to_string();
+  EXPECT_TRUE(fuzzypid::rulefile::load_rule_file(path, *model, error, options))
+      << error.to_string();
   return model;
 }
 

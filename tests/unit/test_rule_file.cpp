@@ -18,8 +18,8 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/table_conversion.hpp"
-#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 
 namespace {
 
@@ -60,8 +60,9 @@ enum class Format { Fis, Fll };
 std::unique_ptr<Model> parse(Format f, const std::string& text, const LoadOptions& options = {}) {
   auto model = std::make_unique<Model>();
   LoadError error;
-  const bool ok = f == Format::Fis ? fuzzypid::rulefile::parse_fis(text, "test", *model, error, options)
-                                   : fuzzypid::rulefile::parse_fll(text, "test", *model, error, options);
+  const bool ok = f == Format::Fis
+                      ? fuzzypid::rulefile::parse_fis(text, "test", *model, error, options)
+                      : fuzzypid::rulefile::parse_fll(text, "test", *model, error, options);
   EXPECT_TRUE(ok) << error.to_string();
   return ok ? std::move(model) : nullptr;
 }
@@ -402,8 +403,9 @@ void expect_error(Format f, const Bad& bad) {
   SCOPED_TRACE(bad.what);
   auto model = std::make_unique<Model>();
   LoadError error;
-  const bool ok = f == Format::Fis ? fuzzypid::rulefile::parse_fis(bad.text, "bad.file", *model, error)
-                                   : fuzzypid::rulefile::parse_fll(bad.text, "bad.file", *model, error);
+  const bool ok = f == Format::Fis
+                      ? fuzzypid::rulefile::parse_fis(bad.text, "bad.file", *model, error)
+                      : fuzzypid::rulefile::parse_fll(bad.text, "bad.file", *model, error);
   ASSERT_FALSE(ok);
   const int expected = bad.marker.empty() ? 0 : line_of(bad.text, bad.marker);
   ASSERT_GE(expected, 0) << "marker not found: " << bad.marker;
@@ -441,7 +443,8 @@ TEST(RuleFile, MalformedFisFilesNameTheLine) {
       {"unknown section", replace(good, "[Rules]", "[Rulez]"), "[Rulez]", "unknown section"},
       {"unknown mf type", replace(good, "MF2='NM':'trimf'", "MF2='NM':'foomf'"), "'foomf'",
        "unsupported membership function 'foomf'"},
-      {"function mf", replace(good, "MF2='NM':'trimf',[-0.3 -0.2 -0.1]", "MF2='NM':'function',[sin(x)/x]"),
+      {"function mf",
+       replace(good, "MF2='NM':'trimf',[-0.3 -0.2 -0.1]", "MF2='NM':'function',[sin(x)/x]"),
        "sin(x)", "'function' terms (formulas evaluated at run time) are not supported"},
       {"nonzero padding", replace(good, "[-0.3 -0.2 -0.1]", "[-0.3 -0.2 -0.1 0.5]"),
        "[-0.3 -0.2 -0.1 0.5]", "takes 3 parameters, got 4"},
@@ -451,8 +454,8 @@ TEST(RuleFile, MalformedFisFilesNameTheLine) {
        "Range must be [min max]"},
       {"mf index beyond NumMFs", replace(good, "MF2='NM'", "MF9='NM'"), "MF9='NM'",
        "MF9 beyond NumMFs=7"},
-      {"unknown hedge code", replace(good, "1 1, 7 1 5 (1) : 1", "1.7 1, 7 1 5 (1) : 1"), "1.7 1, 7",
-       "unknown hedge code"},
+      {"unknown hedge code", replace(good, "1 1, 7 1 5 (1) : 1", "1.7 1, 7 1 5 (1) : 1"),
+       "1.7 1, 7", "unknown hedge code"},
       {"unsupported method", replace(good, "AndMethod='min'", "AndMethod='my_and'"), "my_and",
        "unsupported AndMethod 'my_and'"},
       {"defuzz vs type", replace(good, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'"),
@@ -547,15 +550,18 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
       {"unsupported defuzzifier",
        replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Tsukamoto"), "Tsukamoto",
        "Tsukamoto"},
-      {"too many hedges", replace(good, rule, "  rule: if e is very very very very very NL then dKp is P3"),
+      {"too many hedges",
+       replace(good, rule, "  rule: if e is very very very very very NL then dKp is P3"),
        "very very", "more than 4 hedges"},
-      {"unbalanced parentheses", replace(good, rule, "  rule: if (e is NL and ec is NL then dKp is P3"),
-       "(e is NL", "missing ')'"},
+      {"unbalanced parentheses",
+       replace(good, rule, "  rule: if (e is NL and ec is NL then dKp is P3"), "(e is NL",
+       "missing ')'"},
       {"output in antecedent", replace(good, rule, "  rule: if dKp is P3 then dKi is P3"),
        "if dKp is P3", "output variable 'dKp' in an antecedent"},
       {"conclusion twice", replace(good, rule, "  rule: if e is NL then dKp is P3 and dKp is P2"),
        "dKp is P2", "concluded twice"},
-      {"and without conjunction", replace(replace(good, "conjunction: Minimum", "conjunction: none"), rule, rule),
+      {"and without conjunction",
+       replace(replace(good, "conjunction: Minimum", "conjunction: none"), rule, rule),
        "rule: if e is NL and ec is NL", "no conjunction"},
       {"lock-previous", replace(good, "  lock-previous: false", "  lock-previous: true"),
        "lock-previous: true", "lock-previous"},
@@ -615,7 +621,8 @@ TEST(RuleFile, LoadRuleFileReportsMissingFilesAndUnknownExtensions) {
   EXPECT_EQ(error.to_string(), "/nonexistent/x.fis: cannot open file");
   EXPECT_FALSE(fuzzypid::rulefile::load_rule_file("rules.txt", *model, error));
   EXPECT_NE(error.message.find("extension"), std::string::npos);
-  EXPECT_TRUE(fuzzypid::rulefile::load_rule_file(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
+  EXPECT_TRUE(
+      fuzzypid::rulefile::load_rule_file(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
       << error.to_string();
   delete model;
 }
@@ -669,7 +676,6 @@ TEST(RuleFile, SupervisorRejectsModelsOfTheWrongShape) {
   EXPECT_EQ(delta, (std::array<double, 3>{}));
   EXPECT_FALSE(fuzzypid::control::EngineSupervisor<double>(nullptr).valid());
 }
-
 
 // ---------------------------------------------------------------------------------------------
 // .fis as MATLAB reads it, FCL, rule grammar, capacity.
@@ -796,8 +802,8 @@ TEST(RuleFileFcl, MalformedFilesNameTheLineAndTheConstruct) {
       {"no function block", replace(good, "FUNCTION_BLOCK heating", "BLOCK heating"),
        "BLOCK heating", "expected FUNCTION_BLOCK"},
       {"truncated", good.substr(0, good.find("RULEBLOCK")), "", "missing END_FUNCTION_BLOCK"},
-      {"text after the end", good + "RULE 1 : if a is b then c is d;\n", "RULE 1 : if a is b then c",
-       "text after END_FUNCTION_BLOCK"},
+      {"text after the end", good + "RULE 1 : if a is b then c is d;\n",
+       "RULE 1 : if a is b then c", "text after END_FUNCTION_BLOCK"},
       {"undeclared variable", replace(good, "FUZZIFY temp_trend", "FUZZIFY humidity"),
        "FUZZIFY humidity", "not declared in VAR_INPUT"},
       {"variable type", replace(good, "temp_trend : REAL", "temp_trend : INT"), "temp_trend : INT",
@@ -808,22 +814,23 @@ TEST(RuleFileFcl, MalformedFilesNameTheLineAndTheConstruct) {
        "RANGE := (10 .. -10)", "min < max"},
       {"unsupported method", replace(good, "METHOD : COGS;", "METHOD : MAGIC;"), "MAGIC",
        "unsupported METHOD 'MAGIC'"},
-      {"default NC", replace(good, "DEFAULT := 50;", "DEFAULT := NC;"), "DEFAULT := NC",
-       "NC"},
+      {"default NC", replace(good, "DEFAULT := 50;", "DEFAULT := NC;"), "DEFAULT := NC", "NC"},
       {"lock previous", replace(good, "LOCK : RANGE;", "LOCK : PREVIOUS;"), "LOCK : PREVIOUS",
        "LOCK : PREVIOUS is not supported"},
       {"unsupported norm", replace(good, "AND : PROD;", "AND : FANCY;"), "AND : FANCY",
        "unsupported and operator 'FANCY'"},
       {"function term", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := Function x*x;"),
        "TERM ok", "'Function' terms"},
-      {"bad term parameters", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := Triangle 3 0 -3;"),
-       "TERM ok", "needs finite a <= b <= c"},
+      {"bad term parameters",
+       replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := Triangle 3 0 -3;"), "TERM ok",
+       "needs finite a <= b <= c"},
       {"singleton input", replace(good, "TERM ok := Triangle -3 0 3;", "TERM ok := 0;"), "TERM ok",
        "not a membership function of an input"},
       {"unknown term in rule", replace(good, "then valve is open;", "then valve is wide_open;"),
        "wide_open", "unknown term 'wide_open' of output 'valve'"},
-      {"unterminated comment", replace(good, "FUNCTION_BLOCK heating", "FUNCTION_BLOCK heating (* oops"),
-       "(* oops", "unterminated comment"},
+      {"unterminated comment",
+       replace(good, "FUNCTION_BLOCK heating", "FUNCTION_BLOCK heating (* oops"), "(* oops",
+       "unterminated comment"},
       {"tsukamoto via COGS", replace(good, "TERM closed := 0;", "TERM closed := Ramp 0 10;"),
        "DEFUZZIFY valve", "constant/linear terms"},
   };
@@ -842,7 +849,8 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
     small->inputs[i].num_terms = 7;
     for (std::size_t t = 0; t < 7; ++t) {
       const float c = -1.0f + static_cast<float>(t) / 3.0f;
-      small->inputs[i].terms[t] = fuzzypid::fuzzy::Term<float>::triangle(c - 1.0f / 3, c, c + 1.0f / 3);
+      small->inputs[i].terms[t] =
+          fuzzypid::fuzzy::Term<float>::triangle(c - 1.0f / 3, c, c + 1.0f / 3);
     }
   }
   auto& out = small->outputs[0];
@@ -887,7 +895,8 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
 }
 
 TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
-  static_assert(fuzzypid::control::is_supervisor_v<fuzzypid::control::EngineSupervisor<double>, double>);
+  static_assert(
+      fuzzypid::control::is_supervisor_v<fuzzypid::control::EngineSupervisor<double>, double>);
   auto model = std::make_unique<Model>();
   LoadError error;
   ASSERT_TRUE(fuzzypid::rulefile::load_fis(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error));

@@ -46,8 +46,16 @@ struct DynamicWorkspace {
   }
 
   WorkspaceView<Scalar> view() noexcept {
-    return {membership.data(), stride, input.data(), strength.data(), stack.data(), level.data(),
-            activations.data(), activations.size(), breakpoints.data(), lines.data(),
+    return {membership.data(),
+            stride,
+            input.data(),
+            strength.data(),
+            stack.data(),
+            level.data(),
+            activations.data(),
+            activations.size(),
+            breakpoints.data(),
+            lines.data(),
             crossings.data(),
             ExactCentroidScratch{breakpoints.size(), lines.size(), crossings.size()}};
   }

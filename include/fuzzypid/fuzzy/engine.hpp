@@ -55,13 +55,13 @@ struct EngineCapacity {
   static_assert(Rules >= 1 && Blocks >= 1 && Tokens >= 1 && Conclusions >= 1, "empty capacity");
   static constexpr std::size_t inputs = Inputs;
   static constexpr std::size_t outputs = Outputs;
-  static constexpr std::size_t terms = Terms;            // per variable
-  static constexpr std::size_t rules = Rules;            // in all blocks
-  static constexpr std::size_t blocks = Blocks;          // rule blocks
-  static constexpr std::size_t tokens = Tokens;          // antecedent tokens of all rules
+  static constexpr std::size_t terms = Terms;              // per variable
+  static constexpr std::size_t rules = Rules;              // in all blocks
+  static constexpr std::size_t blocks = Blocks;            // rule blocks
+  static constexpr std::size_t tokens = Tokens;            // antecedent tokens of all rules
   static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
-  static constexpr std::size_t points = Points;          // (x, y) pairs of all Discrete terms
-  static constexpr std::size_t rule_tokens = 63;         // tokens of one antecedent
+  static constexpr std::size_t points = Points;            // (x, y) pairs of all Discrete terms
+  static constexpr std::size_t rule_tokens = 63;           // tokens of one antecedent
 };
 
 using DefaultCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
@@ -92,7 +92,7 @@ struct InputSpec {
   Name name{};
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
-  bool lock_range = false;  // clamp the input into [min, max] before fuzzifying
+  bool lock_range = false;    // clamp the input into [min, max] before fuzzifying
   std::size_t num_terms = 0;  // 0 allowed: an input no rule uses
   std::array<Term<Scalar>, Cap::terms> terms{};
   std::array<Name, Cap::terms> term_names{};
@@ -259,9 +259,9 @@ struct EngineModel {
     if (num_outputs < 1 || num_outputs > Cap::outputs)
       return {"number of outputs out of capacity", 0};
     if (num_rules > Cap::rules) return {"more rules than the capacity", 0};
-    if (num_blocks < 1 || num_blocks > Cap::blocks) return {"number of rule blocks out of capacity", 0};
-    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions ||
-        num_points > Cap::points)
+    if (num_blocks < 1 || num_blocks > Cap::blocks)
+      return {"number of rule blocks out of capacity", 0};
+    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions || num_points > Cap::points)
       return {"rule or point storage out of capacity", 0};
     const auto range_ok = [](Scalar lo, Scalar hi) {
       return detail::is_finite(lo) && detail::is_finite(hi) && lo < hi;
@@ -284,19 +284,23 @@ struct EngineModel {
       if (!(in.lock_range ? range_ok(in.min, in.max) : in.min < in.max))
         return {"input range must be min < max (finite with lock-range)", i,
                 ModelError::Where::Input};
-      if (in.num_terms > Cap::terms) return {"more input terms than the capacity", i, ModelError::Where::Input};
+      if (in.num_terms > Cap::terms)
+        return {"more input terms than the capacity", i, ModelError::Where::Input};
       for (std::size_t t = 0; t < in.num_terms; ++t)
-        if (!term_ok(in.terms[t])) return {"invalid input term parameters", i, ModelError::Where::Input};
+        if (!term_ok(in.terms[t]))
+          return {"invalid input term parameters", i, ModelError::Where::Input};
     }
     const bool merged = merges_activations();
     for (std::size_t o = 0; o < num_outputs; ++o) {
       const auto& out = outputs[o];
       const bool sugeno = is_sugeno(out.defuzzifier);
       if (!(sugeno && !out.lock_range ? out.min < out.max : range_ok(out.min, out.max)))
-        return {"output range must be finite with min < max (Sugeno outputs without lock-range: "
-                "min < max)",
-                o, ModelError::Where::Output};
-      if (out.num_terms > Cap::terms) return {"more output terms than the capacity", o, ModelError::Where::Output};
+        return {
+            "output range must be finite with min < max (Sugeno outputs without lock-range: "
+            "min < max)",
+            o, ModelError::Where::Output};
+      if (out.num_terms > Cap::terms)
+        return {"more output terms than the capacity", o, ModelError::Where::Output};
       if (!sugeno && (out.resolution < 1 || out.resolution > 100000000))
         return {"resolution must be in 1..1e8", o, ModelError::Where::Output};
       if (out.default_value == out.default_value && !detail::is_finite(out.default_value))
@@ -306,18 +310,22 @@ struct EngineModel {
           return {"the exact centroid applies to the centroid only", o, ModelError::Where::Output};
         if (!(out.aggregation == SNorm::UnboundedSum ||
               (out.aggregation == SNorm::Maximum && merged)))
-          return {"the exact centroid needs Maximum or UnboundedSum aggregation and one "
-                  "Minimum or Product implication",
-                  o, ModelError::Where::Output};
+          return {
+              "the exact centroid needs Maximum or UnboundedSum aggregation and one "
+              "Minimum or Product implication",
+              o, ModelError::Where::Output};
       }
       for (std::size_t t = 0; t < out.num_terms; ++t) {
         const auto& term = out.terms[t];
         const bool membership = term.kind == OutputTermKind::Membership;
         if (membership == sugeno)
-          return {"Sugeno defuzzifiers need constant/linear terms, the others membership terms", o, ModelError::Where::Output};
-        if (membership && !term_ok(term.membership)) return {"invalid output term parameters", o, ModelError::Where::Output};
+          return {"Sugeno defuzzifiers need constant/linear terms, the others membership terms", o,
+                  ModelError::Where::Output};
+        if (membership && !term_ok(term.membership))
+          return {"invalid output term parameters", o, ModelError::Where::Output};
         if (membership && out.exact_centroid && !is_piecewise_linear(term.membership))
-          return {"the exact centroid needs piecewise-linear terms of height 1", o, ModelError::Where::Output};
+          return {"the exact centroid needs piecewise-linear terms of height 1", o,
+                  ModelError::Where::Output};
         if (!membership)
           for (std::size_t c = 0; c <= num_inputs; ++c)
             if (!detail::is_finite(term.coefficients[c]))
@@ -347,7 +355,8 @@ struct EngineModel {
         } else {
           if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
           if (tok.kind == Token::Kind::And ? !block.has_conjunction : !block.has_disjunction)
-            return {"rule uses 'and'/'or' but its block has no conjunction/disjunction", r, ModelError::Where::Rule};
+            return {"rule uses 'and'/'or' but its block has no conjunction/disjunction", r,
+                    ModelError::Where::Rule};
           --depth;
         }
       }
@@ -362,7 +371,8 @@ struct EngineModel {
           if (conclusions[rule.first_conclusion + j].output == c.output)
             return {"rule concludes twice on one output", r, ModelError::Where::Rule};
         if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
-          return {"a Mamdani output needs an implication operator in the rule's block", r, ModelError::Where::Rule};
+          return {"a Mamdani output needs an implication operator in the rule's block", r,
+                  ModelError::Where::Rule};
       }
     }
     return {};
@@ -373,12 +383,13 @@ struct EngineModel {
 // microcontrollers) and one sized to the loaded model (std::vector, set up once) share the code.
 template <class Scalar>
 struct WorkspaceView {
-  Scalar* membership = nullptr;  // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
-  std::size_t stride = 0;        // >= the largest number of input terms
-  Scalar* input = nullptr;       // [num_inputs]: inputs after locking
-  Scalar* strength = nullptr;    // [num_rules]: rule firing strengths
-  Scalar* stack = nullptr;       // [largest number of tokens of a rule]
-  Scalar* level = nullptr;       // [largest number of output terms]
+  Scalar* membership =
+      nullptr;                 // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
+  std::size_t stride = 0;      // >= the largest number of input terms
+  Scalar* input = nullptr;     // [num_inputs]: inputs after locking
+  Scalar* strength = nullptr;  // [num_rules]: rule firing strengths
+  Scalar* stack = nullptr;     // [largest number of tokens of a rule]
+  Scalar* level = nullptr;     // [largest number of output terms]
   Activation<Scalar>* activations = nullptr;
   std::size_t activations_capacity = 0;  // >= max(num_rules, output terms)
   Scalar* breakpoints = nullptr;         // exact centroid scratch (see defuzzify.hpp)
@@ -419,9 +430,17 @@ struct EngineWorkspace {
   std::array<Scalar, Cap::terms*(Cap::terms - 1) / 2 + 1> crossings{};
 
   WorkspaceView<Scalar> view() noexcept {
-    return {membership.data(), Cap::terms, input.data(), strength.data(), stack.data(),
-            level.data(), activations.data(), activations.size(), breakpoints.data(),
-            lines.data(), crossings.data(),
+    return {membership.data(),
+            Cap::terms,
+            input.data(),
+            strength.data(),
+            stack.data(),
+            level.data(),
+            activations.data(),
+            activations.size(),
+            breakpoints.data(),
+            lines.data(),
+            crossings.data(),
             ExactCentroidScratch{breakpoints.size(), lines.size(), crossings.size()}};
   }
 };
@@ -537,10 +556,9 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       const AggregatedSet<Scalar> set{ws.activations, n, out.aggregation, points};
       switch (out.defuzzifier) {
         case Defuzzifier::Centroid:
-          y = out.exact_centroid
-                  ? centroid_exact(set, out.min, out.max, ws.breakpoints, ws.lines, ws.crossings,
-                                   ws.exact)
-                  : centroid_sampled(set, out.min, out.max, out.resolution);
+          y = out.exact_centroid ? centroid_exact(set, out.min, out.max, ws.breakpoints, ws.lines,
+                                                  ws.crossings, ws.exact)
+                                 : centroid_sampled(set, out.min, out.max, out.resolution);
           break;
         case Defuzzifier::Bisector:
           y = bisector_sampled(set, out.min, out.max, out.resolution);

@@ -10,25 +10,33 @@
 //   Trapezoid          a b c d                          0 outside [a, d], 1 on [b, c],   trapmf
 //                                                       linear edges (an infinite foot = shoulder)
 //   Rectangle          start end                        1 on [start, end], else 0        -
-//   Gaussian           mean sigma                       exp(-(x-mean)^2 / (2 sigma^2))   gaussmf [sigma mean]
-//   GaussianProduct    meanA sigmaA meanB sigmaB        left half of A (x < meanA), 1,   gauss2mf [sA mA sB mB]
+//   Gaussian           mean sigma                       exp(-(x-mean)^2 / (2 sigma^2))   gaussmf
+//   [sigma mean] GaussianProduct    meanA sigmaA meanB sigmaB        left half of A (x < meanA), 1,
+//   gauss2mf [sA mA sB mB]
 //                                                       right half of B (x > meanB)
 //   Bell               center width slope               1 / (1 + |(x-center)/width|^(2 slope))
-//                                                                                        gbellmf [width slope center]
+//                                                                                        gbellmf
+//                                                                                        [width
+//                                                                                        slope
+//                                                                                        center]
 //   PiShape            a b c d                          S from a to b, 1, Z from c to d  pimf
 //   SShape             start end                        spline 0 -> 1                    smf
 //   ZShape             start end                        spline 1 -> 0                    zmf
-//   Sigmoid            inflection slope                 1 / (1 + exp(-slope (x - infl))) sigmf [slope infl]
-//   SigmoidDifference  left rising falling right        |sig(rising, left) - sig(falling, right)|
-//                                                                                        dsigmf [a1 c1 a2 c2]
+//   Sigmoid            inflection slope                 1 / (1 + exp(-slope (x - infl))) sigmf
+//   [slope infl] SigmoidDifference  left rising falling right        |sig(rising, left) -
+//   sig(falling, right)|
+//                                                                                        dsigmf [a1
+//                                                                                        c1 a2 c2]
 //   SigmoidProduct     left rising falling right        sig(rising, left) sig(falling, right)
-//                                                                                        psigmf [a1 c1 a2 c2]
-//   Ramp               start end                        linear 0 at start -> 1 at end    linsmf/linzmf
+//                                                                                        psigmf [a1
+//                                                                                        c1 a2 c2]
+//   Ramp               start end                        linear 0 at start -> 1 at end linsmf/linzmf
 //                                                       (falling when end < start)
 //   Cosine             center width                     (1 + cos(2 pi (x-center)/width)) / 2
 //                                                       on [center - width/2, center + width/2]
 //   Concave            inflection end                   (end-infl) / (2 end - infl - x) for x < end
-//                                                       (increasing; mirrored when infl > end), else 1
+//                                                       (increasing; mirrored when infl > end),
+//                                                       else 1
 //   Spike              center width                     exp(-|10 (x - center) / width|)
 //   Binary             start direction                  1 on the side of start towards direction
 //   Discrete           x1 y1 x2 y2 ...                  linear interpolation, ends held
@@ -119,7 +127,8 @@ Scalar gaussian_product(Scalar mean_a, Scalar sigma_a, Scalar mean_b, Scalar sig
 template <class Scalar>
 Scalar bell(Scalar center, Scalar width, Scalar slope, Scalar h, Scalar x) noexcept {
   if (x != x) return Scalar(0);
-  return h * (Scalar(1) / (Scalar(1) + std::pow(std::fabs((x - center) / width), Scalar(2) * slope)));
+  return h *
+         (Scalar(1) / (Scalar(1) + std::pow(std::fabs((x - center) / width), Scalar(2) * slope)));
 }
 
 template <class Scalar>
@@ -155,7 +164,8 @@ Scalar z_shape(Scalar start, Scalar end, Scalar h, Scalar x) noexcept {
   const Scalar average = (start + end) / Scalar(2);
   const Scalar difference = end - start;
   if (x <= start) return h * Scalar(1);
-  if (x <= average) return h * (Scalar(1) - Scalar(2) * std::pow((x - start) / difference, Scalar(2)));
+  if (x <= average)
+    return h * (Scalar(1) - Scalar(2) * std::pow((x - start) / difference, Scalar(2)));
   if (x < end) return h * Scalar(2) * std::pow((x - end) / difference, Scalar(2));
   return h * Scalar(0);
 }

@@ -194,12 +194,9 @@ constexpr OperatorNames kSNormNames[] = {
 
 // FCL's LM/RM are the leftmost/rightmost maximum (smallest/largest), as fuzzylite reads them.
 constexpr OperatorNames kDefuzzifierNames[] = {
-    {"Centroid", "centroid", "COG", true},
-    {"Bisector", "bisector", "COA", true},
-    {"MeanOfMaximum", "mom", "MM", true},
-    {"SmallestOfMaximum", "som", "LM", true},
-    {"LargestOfMaximum", "lom", "RM", true},
-    {"WeightedAverage", "wtaver", "COGS", true},
+    {"Centroid", "centroid", "COG", true},   {"Bisector", "bisector", "COA", true},
+    {"MeanOfMaximum", "mom", "MM", true},    {"SmallestOfMaximum", "som", "LM", true},
+    {"LargestOfMaximum", "lom", "RM", true}, {"WeightedAverage", "wtaver", "COGS", true},
     {"WeightedSum", "wtsum", "COGSS", true},
 };
 

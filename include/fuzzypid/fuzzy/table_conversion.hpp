@@ -34,16 +34,16 @@ bool is_uniform_partition(const Input& in) noexcept {
     const Term<Scalar>& v = u.term(k);
     if (t.height != Scalar(1)) return false;
     if (k == 0) {
-      const bool shoulder = (t.shape == Shape::LeftShoulder && near(t.p[0], v.p[0]) &&
-                             near(t.p[1], v.p[1])) ||
-                            (t.shape == Shape::Trapezoid && t.p[0] == -inf && t.p[1] == -inf &&
-                             near(t.p[2], v.p[0]) && near(t.p[3], v.p[1]));
+      const bool shoulder =
+          (t.shape == Shape::LeftShoulder && near(t.p[0], v.p[0]) && near(t.p[1], v.p[1])) ||
+          (t.shape == Shape::Trapezoid && t.p[0] == -inf && t.p[1] == -inf &&
+           near(t.p[2], v.p[0]) && near(t.p[3], v.p[1]));
       if (!shoulder) return false;
     } else if (k + 1 == N) {
-      const bool shoulder = (t.shape == Shape::RightShoulder && near(t.p[0], v.p[0]) &&
-                             near(t.p[1], v.p[1])) ||
-                            (t.shape == Shape::Trapezoid && t.p[2] == inf && t.p[3] == inf &&
-                             near(t.p[0], v.p[0]) && near(t.p[1], v.p[1]));
+      const bool shoulder =
+          (t.shape == Shape::RightShoulder && near(t.p[0], v.p[0]) && near(t.p[1], v.p[1])) ||
+          (t.shape == Shape::Trapezoid && t.p[2] == inf && t.p[3] == inf && near(t.p[0], v.p[0]) &&
+           near(t.p[1], v.p[1]));
       if (!shoulder) return false;
     } else if (!(t.shape == Shape::Triangle && near(t.p[0], v.p[0]) && near(t.p[1], v.p[1]) &&
                  near(t.p[2], v.p[2]))) {
@@ -55,7 +55,8 @@ bool is_uniform_partition(const Input& in) noexcept {
 
 template <class Scalar, std::size_t N, class Input>
 LinguisticVariable<Scalar, N> variable(const Input& in) noexcept {
-  if (is_uniform_partition<Scalar, N>(in)) return LinguisticVariable<Scalar, N>::uniform(in.min, in.max);
+  if (is_uniform_partition<Scalar, N>(in))
+    return LinguisticVariable<Scalar, N>::uniform(in.min, in.max);
   std::array<Term<Scalar>, N> terms{};
   for (std::size_t k = 0; k < N; ++k)
     terms[k] = in.terms[k];
@@ -109,8 +110,8 @@ ModelError to_table_system(const EngineModel<Scalar, Cap>& m,
                        t[1].input == 1 && t[1].num_hedges == 0 && t[2].kind == Token::Kind::And &&
                        rule.num_conclusions == NOut;
     if (!shape)
-      return {"table-system rules are 'if e is E_i and ec is EC_j then' every output, weight 1",
-              r, Where::Rule};
+      return {"table-system rules are 'if e is E_i and ec is EC_j then' every output, weight 1", r,
+              Where::Rule};
     if (seen[t[0].term][t[1].term]) return {"two rules for one cell", r, Where::Rule};
     seen[t[0].term][t[1].term] = true;
     std::array<bool, NOut> concluded{};
