@@ -57,6 +57,13 @@ namespace fuzzypid::fuzzy {
 
 namespace shape {
 
+// t^2 as a product: what fuzzylite's std::pow(t, 2) compiles to with optimization (GCC folds it
+// into t * t), and exact in every build, unlike a library pow call.
+template <class Scalar>
+constexpr Scalar sq(Scalar t) noexcept {
+  return t * t;
+}
+
 template <class Scalar>
 constexpr Scalar triangle(Scalar a, Scalar b, Scalar c, Scalar h, Scalar x) noexcept {
   if (x != x) return Scalar(0);
@@ -139,11 +146,11 @@ Scalar pi_shape(Scalar a, Scalar b, Scalar c, Scalar d, Scalar h, Scalar x) noex
   const Scalar c_d_ave = (c + d) / Scalar(2);
   const Scalar d_minus_c = d - c;
   if (x <= a) return h * Scalar(0);
-  if (x <= a_b_ave) return h * Scalar(2) * std::pow((x - a) / b_minus_a, Scalar(2));
-  if (x < b) return h * (Scalar(1) - Scalar(2) * std::pow((x - b) / b_minus_a, Scalar(2)));
+  if (x <= a_b_ave) return h * Scalar(2) * sq((x - a) / b_minus_a);
+  if (x < b) return h * (Scalar(1) - Scalar(2) * sq((x - b) / b_minus_a));
   if (x <= c) return h * Scalar(1);
-  if (x <= c_d_ave) return h * (Scalar(1) - Scalar(2) * std::pow((x - c) / d_minus_c, Scalar(2)));
-  if (x < d) return h * Scalar(2) * std::pow((x - d) / d_minus_c, Scalar(2));
+  if (x <= c_d_ave) return h * (Scalar(1) - Scalar(2) * sq((x - c) / d_minus_c));
+  if (x < d) return h * Scalar(2) * sq((x - d) / d_minus_c);
   return h * Scalar(0);
 }
 
@@ -153,8 +160,8 @@ Scalar s_shape(Scalar start, Scalar end, Scalar h, Scalar x) noexcept {
   const Scalar average = (start + end) / Scalar(2);
   const Scalar difference = end - start;
   if (x <= start) return h * Scalar(0);
-  if (x <= average) return h * Scalar(2) * std::pow((x - start) / difference, Scalar(2));
-  if (x < end) return h * (Scalar(1) - Scalar(2) * std::pow((x - end) / difference, Scalar(2)));
+  if (x <= average) return h * Scalar(2) * sq((x - start) / difference);
+  if (x < end) return h * (Scalar(1) - Scalar(2) * sq((x - end) / difference));
   return h * Scalar(1);
 }
 
@@ -164,9 +171,8 @@ Scalar z_shape(Scalar start, Scalar end, Scalar h, Scalar x) noexcept {
   const Scalar average = (start + end) / Scalar(2);
   const Scalar difference = end - start;
   if (x <= start) return h * Scalar(1);
-  if (x <= average)
-    return h * (Scalar(1) - Scalar(2) * std::pow((x - start) / difference, Scalar(2)));
-  if (x < end) return h * Scalar(2) * std::pow((x - end) / difference, Scalar(2));
+  if (x <= average) return h * (Scalar(1) - Scalar(2) * sq((x - start) / difference));
+  if (x < end) return h * Scalar(2) * sq((x - end) / difference);
   return h * Scalar(0);
 }
 
