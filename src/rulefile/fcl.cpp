@@ -556,6 +556,11 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
   }
   for (std::size_t b = 0; b < m.num_blocks; ++b) {
     const auto& block = m.blocks[b];
+    if (block.activation != fuzzy::ActivationMethod::General) {
+      error = std::string(".fcl has no activation method (a block uses ") +
+              fuzzy::kActivationNames[static_cast<int>(block.activation)] + ")";
+      return false;
+    }
     const std::string name(text::name_of(block.name));
     s += "\nRULEBLOCK " + text::sanitized(name.empty() ? std::string("rules") : name) + "\n";
     if (block.has_conjunction)

@@ -664,6 +664,11 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
     return false;
   }
   const auto& block = m.blocks[0];
+  if (block.activation != fuzzy::ActivationMethod::General) {
+    error = std::string(".fis has no activation method (the model's block uses ") +
+            fuzzy::kActivationNames[static_cast<int>(block.activation)] + ")";
+    return false;
+  }
   const auto& first = m.outputs[0];
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];

@@ -332,10 +332,7 @@ class FllParser {
       b.has_disjunction = true;
       return true;
     }
-    if (key == "activation") {
-      if (value == "General" || value == "none") return true;
-      return fail("unsupported activation '" + std::string(value) + "' (General)");
-    }
+    if (key == "activation") return activation(value, b);
     if (key == "rule") {
       const std::string why = rules::parse_rule(value, model_, model_.num_blocks - 1, false);
       if (!why.empty()) return fail(why);
@@ -343,6 +340,63 @@ class FllParser {
       return true;
     }
     return fail("unknown RuleBlock property '" + std::string(key) + "'");
+  }
+
+  // General | Proportional | Threshold [cmp [value]] | First|Last [n [threshold]] | Highest|Lowest
+  // [n]
+  bool activation(std::string_view value, fuzzy::RuleBlock& b) {
+    const auto words = text::split_words(value);
+    if (words.empty() || words[0] == "none" || words[0] == "General") {
+      b.activation = fuzzy::ActivationMethod::General;
+      return words.size() <= 1 || fail("General takes no parameters");
+    }
+    int method = -1;
+    for (int k = 0; k < 7; ++k)
+      if (words[0] == fuzzy::kActivationNames[k]) method = k;
+    if (method < 0) return fail("unsupported activation '" + std::string(words[0]) + "'");
+    b.activation = static_cast<fuzzy::ActivationMethod>(method);
+    using fuzzy::ActivationMethod;
+    const auto count = [&](std::size_t at) {
+      std::size_t n = 0;
+      if (words.size() > at && (!text::parse_count(words[at], n) || n < 1 || n > 1000000))
+        return fail("activation '" + std::string(words[0]) +
+                    "' takes a number of rules >= 1, got '" + std::string(words[at]) + "'");
+      b.count = words.size() > at ? static_cast<std::uint32_t>(n) : 1;
+      return true;
+    };
+    const auto threshold = [&](std::size_t at) {
+      double t = 0;
+      if (words.size() > at && (!text::parse_number(words[at], t) || !(t >= 0 && t <= 1)))
+        return fail("activation threshold must be a number in [0, 1], got '" +
+                    std::string(words[at]) + "'");
+      b.threshold = words.size() > at ? t : 0.0;
+      return true;
+    };
+    switch (b.activation) {
+      case ActivationMethod::Proportional:
+        return words.size() == 1 || fail("Proportional takes no parameters");
+      case ActivationMethod::Threshold: {
+        b.comparison = fuzzy::Comparison::GreaterThanOrEqualTo;
+        if (words.size() > 3) return fail("Threshold takes a comparison and a value");
+        if (words.size() > 1) {
+          int c = -1;
+          for (int k = 0; k < 6; ++k)
+            if (words[1] == fuzzy::kComparisonNames[k]) c = k;
+          if (c < 0)
+            return fail("Threshold comparison must be <, <=, ==, !=, >= or >, got '" +
+                        std::string(words[1]) + "'");
+          b.comparison = static_cast<fuzzy::Comparison>(c);
+        }
+        return threshold(2);
+      }
+      case ActivationMethod::First:
+      case ActivationMethod::Last:
+        if (words.size() > 3) return fail("First/Last take a number of rules and a threshold");
+        return count(1) && threshold(2);
+      default:
+        if (words.size() > 2) return fail("Highest/Lowest take a number of rules");
+        return count(1);
+    }
   }
 
   bool finish() {
@@ -476,8 +530,25 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
     s += std::string("  disjunction: ") +
          (block.has_disjunction ? fuzzy::names(block.disjunction).fuzzylite : "none") + "\n";
     s += std::string("  implication: ") +
-         (block.has_implication ? fuzzy::names(block.implication).fuzzylite : "none") +
-         "\n  activation: General\n";
+         (block.has_implication ? fuzzy::names(block.implication).fuzzylite : "none") + "\n";
+    std::string act = fuzzy::kActivationNames[static_cast<int>(block.activation)];
+    switch (block.activation) {
+      case fuzzy::ActivationMethod::Threshold:
+        act += std::string(" ") + fuzzy::kComparisonNames[static_cast<int>(block.comparison)] +
+               " " + format_number(block.threshold);
+        break;
+      case fuzzy::ActivationMethod::First:
+      case fuzzy::ActivationMethod::Last:
+        act += " " + std::to_string(block.count) + " " + format_number(block.threshold);
+        break;
+      case fuzzy::ActivationMethod::Highest:
+      case fuzzy::ActivationMethod::Lowest:
+        act += " " + std::to_string(block.count);
+        break;
+      default:
+        break;
+    }
+    s += "  activation: " + act + "\n";
     for (std::size_t r = 0; r < m.num_rules; ++r)
       if (m.rules[r].block == b) s += "  rule: " + rules::write_rule(m, r) + "\n";
   }

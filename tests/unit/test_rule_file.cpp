@@ -550,6 +550,13 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
       {"unsupported defuzzifier",
        replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Tsukamoto"), "Tsukamoto",
        "Tsukamoto"},
+      {"unknown activation", replace(good, "activation: General", "activation: Random"),
+       "activation: Random", "unsupported activation 'Random'"},
+      {"bad threshold comparison",
+       replace(good, "activation: General", "activation: Threshold ~ 0.5"), "Threshold ~",
+       "Threshold comparison must be"},
+      {"bad rule count", replace(good, "activation: General", "activation: Highest 0"),
+       "Highest 0", "number of rules >= 1"},
       {"too many hedges",
        replace(good, rule, "  rule: if e is very very very very very NL then dKp is P3"),
        "very very", "more than 4 hedges"},
@@ -908,6 +915,7 @@ TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
   for (const auto* v : {&ws.membership, &ws.input, &ws.strength, &ws.stack, &ws.level})
     bytes += v->size() * sizeof(double);
   bytes += ws.activations.size() * sizeof(ws.activations[0]);
+  bytes += (ws.order.size() + ws.heap.size()) * sizeof(std::uint32_t);
   std::cout << "paper.fis workspace: " << bytes << " B of scratch per joint\n";
   std::array<double, 3> delta{};
   EXPECT_EQ(supervisor.infer(0.05, -0.12, ws, delta), Status::Ok);

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "fuzzypid/fuzzy/engine.hpp"
@@ -21,6 +22,7 @@ template <class Scalar>
 struct DynamicWorkspace {
   std::vector<Scalar> membership, input, strength, stack, level, breakpoints, lines, crossings;
   std::vector<Activation<Scalar>> activations;
+  std::vector<std::uint32_t> order, heap;
   std::size_t stride = 0;
 
   DynamicWorkspace() = default;
@@ -35,6 +37,8 @@ struct DynamicWorkspace {
     membership.assign(detail::max<std::size_t>(1, model.num_inputs) * stride, Scalar(0));
     input.assign(detail::max<std::size_t>(1, model.num_inputs), Scalar(0));
     strength.assign(detail::max<std::size_t>(1, model.num_rules), Scalar(0));
+    order.assign(detail::max<std::size_t>(1, model.num_rules), 0);
+    heap.assign(detail::max<std::size_t>(1, model.num_rules), 0);
     stack.assign(detail::max<std::size_t>(1, model.max_rule_tokens()), Scalar(0));
     level.assign(detail::max<std::size_t>(1, terms), Scalar(0));
     activations.assign(acts, Activation<Scalar>{});
@@ -50,6 +54,8 @@ struct DynamicWorkspace {
             stride,
             input.data(),
             strength.data(),
+            order.data(),
+            heap.data(),
             stack.data(),
             level.data(),
             activations.data(),

@@ -15,7 +15,8 @@
 //   antecedent     = the rule's expression of propositions joined by `and` (its block's
 //                    conjunction) and `or` (its block's disjunction); `and` binds tighter, as in
 //                    fuzzylite, and parentheses group
-//   rule strength  = weight * antecedent; a rule with strength > 0 fires
+//   rule strength  = weight * antecedent; which rules fire is the block's activation method
+//                    (General: every rule with strength > 0, in rule order; see RuleBlock)
 //   conclusions    = in rule order, each conclusion's hedges are applied (right to left) to the
 //                    running degree, which is then the degree of that conclusion (fuzzylite's
 //                    Consequent::modify)
@@ -32,6 +33,7 @@
 // defuzzification has no area is 0 with NoRuleFired too (fuzzylite gives NaN).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -159,6 +161,34 @@ struct Rule {
 
 // The operators of a rule block. A block without a conjunction (disjunction) may not use `and`
 // (`or`); one without implication may not conclude on a Mamdani output.
+// Which of a block's rules fire (fuzzylite's activation methods), given their strengths w_r:
+//   General        every rule with w_r > 0, in rule order
+//   Proportional   w_r / sum of the block's w, then as General
+//   Threshold      rules whose w_r compares true with `threshold` (and w_r > 0)
+//   First, Last    the first (last) `count` rules with w_r > 0 and w_r >= threshold
+//   Highest        the `count` rules of largest w_r > 0, largest first (ties as fuzzylite's
+//   Lowest         heap orders them); Lowest: smallest first
+enum class ActivationMethod : std::uint8_t {
+  General,
+  Proportional,
+  Threshold,
+  First,
+  Last,
+  Highest,
+  Lowest
+};
+enum class Comparison : std::uint8_t {
+  LessThan,
+  LessThanOrEqualTo,
+  EqualTo,
+  NotEqualTo,
+  GreaterThanOrEqualTo,
+  GreaterThan
+};
+inline constexpr const char* kActivationNames[] = {"General", "Proportional", "Threshold", "First",
+                                                   "Last",    "Highest",      "Lowest"};
+inline constexpr const char* kComparisonNames[] = {"<", "<=", "==", "!=", ">=", ">"};
+
 struct RuleBlock {
   Name name{};
   TNorm conjunction = TNorm::Minimum;
@@ -167,6 +197,10 @@ struct RuleBlock {
   bool has_conjunction = true;
   bool has_disjunction = true;
   bool has_implication = true;
+  ActivationMethod activation = ActivationMethod::General;
+  Comparison comparison = Comparison::GreaterThan;  // Threshold
+  std::uint32_t count = 1;                          // First, Last, Highest, Lowest
+  double threshold = 0.0;                           // Threshold, First, Last
 };
 
 // Why a model failed validation: what is wrong, and which input, output or rule (index) it
@@ -383,13 +417,15 @@ struct EngineModel {
 // microcontrollers) and one sized to the loaded model (std::vector, set up once) share the code.
 template <class Scalar>
 struct WorkspaceView {
-  Scalar* membership =
-      nullptr;                 // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
-  std::size_t stride = 0;      // >= the largest number of input terms
-  Scalar* input = nullptr;     // [num_inputs]: inputs after locking
-  Scalar* strength = nullptr;  // [num_rules]: rule firing strengths
-  Scalar* stack = nullptr;     // [largest number of tokens of a rule]
-  Scalar* level = nullptr;     // [largest number of output terms]
+  // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
+  Scalar* membership = nullptr;
+  std::size_t stride = 0;          // >= the largest number of input terms
+  Scalar* input = nullptr;         // [num_inputs]: inputs after locking
+  Scalar* strength = nullptr;      // [num_rules]: rule firing strengths
+  std::uint32_t* order = nullptr;  // [num_rules]: the rules that fire, in firing order
+  std::uint32_t* heap = nullptr;   // [num_rules]: Highest/Lowest selection
+  Scalar* stack = nullptr;         // [largest number of tokens of a rule]
+  Scalar* level = nullptr;         // [largest number of output terms]
   Activation<Scalar>* activations = nullptr;
   std::size_t activations_capacity = 0;  // >= max(num_rules, output terms)
   Scalar* breakpoints = nullptr;         // exact centroid scratch (see defuzzify.hpp)
@@ -405,9 +441,9 @@ struct WorkspaceView {
       exact_needed = exact_needed || model.outputs[o].exact_centroid;
     const std::size_t acts = detail::max(model.num_rules, model.max_output_terms());
     const std::size_t terms = model.max_output_terms();
-    return membership != nullptr && input != nullptr && strength != nullptr && stack != nullptr &&
-           level != nullptr && activations != nullptr && stride >= model.max_input_terms() &&
-           activations_capacity >= acts &&
+    return membership != nullptr && input != nullptr && strength != nullptr && order != nullptr &&
+           heap != nullptr && stack != nullptr && level != nullptr && activations != nullptr &&
+           stride >= model.max_input_terms() && activations_capacity >= acts &&
            (!exact_needed ||
             (exact.breakpoints_capacity >= 6 * acts + 2 && exact.lines_capacity >= 2 * acts &&
              exact.crossings_capacity >= terms * (terms > 0 ? terms - 1 : 0) / 2));
@@ -422,6 +458,8 @@ struct EngineWorkspace {
   std::array<Scalar, Cap::inputs * Cap::terms> membership{};
   std::array<Scalar, Cap::inputs> input{};
   std::array<Scalar, Cap::rules> strength{};
+  std::array<std::uint32_t, Cap::rules> order{};
+  std::array<std::uint32_t, Cap::rules> heap{};
   std::array<Scalar, Cap::rule_tokens> stack{};
   std::array<Scalar, Cap::terms> level{};
   std::array<Activation<Scalar>, kActs> activations{};
@@ -434,6 +472,8 @@ struct EngineWorkspace {
             Cap::terms,
             input.data(),
             strength.data(),
+            order.data(),
+            heap.data(),
             stack.data(),
             level.data(),
             activations.data(),
@@ -462,6 +502,94 @@ Scalar proposition(const Model& model, const WorkspaceView<Scalar>& ws, const To
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
   (void)model;
   return hedge_right_to_left(tok.hedges, n, ws.membership[tok.input * ws.stride + tok.term]);
+}
+
+template <class Scalar>
+bool compare(Comparison c, Scalar a, Scalar b) noexcept {
+  switch (c) {
+    case Comparison::LessThan:
+      return a < b;
+    case Comparison::LessThanOrEqualTo:
+      return a <= b;
+    case Comparison::EqualTo:
+      return a == b;
+    case Comparison::NotEqualTo:
+      return a != b;
+    case Comparison::GreaterThanOrEqualTo:
+      return a >= b;
+    case Comparison::GreaterThan:
+      return a > b;
+  }
+  return false;
+}
+
+// Fills ws.order with the rules that fire, block by block in firing order; returns their number.
+template <class Scalar, class Model>
+std::size_t activate(const Model& model, const WorkspaceView<Scalar>& ws) noexcept {
+  std::size_t n = 0;
+  const Scalar zero = Scalar(0);
+  for (std::size_t b = 0; b < model.num_blocks; ++b) {
+    const RuleBlock& block = model.blocks[b];
+    const auto in_block = [&](std::size_t r) { return model.rules[r].block == b; };
+    const Scalar threshold = static_cast<Scalar>(block.threshold);
+    switch (block.activation) {
+      case ActivationMethod::Proportional: {
+        Scalar sum = zero;
+        for (std::size_t r = 0; r < model.num_rules; ++r)
+          if (in_block(r)) sum += ws.strength[r];
+        for (std::size_t r = 0; r < model.num_rules; ++r) {
+          if (!in_block(r)) continue;
+          ws.strength[r] = ws.strength[r] / sum;
+          if (ws.strength[r] > zero) ws.order[n++] = static_cast<std::uint32_t>(r);
+        }
+        break;
+      }
+      case ActivationMethod::Threshold:
+        for (std::size_t r = 0; r < model.num_rules; ++r)
+          if (in_block(r) && ws.strength[r] > zero &&
+              compare(block.comparison, ws.strength[r], threshold))
+            ws.order[n++] = static_cast<std::uint32_t>(r);
+        break;
+      case ActivationMethod::First:
+      case ActivationMethod::Last: {
+        std::uint32_t taken = 0;
+        const bool first = block.activation == ActivationMethod::First;
+        for (std::size_t k = 0; k < model.num_rules && taken < block.count; ++k) {
+          const std::size_t r = first ? k : model.num_rules - 1 - k;
+          if (in_block(r) && ws.strength[r] > zero && ws.strength[r] >= threshold) {
+            ws.order[n++] = static_cast<std::uint32_t>(r);
+            ++taken;
+          }
+        }
+        break;
+      }
+      case ActivationMethod::Highest:
+      case ActivationMethod::Lowest: {
+        // The same heap operations as fuzzylite's std::priority_queue, so ties pop in its order.
+        const bool highest = block.activation == ActivationMethod::Highest;
+        const auto before = [&](std::uint32_t a, std::uint32_t c) {
+          return highest ? ws.strength[a] < ws.strength[c] : ws.strength[a] > ws.strength[c];
+        };
+        std::size_t size = 0;
+        for (std::size_t r = 0; r < model.num_rules; ++r) {
+          if (!in_block(r) || !(ws.strength[r] > zero)) continue;
+          ws.heap[size++] = static_cast<std::uint32_t>(r);
+          std::push_heap(ws.heap, ws.heap + size, before);
+        }
+        for (std::uint32_t taken = 0; size > 0 && taken < block.count; ++taken) {
+          ws.order[n++] = ws.heap[0];
+          std::pop_heap(ws.heap, ws.heap + size, before);
+          --size;
+        }
+        break;
+      }
+      case ActivationMethod::General:
+        for (std::size_t r = 0; r < model.num_rules; ++r)
+          if (in_block(r) && ws.strength[r] > zero) ws.order[n++] = static_cast<std::uint32_t>(r);
+        break;
+    }
+  }
+  return n;
 }
 
 }  // namespace engine_detail
@@ -503,6 +631,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     }
     ws.strength[r] = rule.weight * ws.stack[0];
   }
+  const std::size_t fired_rules = engine_detail::activate(model, ws);
 
   const bool merged = model.merges_activations();
   Status status = Status::Ok;
@@ -518,9 +647,9 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     if (merge)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
-    for (std::size_t r = 0; r < model.num_rules; ++r) {
+    for (std::size_t f = 0; f < fired_rules; ++f) {
+      const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
-      if (!(ws.strength[r] > Scalar(0))) continue;
       Scalar degree = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
