@@ -81,7 +81,10 @@ std::optional<Experiment> Experiment::create(const robot::RobotModel& model,
 
 Experiment::Experiment(const robot::RobotModel& model, robot::JointPathResult path,
                        const ExperimentOptions& options)
-    : model_(model), path_(std::move(path)), options_(options) {
+    : model_(model),
+      path_(std::move(path)),
+      options_(options),
+      supervisor_(paper::make_system<double>(options.conjunction, options.tables)) {
   const robot::JointVector links = model_.inertia_diagonal(path_.position_rad.front());
   for (std::size_t i = 0; i < kJoints; ++i)
     nominal_inertia_[i] = links[i] + options_.plant.armature_kgm2[i];
@@ -149,13 +152,12 @@ std::array<pid::Pid<double>, kJoints> Experiment::make_pid(
   return joints;
 }
 
-std::array<control::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
+std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
     const robot::JointVector& limit, const std::optional<pid::Gains<double>>& gains) const {
   const auto configs = pid_configs(limit, gains.value_or(options_.gains));
-  const auto system = paper::make_system<double>(options_.conjunction, options_.tables);
   // dK is in the paper's units: convert it like the gains themselves.
   const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0});
-  std::array<control::FuzzyPid<double>, kJoints> joints;
+  std::array<paper::FuzzyPid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     control::FuzzyPidConfig<double> fc;
     fc.pid = configs[i];
@@ -164,7 +166,7 @@ std::array<control::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
     fc.gain_update = options_.gain_update;
     fc.output_scale = {options_.output_scale[0] * unit.kp, options_.output_scale[1] * unit.ki,
                        options_.output_scale[2] * unit.kd};
-    joints[i] = control::FuzzyPid<double>(system, fc);
+    joints[i] = paper::FuzzyPid<double>(&supervisor_, fc);
   }
   return joints;
 }
@@ -204,9 +206,14 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
         q_meas[i] += noise(scenario.position_noise_rad);
         v_meas[i] += noise(scenario.velocity_noise_rad_s);
       }
-      const auto command = controller.step(qd_ref, vd_ref, q_meas, v_meas, o.tick_s);
+      control::JointInput<double, kJoints> in;
+      in.desired_position_rad = qd_ref;
+      in.desired_velocity_rad_s = vd_ref;
+      in.measured_position_rad = q_meas;
+      in.measured_velocity_rad_s = v_meas;
+      const auto command = controller.step(in, o.tick_s);
       if (is_fault(command.status)) ++result.controller_faults;
-      const robot::JointVector torque = torque_from_command(command.command);
+      const robot::JointVector torque = torque_from_command(command.torque_nm);
       robot::JointVector disturbance{};
       for (std::size_t i = 0; i < kJoints; ++i) {
         TrajectoryRow row;
@@ -216,7 +223,7 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
         row.theta = plant.position()[i];
         row.error = qd_ref[i] - plant.position()[i];
         row.error_rate = vd_ref[i] - plant.velocity()[i];
-        row.u = command.command[i];
+        row.u = command.torque_nm[i];
         const pid::Gains<double> g = to_paper_units(controller.joint(i).gains());
         row.kp = g.kp;
         row.ki = g.ki;
@@ -237,7 +244,7 @@ RunResult Experiment::run(const Scenario& scenario, ControllerKind kind,
   };
 
   if (kind == ControllerKind::Fuzzy) {
-    control::JointController<double, kJoints, control::FuzzyPid<double>> controller(
+    control::JointController<double, kJoints, paper::FuzzyPid<double>> controller(
         make_fuzzy_pid(limit, gains));
     result.ok = simulate(controller);
   } else {

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
@@ -108,7 +109,9 @@ class Experiment {
   std::array<pid::Pid<double>, robot::kNumJoints> make_pid(
       const robot::JointVector& torque_limit,
       const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
-  std::array<control::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
+  // The fuzzy controllers point to this Experiment's supervisor (supervisor()): the Experiment
+  // must outlive them.
+  std::array<paper::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
       const robot::JointVector& torque_limit,
       const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
   // The torque a controller output asks for: J^_i u_i with GainUnits::Acceleration, u_i else.
@@ -119,6 +122,8 @@ class Experiment {
   const robot::JointPathResult& path() const noexcept { return path_; }
   const robot::JointVector& nominal_inertia() const noexcept { return nominal_inertia_; }
   const ExperimentOptions& options() const noexcept { return options_; }
+  // The paper's supervisor with the options' conjunction and tables, shared by the fuzzy joints.
+  const paper::System<double>& supervisor() const noexcept { return supervisor_; }
   std::size_t ticks() const noexcept { return path_.time_s.size(); }
 
  private:
@@ -134,6 +139,7 @@ class Experiment {
   robot::JointPathResult path_;
   ExperimentOptions options_;
   robot::JointVector nominal_inertia_{};
+  paper::System<double> supervisor_{};
 };
 
 // ITAE summed over the six joints of a run's rows (the tuning objective).
