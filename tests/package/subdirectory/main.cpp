@@ -6,15 +6,15 @@
 #include <fuzzypid/robot/robot_model.hpp>
 
 int main() {
-  fuzzypid::control::JointController<double, 6> controller;
-  const std::array<double, 6> desired{0.1, 0, 0, 0, 0, 0};
-  const std::array<double, 6> zero{};
-  const auto out = controller.step(desired, zero, zero, zero, 0.05);
+  auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
+  fuzzypid::control::JointInput<double, 6> in;
+  in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
+  const auto out = controller.step(in, 0.05);
   const fuzzypid::robot::LoadResult loaded =
       fuzzypid::robot::RobotModel::load(fuzzypid::robot::default_urdf_path());
   if (!loaded.model) {
     std::fprintf(stderr, "load failed: %s\n", loaded.error.c_str());
     return 1;
   }
-  return out.status == fuzzypid::Status::Ok && out.command[0] > 0.0 ? 0 : 1;
+  return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
 }
