@@ -75,7 +75,8 @@ int run_tune(int argc, char** argv) {
   std::vector<std::string> family_names;
   for (const auto& e : cf::kFamilyNames)
     family_names.emplace_back(e.name);
-  app.add_option("--family", family_name, "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
+  app.add_option("--family", family_name,
+                 "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
       ->required()
       ->check(CLI::IsMember(family_names));
   app.add_option("--conditions", conditions, "condition-set file (TOML)")->required();
@@ -168,8 +169,7 @@ int run_tune(int argc, char** argv) {
   const std::string urdf = robot::default_urdf_path();
   robot::LoadResult loaded = robot::RobotModel::load(urdf);
   if (!loaded.model) {
-    std::fprintf(stderr, "fuzzypid tune: cannot load %s: %s\n", urdf.c_str(),
-                 loaded.error.c_str());
+    std::fprintf(stderr, "fuzzypid tune: cannot load %s: %s\n", urdf.c_str(), loaded.error.c_str());
     return 1;
   }
   sim::ExperimentOptions eo;
@@ -193,8 +193,7 @@ int run_tune(int argc, char** argv) {
       if (p.elapsed_s - last < 2.0 && p.evaluations < p.budget) return;
       last = p.elapsed_s;
       const double rate = p.elapsed_s > 0 ? static_cast<double>(p.evaluations) / p.elapsed_s : 0;
-      const double eta =
-          rate > 0 ? static_cast<double>(p.budget - p.evaluations) / rate : 0.0;
+      const double eta = rate > 0 ? static_cast<double>(p.budget - p.evaluations) / rate : 0.0;
       std::fprintf(stderr,
                    "fuzzypid tune: %8" PRIu64 "/%" PRIu64
                    " evaluations, best cost %.6g, %.1f evaluations/s, ETA %.0f s\n",
@@ -208,14 +207,15 @@ int run_tune(int argc, char** argv) {
   }
   result->controller.tuning->conditions = conditions;
   result->controller.tuning->set = set;
-  result->controller.description = "tuned " + std::string(cf::to_string(family)) + " on " +
-                                   conditions + " [" + set + "]";
+  result->controller.description =
+      "tuned " + std::string(cf::to_string(family)) + " on " + conditions + " [" + set + "]";
   if (const std::string bad = cf::save(out, result->controller); !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
     return 1;
   }
   const double rate = static_cast<double>(result->evaluations) / result->wall_s;
-  std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64 ") in %.1f s, %.1f "
+  std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64
+              ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
               "penalty %.6g, %zu faulted runs) -> %s\n",
               cf::to_string(family), result->evaluations, budget, result->wall_s, rate,
@@ -242,8 +242,7 @@ int run_export_header(int argc, char** argv) {
             return "not a C++ identifier: " + s;
         return {};
       });
-  if (const int rc = parse_or_exit(app, argc, argv, "fuzzypid export-header"); rc >= 0)
-    return rc;
+  if (const int rc = parse_or_exit(app, argc, argv, "fuzzypid export-header"); rc >= 0) return rc;
   cf::ControllerSpec spec;
   cf::Error err;
   if (!cf::load(in, spec, err)) {

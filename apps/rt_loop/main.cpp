@@ -327,12 +327,17 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
     const robot::JointVector& qd = path.position_rad[i];
     const robot::JointVector& vd = holding ? zero : path.velocity_rad_s[i];
 
+    control::JointInput<double, kJoints> in;
+    in.desired_position_rad = qd;
+    in.desired_velocity_rad_s = vd;
+    in.measured_position_rad = plant.position();
+    in.measured_velocity_rad_s = plant.velocity();
     const std::int64_t c0 = now_ns();
-    const auto command = controller.step(qd, vd, plant.position(), plant.velocity(), dt_s);
+    const auto command = controller.step(in, dt_s);
     const std::int64_t c1 = now_ns();
     if (fuzzypid::is_fault(command.status)) ++r.controller_faults;
 
-    const robot::JointVector torque = experiment.torque_from_command(command.command);
+    const robot::JointVector torque = experiment.torque_from_command(command.torque_nm);
     for (std::size_t j = 0; j < kJoints; ++j) {
       const double err = std::fabs(qd[j] - plant.position()[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
@@ -416,7 +421,7 @@ int main(int argc, char** argv) {
   }
   plant.reset(experiment->initial_position(), robot::JointVector{});
 
-  using Fuzzy = control::FuzzyPid<double>;
+  using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
   control::JointController<double, kJoints, Fuzzy> fuzzy_controller(
       experiment->make_fuzzy_pid(torque_limit));
   control::JointController<double, kJoints, pid::Pid<double>> pid_controller(

@@ -75,7 +75,7 @@ constexpr double kAccelLimit = 5.0;  // rad/s², see build()
 constexpr double kMaxErrorRad = 20.0;
 constexpr double kMaxSpeedRadS = 50.0;
 
-using Fuzzy = control::FuzzyPid<double>;
+using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
 using Controller = control::JointController<double, kJoints, Fuzzy>;
 
 struct Options {
@@ -180,7 +180,6 @@ std::optional<Soak> build(std::string& error) {
   robot::JointVector limit{};
   for (std::size_t i = 0; i < kJoints; ++i)
     limit[i] = kAccelLimit * inertia[i];
-  const auto system = fuzzypid::paper::make_system<double>();
   std::array<Fuzzy, kJoints> joints;
   std::array<double, kJoints> u_max{};
   for (std::size_t i = 0; i < kJoints; ++i) {
@@ -197,7 +196,7 @@ std::optional<Soak> build(std::string& error) {
     c.gain_update = i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
     c.gain_min = {0.0, 0.0, 0.0};
     c.gain_max = gain_max_of(k0);
-    joints[i] = Fuzzy(system, control::paper_config<double>());
+    joints[i] = Fuzzy(&fuzzypid::paper::kSystem<double>, fuzzypid::paper::paper_config<double>());
     if (joints[i].configure(c) != Status::Ok) {
       error = "invalid controller configuration";
       return std::nullopt;
@@ -338,7 +337,12 @@ const char* run(Soak& s, const Options& o, Counters& c) {
       ++c.injected_bad_dt;
     }
 
-    const auto command = s.controller.step(ref, ref_rate, q, qd, dt_controller);
+    control::JointInput<double, kJoints> in;
+    in.desired_position_rad = ref;
+    in.desired_velocity_rad_s = ref_rate;
+    in.measured_position_rad = q;
+    in.measured_velocity_rad_s = qd;
+    const auto command = s.controller.step(in, dt_controller);
 
     robot::JointVector torque{};
     for (std::size_t i = 0; i < kJoints; ++i) {
@@ -348,7 +352,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
         return "bad dt not reported as invalid_time_step";
       if (!bad_dt && i == bad_joint && st != Status::NonFiniteInput)
         return "NaN/inf measurement not reported as non_finite_input";
-      const double u = command.command[i];
+      const double u = command.torque_nm[i];
       if (!std::isfinite(u)) {
         ++c.nonfinite;
         return "non-finite command";

@@ -29,7 +29,9 @@ const char* const kNames[3][8] = {
     {"kp", "ki", "kd", "ke", "kec", "sp", "si", "sd"},
 };
 
-std::size_t dimension(Family f) { return f == Family::Pid ? 3 : 8; }
+std::size_t dimension(Family f) {
+  return f == Family::Pid ? 3 : 8;
+}
 
 // The cost of one run; `faulted` set when it adds only the fault cost.
 double run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
@@ -154,8 +156,7 @@ ControllerSpec to_spec(Family family, const std::vector<double>& x, const Contro
 }
 
 std::vector<double> from_spec(const ControllerSpec& s) {
-  std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki),
-                           std::log10(s.gains.kd)};
+  std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki), std::log10(s.gains.kd)};
   if (s.family != Family::Pid) {
     x.push_back(std::log10(s.supervisor.error_scale));
     x.push_back(std::log10(s.supervisor.error_rate_scale));
@@ -173,15 +174,14 @@ Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Conditio
 }
 
 std::optional<Minimum> minimize(const std::function<double(const std::vector<double>&)>& f,
-                                const std::vector<SearchBox>& box,
-                                const MinimizeOptions& options, std::string& error) {
+                                const std::vector<SearchBox>& box, const MinimizeOptions& options,
+                                std::string& error) {
   if (box.empty()) {
     error = "nothing to search";
     return std::nullopt;
   }
   for (const SearchBox& b : box) {
-    if (!std::isfinite(b.log10_min) || !std::isfinite(b.log10_max) ||
-        b.log10_max < b.log10_min) {
+    if (!std::isfinite(b.log10_min) || !std::isfinite(b.log10_max) || b.log10_max < b.log10_min) {
       error = "search box '" + b.name + "' must have finite bounds, min <= max";
       return std::nullopt;
     }
@@ -272,8 +272,8 @@ std::optional<Result> tune(const sim::Experiment& experiment,
   if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
   Cost best{kInf, 0.0, 0.0, 0};
   const auto objective = [&](const std::vector<double>& x) {
-    const Cost c = evaluate_in(arena.get(), experiment, training,
-                               to_spec(options.family, x, options.base), o);
+    const Cost c =
+        evaluate_in(arena.get(), experiment, training, to_spec(options.family, x, options.base), o);
     if (c.total < best.total) best = c;
     return c.total;
   };

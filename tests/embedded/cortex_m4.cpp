@@ -3,18 +3,17 @@
 #include "fuzzypid/fuzzypid.hpp"
 
 namespace {
-fuzzypid::control::JointController<float, 6> controller{fuzzypid::control::FuzzyPid<float>(
-    fuzzypid::paper::make_system<float>(), fuzzypid::control::paper_config<float>())};
+auto controller = fuzzypid::paper::make_joint_controller<float, 6>();
 }  // namespace
 
 extern "C" float fuzzypid_tick(const float* desired, const float* measured, float* command) {
-  std::array<float, 6> qd{}, q{}, zero{};
+  fuzzypid::control::JointInput<float, 6> in;
   for (int i = 0; i < 6; ++i) {
-    qd[i] = desired[i];
-    q[i] = measured[i];
+    in.desired_position_rad[i] = desired[i];
+    in.measured_position_rad[i] = measured[i];
   }
-  const auto out = controller.step(qd, zero, q, zero, 0.05f);
+  const auto out = controller.step(in, 0.05f);
   for (int i = 0; i < 6; ++i)
-    command[i] = out.command[i];
+    command[i] = out.torque_nm[i];
   return fuzzypid::is_fault(out.status) ? -1.0f : 0.0f;
 }

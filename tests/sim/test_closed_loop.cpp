@@ -27,7 +27,9 @@ using namespace fuzzypid;
 namespace cf = controller_file;
 constexpr std::size_t kJ = robot::kNumJoints;
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 class ClosedLoopTest : public ::testing::Test {
  protected:
@@ -68,6 +70,7 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
   const auto& J = experiment_->nominal_inertia();
   const robot::JointVector limit = model_->effort_limits_nm();
   using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
+  const control::GainSchedule<double> schedule;
   std::vector<Joint> built;
   for (std::size_t i = 0; i < kJ; ++i) {
     control::FuzzyPidConfig<double> c;
@@ -77,10 +80,9 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
     c.error_scale = 20.0;
     c.error_rate_scale = 2.0;
     c.output_scale = {150.0 * (0.5 - 1.0), (0.004 / dt) * (2.0 - 1.0), (300.0 * dt) * (0.8 - 1.0)};
-    built.emplace_back(control::GainSchedule<double>{}, c);
+    built.emplace_back(&schedule, c);
   }
-  const std::array<Joint, kJ> joints = {built[0], built[1], built[2],
-                                        built[3], built[4], built[5]};
+  const std::array<Joint, kJ> joints = {built[0], built[1], built[2], built[3], built[4], built[5]};
   control::JointController<double, kJ, control::FuzzyPid<double, control::GainSchedule<double>>>
       controller(joints);
   robot::PlantConfig pc;
@@ -107,15 +109,19 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
       const auto& row = r.rows[k * kJ + i];
       ASSERT_TRUE(same_bits(row.theta, plant.position()[i])) << "tick " << k << " joint " << i;
     }
-    const auto cmd = controller.step(p.position_rad[k], p.velocity_rad_s[k], qm, vm, dt);
+    control::JointInput<double, kJ> in;
+    in.desired_position_rad = p.position_rad[k];
+    in.desired_velocity_rad_s = p.velocity_rad_s[k];
+    in.measured_position_rad = qm;
+    in.measured_velocity_rad_s = vm;
+    const auto cmd = controller.step(in, dt);
     robot::JointVector torque{}, dist{};
     for (std::size_t i = 0; i < kJ; ++i) {
-      ASSERT_TRUE(same_bits(r.rows[k * kJ + i].u, cmd.command[i])) << "tick " << k;
-      torque[i] = J[i] * cmd.command[i];
+      ASSERT_TRUE(same_bits(r.rows[k * kJ + i].u, cmd.torque_nm[i])) << "tick " << k;
+      torque[i] = J[i] * cmd.torque_nm[i];
       dist[i] = pulses.at(p.time_s[k]) * J[i];
     }
-    if (k + 1 < p.time_s.size())
-      (void)plant.step(torque, p.time_s[k + 1] - p.time_s[k], dist);
+    if (k + 1 < p.time_s.size()) (void)plant.step(torque, p.time_s[k + 1] - p.time_s[k], dist);
   }
 }
 

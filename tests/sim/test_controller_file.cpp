@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 #include <string>
 
@@ -43,8 +44,8 @@ cf::ControllerSpec tuned_example() {
   t.threads = 2;
   t.population = 40;
   t.training_cost = 0.058396812345678901;
-  t.box = {{"kp", -1.0, 4.0}, {"ki", -6.0, 1.0}, {"kd", 0.0, 4.0}, {"ke", -1.0, 4.0},
-           {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0}, {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
+  t.box = {{"kp", -1.0, 4.0},  {"ki", -6.0, 1.0}, {"kd", 0.0, 4.0},  {"ke", -1.0, 4.0},
+           {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0},  {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
   s.tuning = t;
   return s;
 }
@@ -85,8 +86,8 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
 
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
-  for (const auto& [file, spec] :
-       {std::pair{"paper_pid.toml", cf::paper_pid()}, std::pair{"paper_fuzzy.toml", cf::paper_fuzzy()}}) {
+  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", cf::paper_pid()},
+                                   std::pair{"paper_fuzzy.toml", cf::paper_fuzzy()}}) {
     cf::ControllerSpec loaded;
     cf::Error error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
@@ -117,15 +118,19 @@ struct Malformed {
 
 // A valid pid file with one line replaced (line numbers refer to the result).
 const char* const kValid =
-    "family = \"pid\"\n"                                               // 1
-    "[units]\n"                                                        // 2
-    "gains = \"acceleration\"\n"                                       // 3
-    "form = \"per-tick\"\n"                                            // 4
-    "tick_s = 0.05\n"                                                  // 5
-    "[gains]\n"                                                        // 6
-    "kp = 4.0\n"                                                       // 7
-    "ki = 0.001\n"                                                     // 8
-    "kd = 100.0\n";                                                    // 9
+    "family = \"pid\"\n"          // 1
+    "[units]\n"                   // 2
+    "gains = \"acceleration\"\n"  // 3
+    "form = \"per-tick\"\n"       // 4
+    "tick_s = 0.05\n"             // 5
+    "[gains]\n"                   // 6
+    "kp = 4.0\n"                  // 7
+    "ki = 0.001\n"                // 8
+    "kd = 100.0\n";               // 9
+
+void PrintTo(const Malformed& m, std::ostream* os) {
+  *os << m.what;
+}
 
 class MalformedFile : public ::testing::TestWithParam<Malformed> {};
 
@@ -139,17 +144,17 @@ TEST_P(MalformedFile, IsRejectedWithFileLineAndColumn) {
   EXPECT_EQ(error.column, m.column) << m.what << ": " << error.to_string();
   EXPECT_NE(error.message.find(m.message), std::string::npos)
       << m.what << ": " << error.to_string();
-  EXPECT_EQ(error.to_string().rfind("bad.toml:" + std::to_string(m.line) + ":" +
-                                        std::to_string(m.column) + ": ",
-                                    0),
+  EXPECT_EQ(error.to_string().rfind(
+                "bad.toml:" + std::to_string(m.line) + ":" + std::to_string(m.column) + ": ", 0),
             0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     ControllerFile, MalformedFile,
     ::testing::Values(
-        Malformed{"missing key", "family = \"pid\"\n[units]\ngains = \"acceleration\"\n"
-                                 "form = \"per-tick\"\n[gains]\nkp = 1.0\nki = 0.0\nkd = 1.0\n",
+        Malformed{"missing key",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\n"
+                  "form = \"per-tick\"\n[gains]\nkp = 1.0\nki = 0.0\nkd = 1.0\n",
                   2, 1, "missing key 'tick_s'"},
         Malformed{"unknown key",
                   "family = \"pid\"\nbogus = 1\n[units]\ngains = \"acceleration\"\n"

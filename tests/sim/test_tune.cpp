@@ -46,7 +46,8 @@ double double_integrator_itae(const std::vector<double>& x) {
   return itae;
 }
 
-const std::vector<cf::SearchBox> kToyBox = {{"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
+const std::vector<cf::SearchBox> kToyBox = {
+    {"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
 
 TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
   // Brute force on a 61 x 41 x 61 grid (0.05 decade steps in kp and kd, 0.1 in ki).
@@ -109,8 +110,8 @@ class TuneOnTheRobot : public ::testing::Test {
     ASSERT_TRUE(loaded.model) << loaded.error;
     model_ = std::move(loaded.model);
     std::string error;
-    experiment_ = fuzzypid::sim::Experiment::create(*model_, fuzzypid::robot::paper_path_spec(),
-                                                    {}, error);
+    experiment_ =
+        fuzzypid::sim::Experiment::create(*model_, fuzzypid::robot::paper_path_spec(), {}, error);
     ASSERT_TRUE(experiment_) << error;
     fuzzypid::sim::Condition behind, ahead;
     behind.name = "behind";
@@ -158,15 +159,14 @@ TEST_F(TuneOnTheRobot, TheRecordedCostIsTheObjectiveOfTheResult) {
   std::string error;
   const auto r = tune::tune(*experiment_, training_, o, error);
   ASSERT_TRUE(r) << error;
-  const tune::Cost c =
-      tune::evaluate(*experiment_, training_, r->controller, o.objective, 1);
+  const tune::Cost c = tune::evaluate(*experiment_, training_, r->controller, o.objective, 1);
   EXPECT_EQ(c.total, r->controller.tuning->training_cost);
   EXPECT_EQ(c.total, r->cost.total);
 }
 
 TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
-  const auto s = tune::to_spec(cf::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0},
-                               cf::paper_pid());
+  const auto s =
+      tune::to_spec(cf::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0}, cf::paper_pid());
   EXPECT_EQ(s.family, cf::Family::Scheduled);
   EXPECT_DOUBLE_EQ(s.gains.kp, 100.0);
   EXPECT_DOUBLE_EQ(s.gains.ki, 1e-3);

@@ -85,8 +85,8 @@ struct Minimum {
 };
 
 [[nodiscard]] std::optional<Minimum> minimize(
-    const std::function<double(const std::vector<double>&)>& f,
-    const std::vector<SearchBox>& box, const MinimizeOptions& options, std::string& error);
+    const std::function<double(const std::vector<double>&)>& f, const std::vector<SearchBox>& box,
+    const MinimizeOptions& options, std::string& error);
 
 struct Options {
   Family family = Family::Fuzzy;
@@ -95,8 +95,8 @@ struct Options {
   unsigned threads = 1;
   std::uint64_t population = 0;  // 0: 5 x the number of parameters, at least 20
   Objective objective{};
-  std::vector<SearchBox> box;    // empty: default_box(family)
-  ControllerSpec base{};         // units, PID options, bounds, rule base of the result
+  std::vector<SearchBox> box;  // empty: default_box(family)
+  ControllerSpec base{};       // units, PID options, bounds, rule base of the result
   // Called after every generation (and once at the end); may print.
   std::function<void(const Progress&)> progress;
 };
