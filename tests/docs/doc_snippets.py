@@ -11,8 +11,8 @@ usage:
       writes DIR/<id>.sh or DIR/<id>.cpp per block and FILE, a CMake script that calls
       fuzzypid_doc_snippet(<id> <sh|cpp> <path>) once per block.
   doc_snippets.py run --source SRC --build BUILD --sandbox DIR -- COMMAND...
-      runs COMMAND in DIR, a fresh copy of the source tree made of symbolic links whose build/
-      is BUILD, with HOME=DIR/home: commands written for the repository root run as written,
+      runs COMMAND in DIR, a fresh copy of the source tree (without .git) whose build/ is a link
+      to BUILD, with HOME=DIR/home: commands written for the repository root run as written,
       and whatever they write stays in DIR.
 """
 import argparse
@@ -95,10 +95,17 @@ def run(args):
     if os.path.exists(args.sandbox):
         shutil.rmtree(args.sandbox)
     os.makedirs(os.path.join(args.sandbox, "home"))
+    # A copy, not links: a command that writes into the tree (a measurement run rewriting
+    # docs/data, say) must not touch the sources.
     for name in os.listdir(args.source):
         if name in (".git", "build", "out") or name.startswith("build-"):
             continue
-        os.symlink(os.path.join(args.source, name), os.path.join(args.sandbox, name))
+        src = os.path.join(args.source, name)
+        dst = os.path.join(args.sandbox, name)
+        if os.path.isdir(src) and not os.path.islink(src):
+            shutil.copytree(src, dst, symlinks=True)
+        else:
+            shutil.copy2(src, dst, follow_symlinks=False)
     os.symlink(args.build, os.path.join(args.sandbox, "build"))
     env = dict(os.environ, HOME=os.path.join(args.sandbox, "home"))
     command = args.command[1:] if args.command and args.command[0] == "--" else args.command
