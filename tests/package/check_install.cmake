@@ -25,7 +25,9 @@ set(expected
   lib/cmake/fuzzypid/fuzzypidConfigVersion.cmake
   lib/cmake/fuzzypid/fuzzypid-core-targets.cmake
   share/fuzzypid/rulebases/paper.fis
-  share/fuzzypid/urdf/er50_c20.urdf)
+  share/fuzzypid/urdf/er50_c20.urdf
+  share/fuzzypid/controllers/tuned_fuzzy.toml
+  share/fuzzypid/tuning/robust.toml)
 foreach(part IN LISTS PARTS)
   list(APPEND expected lib/cmake/fuzzypid/fuzzypid-${part}-targets.cmake
                        lib/libfuzzypid_${part}.a)

@@ -4,13 +4,13 @@
 #include <memory>
 
 #include <fuzzypid/fuzzy/engine.hpp>
-#include <fuzzypid/io/rule_file.hpp>
+#include <fuzzypid/rulefile/rule_file.hpp>
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
-  auto model = std::make_unique<fuzzypid::io::Model>();
-  fuzzypid::io::LoadError error;
-  if (!fuzzypid::io::load_rule_file(argv[1], *model, error)) {
+  auto model = std::make_unique<fuzzypid::rulefile::Model>();
+  fuzzypid::rulefile::LoadError error;
+  if (!fuzzypid::rulefile::load_rule_file(argv[1], *model, error)) {
     std::fprintf(stderr, "%s\n", error.to_string().c_str());
     return 1;
   }

@@ -5,8 +5,8 @@
 
 #include <fuzzypid/robot/path.hpp>
 #include <fuzzypid/robot/robot_model.hpp>
+#include <fuzzypid/sim/condition.hpp>
 #include <fuzzypid/sim/experiment.hpp>
-#include <fuzzypid/sim/scenario.hpp>
 
 int main(int argc, char** argv) {
   using namespace fuzzypid;
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const sim::RunResult run =
-      experiment->run(*sim::find_scenario("paper"), sim::ControllerKind::Pid);
+      experiment->run(*sim::find_scenario("paper"), controller_file::paper_pid());
   const double itae = sim::total_itae(run.rows, experiment->options().tick_s);
   std::printf("summed ITAE of the fixed PID: %.6g\n", itae);
   return run.ok && run.controller_faults == 0 && itae > 0.0 ? 0 : 1;
