@@ -2,17 +2,8 @@ cmake_minimum_required(VERSION 3.16)
 # ctest script: configure, build and run one downstream project.
 #   CONSUMER_DIR  the project          WORK_DIR  its build tree (recreated)
 #   CONFIGURE_ARGS  extra -D arguments (;-list)   RUN_ARGS  arguments of the consumer (;-list)
-foreach(var CONSUMER_DIR WORK_DIR)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "check_consumer.cmake needs -D${var}=...")
-  endif()
-endforeach()
-# Lists arrive with | for ; (see tests/package/CMakeLists.txt).
-foreach(var CONFIGURE_ARGS RUN_ARGS PARTS TOOLS)
-  if(DEFINED ${var})
-    string(REPLACE "|" ";" ${var} "${${var}}")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/script_arguments.cmake)
+fuzzypid_script_arguments(REQUIRED CONSUMER_DIR WORK_DIR LISTS CONFIGURE_ARGS RUN_ARGS)
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR} -G Ninja
                         -DCMAKE_BUILD_TYPE=Release ${CONFIGURE_ARGS}

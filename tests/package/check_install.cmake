@@ -1,17 +1,8 @@
 cmake_minimum_required(VERSION 3.16)
 # ctest script: installs the build tree into PREFIX (recreated) and checks that every part of the
 # package is there: licence, core and part headers, libraries, package config, tools and data.
-foreach(var BUILD_DIR PREFIX PARTS TOOLS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "check_install.cmake needs -D${var}=...")
-  endif()
-endforeach()
-# Lists arrive with | for ; (see tests/package/CMakeLists.txt).
-foreach(var CONFIGURE_ARGS RUN_ARGS PARTS TOOLS)
-  if(DEFINED ${var})
-    string(REPLACE "|" ";" ${var} "${${var}}")
-  endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/script_arguments.cmake)
+fuzzypid_script_arguments(REQUIRED BUILD_DIR PREFIX PARTS TOOLS LISTS PARTS TOOLS)
 file(REMOVE_RECURSE ${PREFIX})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFIX}
                 OUTPUT_QUIET RESULT_VARIABLE rc)
