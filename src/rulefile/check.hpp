@@ -18,9 +18,6 @@ struct SourceLines {
 // Validates `model`; on failure fills `error` (its file already set) and returns false.
 bool check_model(const Model& model, const SourceLines& lines, LoadError& error);
 
-// True when the names sanitised for .fll/.fcl stay distinct (variables; terms of a variable).
-bool check_sanitized_names(const Model& m, std::string& error);
-
 // Variable and rule limits of the capacity, as messages name them.
 inline std::string capacity_text() {
   return std::to_string(Model::Capacity::inputs) + " inputs, " +

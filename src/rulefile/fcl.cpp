@@ -493,21 +493,21 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
     error = std::string("invalid model: ") + e.message;
     return false;
   }
-  if (!check_sanitized_names(m, error)) return false;
+  const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   const auto range = [](double lo, double hi) {
     return "  RANGE := (" + format_number(lo) + " .. " + format_number(hi) + ");\n";
   };
   std::string s = "FUNCTION_BLOCK " + text::sanitized(text::name_of(m.name)) + "\n\nVAR_INPUT\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i)
-    s += "  " + rules::fll_name(m.inputs[i].name) + ": REAL;\n";
+    s += "  " + names.inputs[i] + ": REAL;\n";
   s += "END_VAR\n\nVAR_OUTPUT\n";
   for (std::size_t o = 0; o < m.num_outputs; ++o)
-    s += "  " + rules::fll_name(m.outputs[o].name) + ": REAL;\n";
+    s += "  " + names.outputs[o] + ": REAL;\n";
   s += "END_VAR\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    s += "\nFUZZIFY " + rules::fll_name(in.name) + "\n" + range(in.min, in.max);
+    s += "\nFUZZIFY " + names.inputs[i] + "\n" + range(in.min, in.max);
     for (std::size_t t = 0; t < in.num_terms; ++t) {
       const std::string w = terms::write_membership(terms::Format::Fcl, in.terms[t], m);
       if (w.empty()) {
@@ -515,7 +515,7 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
                 "' has a shape .fcl cannot express";
         return false;
       }
-      s += "  TERM " + rules::fll_name(in.term_names[t]) + " := " + w + ";\n";
+      s += "  TERM " + names.input_terms[i][t] + " := " + w + ";\n";
     }
     if (in.lock_range) s += "  LOCK : RANGE;\n";
     s += "END_FUZZIFY\n";
@@ -528,7 +528,7 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
               std::to_string(v.resolution) + "; .fcl has none (readers use 100)";
       return false;
     }
-    s += "\nDEFUZZIFY " + rules::fll_name(v.name) + "\n" + range(v.min, v.max);
+    s += "\nDEFUZZIFY " + names.outputs[o] + "\n" + range(v.min, v.max);
     for (std::size_t t = 0; t < v.num_terms; ++t) {
       const auto& term = v.terms[t];
       std::string w;
@@ -546,7 +546,7 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
                 "' has a shape .fcl cannot express";
         return false;
       }
-      s += "  TERM " + rules::fll_name(v.term_names[t]) + " := " + w + ";\n";
+      s += "  TERM " + names.output_terms[o][t] + " := " + w + ";\n";
     }
     s += std::string("  METHOD : ") + fuzzy::names(v.defuzzifier).fcl + ";\n";
     if (!sugeno) s += std::string("  ACCU : ") + fuzzy::names(v.aggregation).fcl + ";\n";
@@ -572,7 +572,7 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
     std::size_t n = 0;
     for (std::size_t r = 0; r < m.num_rules; ++r)
       if (m.rules[r].block == b)
-        s += "  RULE " + std::to_string(++n) + " : " + rules::write_rule(m, r) + ";\n";
+        s += "  RULE " + std::to_string(++n) + " : " + rules::write_rule(m, r, names) + ";\n";
     s += "END_RULEBLOCK\n";
   }
   s += "\nEND_FUNCTION_BLOCK\n";

@@ -437,46 +437,18 @@ bool parse_fll(std::string_view text, const std::string& source, Model& model, L
   return FllParser(source, model, error, options).parse(text);
 }
 
-// Checks that the sanitised names of the variables, and of the terms within each variable, are
-// distinct, as .fll and .fcl rules need.
-bool check_sanitized_names(const Model& m, std::string& error) {
-  std::vector<std::string> vars;
-  const auto unique = [&](std::vector<std::string>& seen, const std::string& n) {
-    for (const auto& s : seen)
-      if (s == n) {
-        error = "two names become '" + n + "' once sanitised for .fll/.fcl";
-        return false;
-      }
-    seen.push_back(n);
-    return true;
-  };
-  for (std::size_t i = 0; i < m.num_inputs; ++i) {
-    if (!unique(vars, rules::fll_name(m.inputs[i].name))) return false;
-    std::vector<std::string> ts;
-    for (std::size_t t = 0; t < m.inputs[i].num_terms; ++t)
-      if (!unique(ts, rules::fll_name(m.inputs[i].term_names[t]))) return false;
-  }
-  for (std::size_t o = 0; o < m.num_outputs; ++o) {
-    if (!unique(vars, rules::fll_name(m.outputs[o].name))) return false;
-    std::vector<std::string> ts;
-    for (std::size_t t = 0; t < m.outputs[o].num_terms; ++t)
-      if (!unique(ts, rules::fll_name(m.outputs[o].term_names[t]))) return false;
-  }
-  return true;
-}
-
 bool to_fll(const Model& m, std::string& out, std::string& error) {
   const fuzzy::ModelError e = m.validate();
   if (e) {
     error = std::string("invalid model: ") + e.message;
     return false;
   }
-  if (!check_sanitized_names(m, error)) return false;
+  const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    s += "InputVariable: " + rules::fll_name(in.name) + "\n  enabled: true\n";
+    s += "InputVariable: " + names.inputs[i] + "\n  enabled: true\n";
     s += "  range: " + format_number(in.min) + " " + format_number(in.max) + "\n";
     s += std::string("  lock-range: ") + (in.lock_range ? "true" : "false") + "\n";
     for (std::size_t t = 0; t < in.num_terms; ++t) {
@@ -486,13 +458,13 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
                 "' has a shape .fll cannot express";
         return false;
       }
-      s += "  term: " + rules::fll_name(in.term_names[t]) + " " + w + "\n";
+      s += "  term: " + names.input_terms[i][t] + " " + w + "\n";
     }
   }
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];
     const bool sugeno = fuzzy::is_sugeno(v.defuzzifier);
-    s += "OutputVariable: " + rules::fll_name(v.name) + "\n  enabled: true\n";
+    s += "OutputVariable: " + names.outputs[o] + "\n  enabled: true\n";
     s += "  range: " + format_number(v.min) + " " + format_number(v.max) + "\n";
     s += std::string("  lock-range: ") + (v.lock_range ? "true" : "false") + "\n";
     s += std::string("  aggregation: ") +
@@ -517,7 +489,7 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
                 "' has a shape .fll cannot express";
         return false;
       }
-      s += "  term: " + rules::fll_name(v.term_names[t]) + " " + w + "\n";
+      s += "  term: " + names.output_terms[o][t] + " " + w + "\n";
     }
   }
   for (std::size_t b = 0; b < m.num_blocks; ++b) {
@@ -550,7 +522,7 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
     }
     s += "  activation: " + act + "\n";
     for (std::size_t r = 0; r < m.num_rules; ++r)
-      if (m.rules[r].block == b) s += "  rule: " + rules::write_rule(m, r) + "\n";
+      if (m.rules[r].block == b) s += "  rule: " + rules::write_rule(m, r, names) + "\n";
   }
   out = std::move(s);
   return true;

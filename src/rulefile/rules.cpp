@@ -202,15 +202,51 @@ std::string hedges_text(const std::array<Hedge, fuzzy::kMaxHedges>& h, std::size
 
 }  // namespace
 
-std::string fll_name(const fuzzy::Name& name) {
-  return text::sanitized(text::name_of(name));
+namespace {
+
+std::string unique_name(const fuzzy::Name& raw, std::vector<std::string>& taken) {
+  std::string base = text::sanitized(text::name_of(raw));
+  if (base.empty()) base = "unnamed";
+  if (text::is_reserved(base)) base += "_";
+  std::string name = base;
+  for (int k = 2;; ++k) {
+    bool clash = false;
+    for (const auto& t : taken)
+      clash = clash || t == name;
+    if (!clash) break;
+    name = base + "_" + std::to_string(k);
+  }
+  taken.push_back(name);
+  return name;
+}
+
+}  // namespace
+
+ExportNames export_names(const Model& m) {
+  ExportNames n;
+  std::vector<std::string> variables;
+  for (std::size_t i = 0; i < m.num_inputs; ++i) {
+    n.inputs.push_back(unique_name(m.inputs[i].name, variables));
+    std::vector<std::string> terms;
+    for (std::size_t t = 0; t < m.inputs[i].num_terms; ++t)
+      unique_name(m.inputs[i].term_names[t], terms);
+    n.input_terms.push_back(terms);
+  }
+  for (std::size_t o = 0; o < m.num_outputs; ++o) {
+    n.outputs.push_back(unique_name(m.outputs[o].name, variables));
+    std::vector<std::string> terms;
+    for (std::size_t t = 0; t < m.outputs[o].num_terms; ++t)
+      unique_name(m.outputs[o].term_names[t], terms);
+    n.output_terms.push_back(terms);
+  }
+  return n;
 }
 
 std::string parse_rule(std::string_view rule_text, Model& model, std::size_t block, bool any_case) {
   return Parser(tokenize(rule_text), model, any_case).parse(block);
 }
 
-std::string write_rule(const Model& m, std::size_t r) {
+std::string write_rule(const Model& m, std::size_t r, const ExportNames& names) {
   const auto& rule = m.rules[r];
   // Rebuild infix text from the postfix tokens; an operand is parenthesised when it is an 'or'
   // under an 'and', or when it is the right operand of the same connective (the grammar is
@@ -223,9 +259,8 @@ std::string write_rule(const Model& m, std::size_t r) {
   for (std::size_t k = 0; k < rule.num_tokens; ++k) {
     const Token& t = m.tokens[rule.first_token + k];
     if (t.kind == Token::Kind::Proposition) {
-      const auto& in = m.inputs[t.input];
-      std::string s = fll_name(in.name) + " is " + hedges_text(t.hedges, t.num_hedges);
-      if (t.term != Token::kAnyTerm) s += fll_name(in.term_names[t.term]);
+      std::string s = names.inputs[t.input] + " is " + hedges_text(t.hedges, t.num_hedges);
+      if (t.term != Token::kAnyTerm) s += names.input_terms[t.input][t.term];
       while (!s.empty() && s.back() == ' ')
         s.pop_back();
       stack.push_back({s, t.kind});
@@ -244,9 +279,8 @@ std::string write_rule(const Model& m, std::size_t r) {
   std::string s = "if " + (stack.empty() ? std::string() : stack.back().text) + " then ";
   for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
     const Conclusion& c = m.conclusions[rule.first_conclusion + k];
-    const auto& out = m.outputs[c.output];
-    s += (k ? " and " : "") + fll_name(out.name) + " is " + hedges_text(c.hedges, c.num_hedges) +
-         fll_name(out.term_names[c.term]);
+    s += (k ? " and " : "") + names.outputs[c.output] + " is " +
+         hedges_text(c.hedges, c.num_hedges) + names.output_terms[c.output][c.term];
   }
   if (rule.weight != 1.0) s += " with " + text::format_number(rule.weight);
   return s;

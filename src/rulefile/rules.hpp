@@ -11,6 +11,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fuzzypid/rulefile/rule_file.hpp"
 
@@ -21,10 +22,17 @@ namespace fuzzypid::rulefile::rules {
 // success, else the reason naming the offending word.
 std::string parse_rule(std::string_view text, Model& model, std::size_t block, bool any_case);
 
-// The rule as text in the grammar above, with names sanitised for .fll/.fcl.
-std::string write_rule(const Model& model, std::size_t r);
+// The names variables and terms get in .fll/.fcl text: sanitised the way fuzzylite does (only
+// letters, digits, '_' and '.'), "unnamed" when nothing is left, '_' appended to a rule keyword or
+// hedge, and "_2", "_3", ... appended where two names would otherwise coincide (variables among
+// themselves; terms within their variable).
+struct ExportNames {
+  std::vector<std::string> inputs, outputs;
+  std::vector<std::vector<std::string>> input_terms, output_terms;
+};
+ExportNames export_names(const Model& model);
 
-// The name a variable or term has in .fll/.fcl text.
-std::string fll_name(const fuzzy::Name& name);
+// The rule as text in the grammar above, with the export names.
+std::string write_rule(const Model& model, std::size_t r, const ExportNames& names);
 
 }  // namespace fuzzypid::rulefile::rules

@@ -748,6 +748,30 @@ TEST(RuleFileFis, ZeroPaddedMatlab1xListsAndUnusedInputsLoad) {
   EXPECT_EQ(unused->inputs[1].num_terms, 0u);
 }
 
+TEST(RuleFileFis, NamesThatCoincideOnceSanitisedAreMadeDistinctInFllAndFcl) {
+  // MATLAB allows these names; .fll/.fcl rules need distinct identifiers that are not keywords.
+  std::string text = corpus("matlab_out_of_order_mfs.fis");
+  text = replace(text, "MF2='mid'", "MF2='N-1'");
+  text = replace(text, "MF1='low'", "MF1='N 1'");
+  text = replace(text, "MF3='high'", "MF3='very'");
+  text = replace(text, "Name='y'", "Name='x'");
+  const auto model = load_text("names.fis", text);
+  ASSERT_TRUE(model);
+  std::string fll, fcl, error;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, error)) << error;
+  EXPECT_NE(fll.find("term: N1 "), std::string::npos) << fll;
+  EXPECT_NE(fll.find("term: N1_2 "), std::string::npos) << fll;
+  EXPECT_NE(fll.find("term: very_ "), std::string::npos) << fll;
+  EXPECT_NE(fll.find("OutputVariable: x_2"), std::string::npos) << fll;
+  const auto via_fll = load_text("again.fll", fll);
+  ASSERT_TRUE(via_fll);
+  expect_same_outputs(*model, *via_fll);
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, error)) << error;
+  const auto via_fcl = load_text("again.fcl", fcl);
+  ASSERT_TRUE(via_fcl);
+  expect_same_outputs(*model, *via_fcl);
+}
+
 TEST(RuleFileGrammar, AndBindsTighterThanOrAndParenthesesGroup) {
   const std::string base = corpus("handmade_mixed_and_or_parentheses.fll");
   const auto model = load_text("mixed.fll", base);

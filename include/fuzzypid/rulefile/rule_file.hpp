@@ -62,8 +62,8 @@ struct LoadOptions {
 // or term height, and only rules whose connectives are all `and` or all `or` over distinct inputs;
 // no format has singleton or shoulder terms other than as trapezoids with infinite feet. .fll and
 // .fcl need names of letters, digits, '_' and '.': other names are written sanitised the way
-// fuzzylite does (other characters dropped), and export fails if two names then coincide. The load
-// options (exact centroid, .fis resolution) are not stored.
+// fuzzylite does (other characters dropped), with "_2", "_3", ... appended where two would then
+// coincide. The load options (exact centroid, .fis resolution) are not stored.
 [[nodiscard]] bool to_fll(const Model& m, std::string& out, std::string& error);
 [[nodiscard]] bool to_fis(const Model& m, std::string& out, std::string& error);
 [[nodiscard]] bool to_fcl(const Model& m, std::string& out, std::string& error);
