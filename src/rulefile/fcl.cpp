@@ -484,7 +484,7 @@ class FclParser {
 
 bool parse_fcl(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FclParser(source, model, error, options).parse(text);
+  return FclParser(source, model, error, options).parse(text::without_bom(text));
 }
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {

@@ -650,7 +650,7 @@ bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<dou
 
 bool parse_fis(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FisParser(source, model, error, options).parse(text);
+  return FisParser(source, model, error, options).parse(text::without_bom(text));
 }
 
 bool to_fis(const Model& m, std::string& out, std::string& error) {

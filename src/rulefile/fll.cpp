@@ -434,7 +434,7 @@ class FllParser {
 
 bool parse_fll(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FllParser(source, model, error, options).parse(text);
+  return FllParser(source, model, error, options).parse(text::without_bom(text));
 }
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {

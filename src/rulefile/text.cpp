@@ -8,6 +8,10 @@
 
 namespace fuzzypid::rulefile::text {
 
+std::string_view without_bom(std::string_view text) {
+  return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
+}
+
 std::vector<Line> split_lines(std::string_view text) {
   std::vector<Line> lines;
   int number = 1;

@@ -16,6 +16,8 @@ struct Line {
   std::string_view text;
 };
 
+// `text` without a leading UTF-8 byte-order mark (Windows editors write one).
+std::string_view without_bom(std::string_view text);
 // Splits on '\n' (a trailing '\r' is dropped).
 std::vector<Line> split_lines(std::string_view text);
 std::string_view trim(std::string_view s);

@@ -555,8 +555,8 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
       {"bad threshold comparison",
        replace(good, "activation: General", "activation: Threshold ~ 0.5"), "Threshold ~",
        "Threshold comparison must be"},
-      {"bad rule count", replace(good, "activation: General", "activation: Highest 0"),
-       "Highest 0", "number of rules >= 1"},
+      {"bad rule count", replace(good, "activation: General", "activation: Highest 0"), "Highest 0",
+       "number of rules >= 1"},
       {"too many hedges",
        replace(good, rule, "  rule: if e is very very very very very NL then dKp is P3"),
        "very very", "more than 4 hedges"},
@@ -798,6 +798,19 @@ TEST(RuleFileGrammar, AndBindsTighterThanOrAndParenthesesGroup) {
   EXPECT_NE(fll.find("rule: if (x is high or y is high) and w is pos then out is c"),
             std::string::npos)
       << fll;
+}
+
+TEST(RuleFileFcl, WindowsLineEndsAndAByteOrderMarkAreRead) {
+  std::string fcl = "\xEF\xBB\xBF" + corpus("plc_temperature_singletons.fcl");
+  std::string crlf;
+  for (char c : fcl)
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  const auto a = load_text("crlf.fcl", crlf);
+  const auto b = load_text("plain.fcl", corpus("plc_temperature_singletons.fcl"));
+  ASSERT_TRUE(a && b);
+  expect_same_model(*a, *b);
+  std::string fis = "\xEF\xBB\xBF" + corpus("matlab_tipper.fis");
+  EXPECT_TRUE(load_text("bom.fis", fis));
 }
 
 TEST(RuleFileFcl, LoadsByExtensionAndRoundTrips) {
