@@ -110,6 +110,7 @@ class FllParser {
         lines_.outputs.push_back(line_);
         defuzzifier_seen_.push_back(false);
         aggregation_seen_.push_back(false);
+        takagi_sugeno_type_.push_back(false);
         section_ = Section::Output;
       }
       return true;
@@ -231,9 +232,14 @@ class FllParser {
                       "'");
         out.resolution = static_cast<int>(r);
       }
-    } else if (words.size() == 2 && words[1] != "Automatic" && words[1] != "TakagiSugeno") {
+    } else if (words.size() == 2 && words[1] != "Automatic" && words[1] != "TakagiSugeno" &&
+               words[1] != "Tsukamoto") {
       return fail("unsupported weighted defuzzifier type '" + std::string(words[1]) +
-                  "' (Automatic or TakagiSugeno; Tsukamoto is not supported)");
+                  "' (Automatic, TakagiSugeno or Tsukamoto)");
+    } else {
+      // fuzzylite's TakagiSugeno type evaluates a membership term at the degree (not Tsukamoto's
+      // inverse); the engine does only the latter, so that combination is refused in finish().
+      takagi_sugeno_type_.back() = words.size() == 2 && words[1] == "TakagiSugeno";
     }
     defuzzifier_seen_.back() = true;
     return true;
@@ -413,6 +419,11 @@ class FllParser {
       if (!defuzzifier_seen_[o]) return fail_at(at, "output has no defuzzifier");
       if (!fuzzy::is_sugeno(out.defuzzifier) && !aggregation_seen_[o])
         return fail_at(at, "output needs an aggregation");
+      if (takagi_sugeno_type_[o] && out.num_terms > 0 &&
+          out.terms[0].kind == fuzzy::OutputTermKind::Membership)
+        return fail_at(at,
+                       "a TakagiSugeno weighted defuzzifier over membership terms is not "
+                       "supported (Tsukamoto or Automatic is)");
     }
     return check_model(model_, lines_, error_);
   }
@@ -427,6 +438,7 @@ class FllParser {
   std::size_t block_first_rule_ = 0, block_first_token_ = 0, block_first_conclusion_ = 0;
   std::vector<bool> defuzzifier_seen_;
   std::vector<bool> aggregation_seen_;
+  std::vector<bool> takagi_sugeno_type_;
   SourceLines lines_;
 };
 
@@ -470,7 +482,11 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
     s += std::string("  aggregation: ") +
          (sugeno ? "none" : fuzzy::names(v.aggregation).fuzzylite) + "\n";
     s += std::string("  defuzzifier: ") + fuzzy::names(v.defuzzifier).fuzzylite +
-         (sugeno ? std::string(" TakagiSugeno") : " " + std::to_string(v.resolution)) + "\n";
+         (!sugeno ? " " + std::to_string(v.resolution)
+          : v.num_terms > 0 && v.terms[0].kind == fuzzy::OutputTermKind::Membership
+              ? std::string(" Tsukamoto")
+              : std::string(" TakagiSugeno")) +
+         "\n";
     s += "  default: " + format_number(v.default_value) + "\n  lock-previous: false\n";
     for (std::size_t t = 0; t < v.num_terms; ++t) {
       const auto& term = v.terms[t];

@@ -547,9 +547,12 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
        "NM Discrete", "takes (x, y) pairs"},
       {"discrete unordered", replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Discrete 1 0 0 1"),
        "NM Discrete", "x strictly increasing"},
-      {"unsupported defuzzifier",
-       replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Tsukamoto"), "Tsukamoto",
-       "Tsukamoto"},
+      {"unsupported weighted type",
+       replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Inverse"), "Inverse",
+       "unsupported weighted defuzzifier type 'Inverse'"},
+      {"takagi-sugeno over membership terms",
+       replace(replace(good, "N3 Constant -0.03", "N3 Ramp 0 1"), "P3 Constant 0.03", "P3 Ramp 1 0"),
+       "OutputVariable: dKp", "TakagiSugeno weighted defuzzifier over membership terms"},
       {"unknown activation", replace(good, "activation: General", "activation: Random"),
        "activation: Random", "unsupported activation 'Random'"},
       {"bad threshold comparison",
@@ -605,7 +608,7 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
       {"sugeno term in mamdani",
        replace(replace(good, "WeightedAverage TakagiSugeno", "Centroid 100"), "aggregation: none",
                "aggregation: Maximum"),
-       "OutputVariable: dKp", "the others membership terms"},
+       "OutputVariable: dKp", "integral defuzzifiers need membership terms"},
   };
   for (const auto& bad : cases) {
     if (std::string(bad.what) == "too many rules") {

@@ -55,6 +55,13 @@ struct AggregatedSet {
   }
 };
 
+// True for the monotonic shapes Tsukamoto's method inverts.
+template <class Scalar>
+constexpr bool is_monotonic(const Term<Scalar>& t) noexcept {
+  return t.shape == Shape::Ramp || t.shape == Shape::Sigmoid || t.shape == Shape::SShape ||
+         t.shape == Shape::ZShape;
+}
+
 // True for the shapes the exact centroid integrates in closed form (at height 1).
 template <class Scalar>
 constexpr bool is_piecewise_linear(const Term<Scalar>& t) noexcept {

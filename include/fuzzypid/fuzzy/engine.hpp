@@ -27,6 +27,8 @@
 //     monotone).
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
 //     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
+//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape terms): z_r is the
+//     abscissa where the term reaches w_r (fuzzylite's inverses), then as Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its default value, or 0 with
 // Status::NoRuleFired when the default is NaN (fuzzylite's "default: nan"); an output whose
@@ -35,6 +37,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -349,11 +352,22 @@ struct EngineModel {
               "Minimum or Product implication",
               o, ModelError::Where::Output};
       }
+      // A weighted defuzzifier over monotonic membership terms is Tsukamoto's method.
+      const bool tsukamoto =
+          sugeno && out.num_terms > 0 && out.terms[0].kind == OutputTermKind::Membership;
       for (std::size_t t = 0; t < out.num_terms; ++t) {
         const auto& term = out.terms[t];
         const bool membership = term.kind == OutputTermKind::Membership;
-        if (membership == sugeno)
-          return {"Sugeno defuzzifiers need constant/linear terms, the others membership terms", o,
+        if (membership != tsukamoto && sugeno)
+          return {
+              "Sugeno defuzzifiers need constant/linear terms (or, for Tsukamoto, monotonic "
+              "Ramp, Sigmoid, SShape or ZShape terms), not a mix",
+              o, ModelError::Where::Output};
+        if (!sugeno && !membership)
+          return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
+                  ModelError::Where::Output};
+        if (tsukamoto && !is_monotonic(term.membership))
+          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape or ZShape", o,
                   ModelError::Where::Output};
         if (membership && !term_ok(term.membership))
           return {"invalid output term parameters", o, ModelError::Where::Output};
@@ -502,6 +516,34 @@ Scalar proposition(const Model& model, const WorkspaceView<Scalar>& ws, const To
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
   (void)model;
   return hedge_right_to_left(tok.hedges, n, ws.membership[tok.input * ws.stride + tok.term]);
+}
+
+// The crisp value z with mu(z) = w of a monotonic term (fuzzylite's
+// WeightedDefuzzifier::tsukamoto, in its operation order).
+template <class Scalar>
+Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
+                 const Scalar* points) noexcept {
+  const auto& p = t.p;
+  switch (t.shape) {
+    case Shape::Ramp:
+      return (p[1] - p[0]) / (Scalar(1) - Scalar(0)) * (w - Scalar(0)) + p[0];
+    case Shape::Sigmoid:
+      if (w == Scalar(1)) return p[1] >= Scalar(0) ? max : min;
+      if (w == Scalar(0)) return p[1] >= Scalar(0) ? min : max;
+      return p[0] + (std::log(Scalar(1) / w - Scalar(1)) / -p[1]);
+    case Shape::SShape:
+    case Shape::ZShape: {
+      const Scalar difference = p[1] - p[0];
+      const Scalar rising = std::sqrt(w * difference * difference / Scalar(2));
+      const Scalar falling = std::sqrt(difference * difference * (w - Scalar(1)) / Scalar(-2));
+      const bool s = t.shape == Shape::SShape;
+      const Scalar a = p[0] + (s ? rising : falling);
+      const Scalar b = p[1] + (s ? falling : rising);
+      return std::fabs(w - t(a, points)) < std::fabs(w - t(b, points)) ? a : b;
+    }
+    default:
+      return t(w, points);
+  }
 }
 
 template <class Scalar>
@@ -659,7 +701,9 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
         if (sugeno) {
           Scalar z = term.coefficients[0];
-          if (term.kind == OutputTermKind::Linear) {
+          if (term.kind == OutputTermKind::Membership) {
+            z = engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points);
+          } else if (term.kind == OutputTermKind::Linear) {
             z = Scalar(0);
             for (std::size_t i = 0; i < model.num_inputs; ++i)
               z += term.coefficients[i] * ws.input[i];
