@@ -509,12 +509,13 @@ Scalar hedge_right_to_left(const std::array<Hedge, kMaxHedges>& hedges, std::siz
   return x;
 }
 
-template <class Scalar, class Model>
-Scalar proposition(const Model& model, const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
+// "input is [hedges] term": the hedges right to left on the term's degree; 1 when the last hedge
+// is `any` (fuzzylite's Antecedent::activationDegree).
+template <class Scalar>
+Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   const std::size_t n = tok.num_hedges;
   if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
-  (void)model;
   return hedge_right_to_left(tok.hedges, n, ws.membership[tok.input * ws.stride + tok.term]);
 }
 
@@ -663,7 +664,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     for (std::size_t k = 0; k < rule.num_tokens; ++k) {
       const Token& tok = model.tokens[rule.first_token + k];
       if (tok.kind == Token::Kind::Proposition) {
-        ws.stack[sp++] = engine_detail::proposition(model, ws, tok);
+        ws.stack[sp++] = engine_detail::proposition(ws, tok);
       } else {
         const Scalar b = ws.stack[--sp];
         const Scalar a = ws.stack[sp - 1];
