@@ -180,9 +180,9 @@ std::unique_ptr<OutputSet> OutputSet::open(const std::string& dir,
     }
     for (const fs::directory_entry& entry : fs::directory_iterator(target, ec)) {
       if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) {
-        error = "the output directory " + dir + " holds " + entry.path().filename().string() +
-                ", which is not a regular file; its files are replaced as a whole, so give a new "
-                "directory or one holding only files";
+        error = "the output directory " + dir + " holds '" + entry.path().filename().string() +
+                "', which is not a regular file: the directory is replaced as a whole, so name a "
+                "new directory or one that holds only files";
         return nullptr;
       }
     }
@@ -207,6 +207,15 @@ std::unique_ptr<OutputSet> OutputSet::open(const std::string& dir,
     return nullptr;
   }
   set->temp_dir_ = pattern;
+  // mkdtemp makes the directory private (0700); give it the target's mode, or mkdir's default.
+  struct stat target_st {};
+  if (::stat(set->target_.c_str(), &target_st) == 0) {
+    ::chmod(set->temp_dir_.c_str(), target_st.st_mode & 07777);
+  } else {
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::chmod(set->temp_dir_.c_str(), 0777 & ~mask);
+  }
   arm_signal_cleanup(set->temp_dir_, names, set->lock_path_);
   for (const std::string& file_name : names) {
     const std::string path = set->temp_dir_ + "/" + file_name;
@@ -355,7 +364,10 @@ std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::strin
     error = "cannot write " + path + ": " + errno_text(errno);
     return nullptr;
   }
-  ::fchmod(fd, 0644);
+  // mkstemp makes the file private (0600); give it fopen's default mode.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
   out->path_ = path;
   out->temp_path_ = pattern;
   out->file_ = ::fdopen(fd, "w");

@@ -2,13 +2,13 @@
 // fixed PID tuned offline on ITAE -- on the ER50-C20 model, for one scenario or all of them.
 //
 // Writes, into --out (default out/): trajectory.csv, metrics.csv, endeffector.csv and
-// settings.txt. Files are written under temporary names and renamed only when the whole run has
-// succeeded, so a failed run never leaves a half-written CSV that looks complete.
+// settings.txt. The set is written into a unique temporary directory and replaces --out in one
+// rename only when the whole run has succeeded, with --out locked meanwhile (cli::OutputSet): a
+// failed or interrupted run leaves the previous set untouched and no temporary behind.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,11 +18,11 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 #include "fuzzypid/sim/scenario.hpp"
+#include "output_files.hpp"
 
 namespace {
 
 using namespace fuzzypid;
-namespace fs = std::filesystem;
 
 struct Options {
   std::string scenario = "paper";
@@ -206,53 +206,6 @@ int parse(int argc, char** argv, Options& o) {
   return 0;
 }
 
-struct Output {
-  fs::path final_path;
-  fs::path temp_path;
-  std::FILE* file = nullptr;
-};
-
-bool open_output(const fs::path& dir, const char* name, Output& out, std::string& error) {
-  out.final_path = dir / name;
-  out.temp_path = dir / (std::string(".") + name + ".partial");
-  out.file = std::fopen(out.temp_path.c_str(), "w");
-  if (!out.file) {
-    error = "cannot write " + out.temp_path.string() + ": " + std::strerror(errno);
-    return false;
-  }
-  return true;
-}
-
-void discard(std::vector<Output>& outs) {
-  for (auto& o : outs) {
-    if (o.file) std::fclose(o.file);
-    o.file = nullptr;
-    std::error_code ec;
-    fs::remove(o.temp_path, ec);
-  }
-}
-
-bool commit(std::vector<Output>& outs, std::string& error) {
-  for (auto& o : outs) {
-    const bool write_ok = std::ferror(o.file) == 0;
-    const bool close_ok = std::fclose(o.file) == 0;
-    o.file = nullptr;
-    if (!write_ok || !close_ok) {
-      error = "write error on " + o.temp_path.string();
-      return false;
-    }
-  }
-  for (auto& o : outs) {
-    std::error_code ec;
-    fs::rename(o.temp_path, o.final_path, ec);
-    if (ec) {
-      error = "cannot rename " + o.temp_path.string() + ": " + ec.message();
-      return false;
-    }
-  }
-  return true;
-}
-
 std::string fmt(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
@@ -291,27 +244,16 @@ int main(int argc, char** argv) {
     runs.push_back(sim::find_scenario(o.scenario));
   }
 
-  const fs::path dir(o.out_dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    std::fprintf(stderr, "sim_ab: cannot create output directory %s: %s\n", dir.c_str(),
-                 ec ? ec.message().c_str() : "not a directory");
+  auto outs = cli::OutputSet::open(
+      o.out_dir, {"trajectory.csv", "metrics.csv", "endeffector.csv", "settings.txt"}, error);
+  if (!outs) {
+    std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
     return 1;
   }
-  std::vector<Output> outs(4);
-  const char* names[4] = {"trajectory.csv", "metrics.csv", "endeffector.csv", "settings.txt"};
-  for (int k = 0; k < 4; ++k) {
-    if (!open_output(dir, names[k], outs[k], error)) {
-      std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
-      discard(outs);
-      return 1;
-    }
-  }
-  std::FILE* traj = outs[0].file;
-  std::FILE* metrics = outs[1].file;
-  std::FILE* tip = outs[2].file;
-  std::FILE* settings = outs[3].file;
+  std::FILE* traj = outs->file(0);
+  std::FILE* metrics = outs->file(1);
+  std::FILE* tip = outs->file(2);
+  std::FILE* settings = outs->file(3);
   std::fputs("scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd\n", traj);
   std::fputs(
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
@@ -377,7 +319,6 @@ int main(int argc, char** argv) {
       if (!r.ok) {
         std::fprintf(stderr, "sim_ab: scenario %s, controller %s: %s\n", scenario->name.c_str(),
                      cname, r.error.c_str());
-        discard(outs);
         return 1;
       }
       for (const auto& row : r.rows) {
@@ -426,9 +367,8 @@ int main(int argc, char** argv) {
                      r.controller_faults, scenario->name.c_str(), cname);
     }
   }
-  if (!commit(outs, error)) {
+  if (!outs->commit(error)) {
     std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
-    discard(outs);
     return 1;
   }
   if (!o.quiet)
