@@ -10,7 +10,7 @@ fail() {
   exit 1
 }
 
-"$sim_ab" --no-tune --quiet --out "$work/out" 2>"$work/err" || fail "first run: $(cat "$work/err")"
+"$sim_ab" --quiet --out "$work/out" 2>"$work/err" || fail "first run: $(cat "$work/err")"
 [ "$(ls -A "$work")" = "err
 out" ] || fail "beside the output: $(ls -A "$work")"
 cp "$work/out/metrics.csv" "$work/metrics.first"
@@ -18,13 +18,13 @@ echo plot >"$work/out/fig.png"
 
 # A second writer is refused while the directory is locked (here by flock(1) on the same lock
 # file), and the locked set is left as it was.
-flock "$work/.out.lock" "$sim_ab" --no-tune --quiet --initial-error 0.1 --out "$work/out" \
+flock "$work/.out.lock" "$sim_ab" --quiet --initial-error 0.1 --out "$work/out" \
   2>"$work/err" && fail "a run into a locked directory succeeded"
 grep -q "is being written by another process" "$work/err" || fail "locked: $(cat "$work/err")"
 cmp -s "$work/out/metrics.csv" "$work/metrics.first" || fail "the locked set changed"
 
 # The next run replaces the set and keeps the other files; nothing hidden is left anywhere.
-"$sim_ab" --no-tune --quiet --initial-error 0.1 --out "$work/out" 2>"$work/err" ||
+"$sim_ab" --quiet --initial-error 0.1 --out "$work/out" 2>"$work/err" ||
   fail "second run: $(cat "$work/err")"
 cmp -s "$work/out/metrics.csv" "$work/metrics.first" && fail "the set was not replaced"
 [ "$(cat "$work/out/fig.png")" = plot ] || fail "fig.png was not kept"
@@ -33,6 +33,6 @@ ls -A "$work/out" | grep -q '^\.' && fail "hidden files in the output: $(ls -A "
 
 # A directory that holds a subdirectory is not replaced.
 mkdir "$work/out/keep"
-"$sim_ab" --no-tune --quiet --out "$work/out" 2>"$work/err" && fail "replaced a directory with a subdirectory"
+"$sim_ab" --quiet --out "$work/out" 2>"$work/err" && fail "replaced a directory with a subdirectory"
 [ -d "$work/out/keep" ] || fail "the subdirectory is gone"
 echo "ok"
