@@ -89,7 +89,8 @@ stage_fuzz() {
 stage_soak() {
   local soak=build/bin/fuzzypid_soak
   if [ ! -x "${soak}" ]; then
-    cmake -S . -B build-soak -G Ninja -DCMAKE_BUILD_TYPE=Release -DFUZZYPID_BUILD_TESTS=OFF \
+    # The soak is a test (tests/soak/): it is configured with the tests.
+    cmake -S . -B build-soak -G Ninja -DCMAKE_BUILD_TYPE=Release -DFUZZYPID_BUILD_TESTS=ON \
       -DFUZZYPID_BUILD_BENCH=OFF >/dev/null
     cmake --build build-soak -j "${jobs}" --target fuzzypid_soak
     soak=build-soak/bin/fuzzypid_soak
