@@ -111,9 +111,10 @@ class LinguisticVariable {
   // N ulp). The step's reciprocal is precomputed by uniform().
   constexpr Adjacent locate(Scalar x) const noexcept {
     const Scalar t = (detail::clamp(x, min_, max_) - min_) * inverse_step_;  // in [0, N - 1]
-    std::size_t k = static_cast<std::size_t>(t);
-    k = k < N - 2 ? k : N - 2;
-    const Scalar upper = t - static_cast<Scalar>(k);
+    // A signed conversion: t is small and non-negative, and int needs no range fix-up.
+    const int floor_t = static_cast<int>(t);
+    const std::size_t k = floor_t < int(N - 2) ? static_cast<std::size_t>(floor_t) : N - 2;
+    const Scalar upper = t - static_cast<Scalar>(static_cast<int>(k));
     return {k, Scalar(1) - upper, upper};
   }
 

@@ -159,14 +159,10 @@ struct TskSystem {
                               Output& output, Trace* trace) const noexcept {
     Scalar w00, w01, w10, w11;
     if constexpr (Op == Conjunction::Minimum) {
-      // lower = 1 - upper for both inputs and 1 - u is non-increasing in floating point too, so
-      // one comparison gives two minima exactly: upper_e < upper_ec means w11 = upper_e and
-      // w00 = lower_ec.
-      const bool e_first = a.upper < b.upper;
-      w11 = e_first ? a.upper : b.upper;
-      w00 = e_first ? b.lower : a.lower;
+      w00 = detail::min(a.lower, b.lower);
       w01 = detail::min(a.lower, b.upper);
       w10 = detail::min(a.upper, b.lower);
+      w11 = detail::min(a.upper, b.upper);
     } else {
       w00 = a.lower * b.lower;
       w01 = a.lower * b.upper;
