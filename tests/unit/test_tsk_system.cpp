@@ -292,4 +292,65 @@ TEST(TskSystem, FloatInstantiationAgreesWithDouble) {
   }
 }
 
+// locate() on random uniform partitions: the two degrees lie in [0, 1] and sum to 1, the interval
+// index is in range, the edges and everything beyond them give exactly (1, 0) / (0, 1), and the
+// degrees equal the triangle formulas of the variable's own terms up to rounding.
+template <class Scalar, std::size_t N>
+void expect_partition_of_unity(std::uint64_t seed) {
+  SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> centre(-100.0, 100.0);
+  std::uniform_real_distribution<double> log_width(-3.0, 3.0);
+  const Scalar rounding = Scalar(8 * N) * std::numeric_limits<Scalar>::epsilon();
+  for (int v = 0; v < 200; ++v) {
+    const double c = centre(rng);
+    const double w = std::pow(10.0, log_width(rng));
+    const auto lv = LinguisticVariable<Scalar, N>::uniform(Scalar(c - w), Scalar(c + w));
+    ASSERT_TRUE(lv.valid());
+    const Scalar lo = lv.min();
+    const Scalar hi = lv.max();
+    std::uniform_real_distribution<Scalar> x_of(lo - (hi - lo) / 4, hi + (hi - lo) / 4);
+    for (int k = 0; k < 200; ++k) {
+      const Scalar x = k == 0 ? lo : k == 1 ? hi : x_of(rng);
+      const auto a = lv.locate(x);
+      ASSERT_LE(a.k, N - 2);
+      ASSERT_GE(a.lower, Scalar(0));
+      ASSERT_GE(a.upper, Scalar(0));
+      ASSERT_LE(a.lower, Scalar(1));
+      ASSERT_LE(a.upper, Scalar(1));
+      ASSERT_EQ(a.lower + a.upper, Scalar(1)) << "x = " << x;
+      if (x <= lo) {
+        ASSERT_EQ(a.k, 0u);
+        ASSERT_EQ(a.lower, Scalar(1));
+      }
+      if (x >= hi && a.upper != Scalar(1)) {
+        // t stopped a rounding short of the last peak: the next-to-last term keeps that much.
+        ASSERT_EQ(a.k, N - 2);
+        ASSERT_LE(a.lower, rounding);
+      }
+      const Scalar width = lv.centers()[a.k + 1] - lv.centers()[a.k];
+      ASSERT_NEAR(a.lower, lv.term(a.k)(x), rounding * (Scalar(1) + std::fabs(lo) / width))
+          << "x = " << x;
+      ASSERT_NEAR(a.upper, lv.term(a.k + 1)(x), rounding * (Scalar(1) + std::fabs(lo) / width))
+          << "x = " << x;
+    }
+  }
+}
+
+TEST(LinguisticVariable, UniformLocateIsAPartitionOfUnityEqualToTheTriangles) {
+  expect_partition_of_unity<double, 2>(71);
+  expect_partition_of_unity<double, 3>(72);
+  expect_partition_of_unity<double, 7>(73);
+  expect_partition_of_unity<double, 11>(74);
+  expect_partition_of_unity<float, 7>(75);
+  expect_partition_of_unity<float, 5>(76);
+}
+
+TEST(TskSystem, ValidAcceptsMinimumOrProductWithEitherTskDefuzzifier) {
+  auto s = paper::make_system<double>(Conjunction::Product);
+  EXPECT_TRUE(s.valid());
+  s.defuzzifier = TskDefuzzifier::WeightedSum;
+  EXPECT_TRUE(s.valid());
+}
+
 }  // namespace

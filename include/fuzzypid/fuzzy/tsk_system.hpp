@@ -69,11 +69,14 @@ struct TskSystem {
   Conjunction conjunction = Conjunction::Minimum;              // Minimum or Product
   TskDefuzzifier defuzzifier = TskDefuzzifier::WeightedAverage;
 
-  // True when both variables are valid, the conjunction is Minimum or Product and every
-  // consequent is finite.
+  // True when both variables are valid, the conjunction is Minimum or Product, the defuzzifier
+  // WeightedAverage or WeightedSum and every consequent is finite.
   constexpr bool valid() const noexcept {
     if (!e.valid() || !ec.valid()) return false;
     if (conjunction != Conjunction::Minimum && conjunction != Conjunction::Product) return false;
+    if (defuzzifier != TskDefuzzifier::WeightedAverage &&
+        defuzzifier != TskDefuzzifier::WeightedSum)
+      return false;
     for (const auto& table : consequents)
       for (const auto& row : table)
         for (Scalar c : row)
