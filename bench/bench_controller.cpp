@@ -8,6 +8,7 @@
 #include "bench_inputs.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 
 namespace {
@@ -17,11 +18,7 @@ using fuzzypid::bench::kTableSize;
 
 constexpr std::size_t kJoints = 6;
 constexpr double kDt = 0.05;  // s, the paper's 50 ms tick
-using Vector = std::array<double, kJoints>;
-
-struct TickInput {
-  Vector desired_position, desired_velocity, measured_position, measured_velocity;
-};
+using TickInput = fuzzypid::control::JointInput<double, kJoints>;
 
 // Tracking errors of up to +-0.35 rad and +-0.35 rad/s around a moving reference: the fuzzy
 // supervisor sees inputs across its whole universe and slightly outside it.
@@ -30,10 +27,10 @@ std::array<TickInput, kTableSize> make_tick_table() {
   fuzzypid::bench::SplitMix64 rng(7);
   for (auto& t : table) {
     for (std::size_t j = 0; j < kJoints; ++j) {
-      t.desired_position[j] = rng.uniform(-1.5, 1.5);
-      t.desired_velocity[j] = rng.uniform(-0.5, 0.5);
-      t.measured_position[j] = t.desired_position[j] + rng.uniform(-0.35, 0.35);
-      t.measured_velocity[j] = t.desired_velocity[j] + rng.uniform(-0.35, 0.35);
+      t.desired_position_rad[j] = rng.uniform(-1.5, 1.5);
+      t.desired_velocity_rad_s[j] = rng.uniform(-0.5, 0.5);
+      t.measured_position_rad[j] = t.desired_position_rad[j] + rng.uniform(-0.35, 0.35);
+      t.measured_velocity_rad_s[j] = t.desired_velocity_rad_s[j] + rng.uniform(-0.35, 0.35);
     }
   }
   return table;
@@ -54,8 +51,7 @@ void run_ticks(benchmark::State& state,
   std::size_t k = 0;
   for (auto _ : state) {
     const TickInput& t = table[k++ & kTableMask];
-    const auto cmd = controller.step(t.desired_position, t.desired_velocity, t.measured_position,
-                                     t.measured_velocity, kDt);
+    const auto cmd = controller.step(t, kDt);
     benchmark::DoNotOptimize(cmd);
   }
   state.SetItemsProcessed(state.iterations());
@@ -68,11 +64,11 @@ void BM_ControllerStep6_pid(benchmark::State& state) {
 BENCHMARK(BM_ControllerStep6_pid)->Name("BM_ControllerStep6/pid");
 
 void BM_ControllerStep6_fuzzy(benchmark::State& state) {
-  using FuzzyPid = fuzzypid::control::FuzzyPid<double>;
-  auto config = fuzzypid::control::paper_config<double>();
+  using FuzzyPid = fuzzypid::paper::FuzzyPid<double>;
+  auto config = fuzzypid::paper::paper_config<double>();
   config.pid = pid_config();
   run_ticks(state, fuzzypid::control::JointController<double, kJoints, FuzzyPid>(
-                       FuzzyPid(fuzzypid::paper::make_system<double>(), config)));
+                       FuzzyPid(&fuzzypid::paper::kSystem<double>, config)));
 }
 BENCHMARK(BM_ControllerStep6_fuzzy)->Name("BM_ControllerStep6/fuzzy");
 

@@ -28,7 +28,7 @@ std::unique_ptr<fl::Engine> make_fuzzylite_engine() {
   const char* const names[2] = {"e", "ec"};
   for (const char* name : names) {
     auto* in = new fl::InputVariable(name, -0.3, 0.3);
-    const std::array<double, kTerms> peaks = fuzzypid::paper::make_system<double>().e.centers();
+    const std::array<double, kTerms> peaks = fuzzypid::paper::kSystem<double>.e.centers();
     in->addTerm(
         new fl::Trapezoid(fuzzypid::paper::kTermNames[0], -fl::inf, -fl::inf, peaks[0], peaks[1]));
     for (std::size_t k = 1; k + 1 < kTerms; ++k)
@@ -75,7 +75,7 @@ std::unique_ptr<fl::Engine> make_fuzzylite_engine() {
 // Largest |fuzzypid - fuzzylite| over the input table, every output. fuzzylite compares with a
 // tolerance of 1e-6 by default; it is set to 0 here so the two are the same function.
 double max_difference(fl::Engine& engine) {
-  const auto system = fuzzypid::paper::make_system<double>();
+  const auto& system = fuzzypid::paper::kSystem<double>;
   const auto table = make_error_table();
   double worst = 0.0;
   for (const auto& p : table) {
@@ -91,35 +91,43 @@ double max_difference(fl::Engine& engine) {
   return worst;
 }
 
-// One inference of the paper's system per iteration, through `Infer` (TskSystem::infer or
-// infer_outputs, a compile-time constant so the call inlines), over the varied input table.
-template <auto Infer>
+using PaperSystem = fuzzypid::paper::System<double>;
+
+// One inference of the paper's system per iteration, over the varied input table: the
+// supervisor form FuzzyPid calls every tick (kTrace false) or the same inference with its trace
+// of degrees and total strength (kTrace true).
+template <bool kTrace>
 void run_inference(benchmark::State& state) {
-  const auto system = fuzzypid::paper::make_system<double>();
+  const PaperSystem& system = fuzzypid::paper::kSystem<double>;
+  auto workspace = system.make_workspace();
   const auto table = make_error_table();
   std::size_t k = 0;
   for (auto _ : state) {
     const auto& p = table[k++ & kTableMask];
-    const auto r = (system.*Infer)(p.e, p.ec);
-    benchmark::DoNotOptimize(r.output);
-    benchmark::DoNotOptimize(r.status);
+    std::array<double, 3> delta;
+    if constexpr (kTrace) {
+      PaperSystem::Trace trace;
+      const fuzzypid::Status s = system.infer(p.e, p.ec, workspace, delta, trace);
+      benchmark::DoNotOptimize(s);
+      benchmark::DoNotOptimize(trace);
+    } else {
+      const fuzzypid::Status s = system.infer(p.e, p.ec, workspace, delta);
+      benchmark::DoNotOptimize(s);
+    }
+    benchmark::DoNotOptimize(delta);
   }
   state.SetItemsProcessed(state.iterations());
 }
 
-using PaperSystem = fuzzypid::paper::System<double>;
-
 void BM_FuzzyInference(benchmark::State& state) {
-  run_inference<&PaperSystem::infer>(state);
+  run_inference<false>(state);
 }
 BENCHMARK(BM_FuzzyInference)->Name("BM_FuzzyInference/paper");
 
-// The same inference through infer_outputs(): the three outputs and the status only, without the
-// fuzzified inputs kept for reading firing strengths -- the path FuzzyPid takes every tick.
-void BM_FuzzyInferenceOutputs(benchmark::State& state) {
-  run_inference<&PaperSystem::infer_outputs>(state);
+void BM_FuzzyInferenceTraced(benchmark::State& state) {
+  run_inference<true>(state);
 }
-BENCHMARK(BM_FuzzyInferenceOutputs)->Name("BM_FuzzyInference/paper_outputs");
+BENCHMARK(BM_FuzzyInferenceTraced)->Name("BM_FuzzyInference/paper_traced");
 
 void BM_Fuzzylite(benchmark::State& state) {
   fl::fuzzylite::setMachEps(0.0);

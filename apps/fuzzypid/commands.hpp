@@ -16,6 +16,8 @@ void add_eval_command(CLI::App& app, std::function<int()>& run);
 #if FUZZYPID_HAVE_ROBOT
 void add_fk_command(CLI::App& app, std::function<int()>& run);
 void add_ik_command(CLI::App& app, std::function<int()>& run);
+void add_tune_command(CLI::App& app, std::function<int()>& run);           // tune.cpp
+void add_export_header_command(CLI::App& app, std::function<int()>& run);  // tune.cpp
 #endif
 
 }  // namespace fuzzypid::cli

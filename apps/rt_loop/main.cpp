@@ -84,19 +84,11 @@ extern "C" void on_sigint(int) {
 // ---------------------------------------------------------------------------------------------
 // Options.
 
-enum class ControllerChoice { Pid, Fuzzy };
-constexpr cli::NameTable<ControllerChoice, 2> kControllerChoiceNames = {
-    {{"pid", ControllerChoice::Pid}, {"fuzzy", ControllerChoice::Fuzzy}}};
-const char* to_string(ControllerChoice c) {
-  return c == ControllerChoice::Pid ? kControllerChoiceNames[0].first.data()
-                                    : kControllerChoiceNames[1].first.data();
-}
-
 struct Options {
   double period_ms = 50.0;
   std::optional<double> dt_s;          // default: the period (50 ms when free-running)
   std::optional<std::uint64_t> ticks;  // default: one pass of the path
-  ControllerChoice controller = ControllerChoice::Fuzzy;
+  std::string controller = "fuzzy";    // pid, fuzzy or a controller file (*.toml)
   std::string csv;
   std::optional<int> fifo_priority;
   bool lock_memory = false;
@@ -130,8 +122,15 @@ std::optional<int> parse_options(int argc, char** argv, Options& o) {
   app.add_option("--ticks", o.ticks, "ticks to run (default: one pass of the path)")
       ->check(cli::unsigned_in(1, std::numeric_limits<std::uint64_t>::max()))
       ->option_text("N");
-  cli::add_enum_option(app, "--controller", o.controller, kControllerChoiceNames,
-                       "the paper's fixed PID or fuzzy PID");
+  app.add_option("--controller", o.controller,
+                 "the paper's fixed PID (pid) or fuzzy PID (fuzzy), or a controller file "
+                 "(*.toml, docs/tuning.md) (default fuzzy)")
+      ->check([](const std::string& s) -> std::string {
+        const bool file = s.size() > 5 && s.compare(s.size() - 5, 5, ".toml") == 0;
+        return s == "pid" || s == "fuzzy" || file ? ""
+                                                  : "'" + s + "' is not pid, fuzzy or a .toml file";
+      })
+      ->option_text("pid|fuzzy|FILE");
   app.add_flag("--loop", o.loop_path, "restart the path at its end (else hold its last point)");
   app.add_option("--csv", o.csv,
                  "write tick,wakeup_latency_ns,period_error_ns,compute_ns after the run")
@@ -369,8 +368,15 @@ int run(int argc, char** argv) {
     return cli::kExitFailure;
   }
   cf::ControllerSpec spec = sim::default_controller(
-      options, o.controller == ControllerChoice::Fuzzy ? cf::Family::Fuzzy : cf::Family::Pid);
+      options, o.controller == "fuzzy" ? cf::Family::Fuzzy : cf::Family::Pid);
   spec.units.tick_s = paper_tick_s;
+  if (o.controller != "pid" && o.controller != "fuzzy") {
+    cf::Error file_error;
+    if (!cf::load(o.controller, spec, file_error)) {
+      std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
+      return cli::kExitFailure;
+    }
+  }
   auto loop = sim::ClosedLoop::create(*experiment, *sim::find_scenario("paper"), spec, error);
   if (!loop) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
@@ -401,9 +407,9 @@ int run(int argc, char** argv) {
   std::printf(
       "rt_loop: controller %s, period %.3f ms%s, controller dt %.3f ms, ticks %llu, path %zu "
       "samples over %.3f s%s\n",
-      to_string(o.controller), o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "",
-      dt_s * 1000.0, static_cast<unsigned long long>(ticks), loop->samples(),
-      loop->path().time_s.back(), o.loop_path ? " (looped)" : " (held at its end)");
+      o.controller.c_str(), o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "", dt_s * 1000.0,
+      static_cast<unsigned long long>(ticks), loop->samples(), loop->path().time_s.back(),
+      o.loop_path ? " (looped)" : " (held at its end)");
   std::printf("cpu: %s\nmemory: %s\nscheduler: %s\n", cpu_state.c_str(), lock_state.c_str(),
               fifo_state.c_str());
   std::fflush(stdout);

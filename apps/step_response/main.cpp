@@ -14,10 +14,10 @@ int main() {
   constexpr double kStep = 0.1;      // rad
   constexpr int kTicks = 400;        // 20 s
 
-  control::FuzzyPidConfig<double> config = control::paper_config<double>();
+  control::FuzzyPidConfig<double> config = paper::paper_config<double>();
   config.pid.derivative_source = pid::DerivativeSource::Rates;
   pid::Pid<double> fixed(config.pid);
-  control::FuzzyPid<double> fuzzy(paper::make_system<double>(), config);
+  paper::FuzzyPid<double> fuzzy(&paper::kSystem<double>, config);
 
   // Exact zero-order-hold integration of J theta'' = u over one tick.
   struct Joint {

@@ -5,6 +5,7 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/control/supervisor.hpp"
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"

@@ -1,11 +1,15 @@
 // The fuzzy supervisor of Tao et al., "Fuzzy PID control method of deburring industrial robots",
 // as ready-made constexpr data: its input partition (section 5.1, Fig. 4), its three rule tables
-// exactly as printed (Tables 2-4), corrected variants of the two cells that look misprinted, and
-// the nominal PID gains (section 5.2).
+// exactly as printed (Tables 2-4), corrected variants of the two cells that look misprinted, the
+// nominal PID gains (section 5.2), the paper's FuzzyPid configuration, and aliases for
+// controllers supervised by the paper's system. Nothing in control/, pid/ or fuzzy/ includes this
+// header: the generic parts do not know the paper.
 #pragma once
 
 #include <cstddef>
 
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/fuzzy/rule_table.hpp"
@@ -126,6 +130,40 @@ constexpr System<Scalar> make_system(fuzzy::Conjunction conjunction = fuzzy::Con
   s.conjunction = conjunction;
   s.defuzzifier = fuzzy::TskDefuzzifier::WeightedAverage;
   return s;
+}
+
+// The paper's supervisor with its defaults (minimum, tables as printed) as constexpr data: it
+// lives for the whole program, so controllers may point to it from anywhere.
+template <class Scalar>
+inline constexpr System<Scalar> kSystem = make_system<Scalar>();
+
+// The paper's configuration: K0 = (4, 0.001, 100), unit scales, absolute update (Eq. 6).
+template <class Scalar>
+constexpr control::FuzzyPidConfig<Scalar> paper_config() noexcept {
+  control::FuzzyPidConfig<Scalar> c;
+  c.pid.gains = kNominalGains<Scalar>;
+  return c;
+}
+
+// A PID retuned by the paper's supervisor (or any System<Scalar> the caller owns).
+template <class Scalar>
+using FuzzyPid = control::FuzzyPid<Scalar, System<Scalar>>;
+
+// N joints, each a paper::FuzzyPid; 6 for the ER50-C20.
+template <class Scalar, std::size_t N = 6>
+using JointController = control::JointController<Scalar, N, FuzzyPid<Scalar>>;
+
+// A controller on kSystem with `config` (the paper's by default).
+template <class Scalar>
+FuzzyPid<Scalar> make_fuzzy_pid(
+    const control::FuzzyPidConfig<Scalar>& config = paper_config<Scalar>()) noexcept {
+  return FuzzyPid<Scalar>(&kSystem<Scalar>, config);
+}
+
+// N joints on kSystem with the paper's configuration.
+template <class Scalar, std::size_t N = 6>
+JointController<Scalar, N> make_joint_controller() noexcept {
+  return JointController<Scalar, N>(make_fuzzy_pid<Scalar>());
 }
 
 }  // namespace fuzzypid::paper

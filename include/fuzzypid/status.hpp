@@ -1,20 +1,21 @@
 // Result codes of the per-tick calls. The control path never throws: every call that can meet bad
-// input returns a Status, and a fault leaves the object's state exactly as it was.
+// input returns a Status, and a fault leaves the object's state exactly as it was. The type is
+// [[nodiscard]]: a Status that is dropped without `(void)` is a warning.
 #pragma once
 
 #include <cstdint>
 
 namespace fuzzypid {
 
-enum class Status : std::uint8_t {
-  Ok = 0,
-  // Informational: the call succeeded but something is worth knowing.
-  NoRuleFired,  // no rule had a non-zero firing strength; the outputs are 0
-  // Faults: the call changed nothing and the last output is held.
-  NonFiniteInput,   // a NaN or infinite input
-  InvalidTimeStep,  // dt is not a finite positive number
-  InvalidConfig,    // a configuration failed validation
-  NumericOverflow,  // finite inputs produced a non-finite result (e.g. huge gains x huge error)
+enum class [[nodiscard]] Status : std::uint8_t{
+    Ok = 0,
+    // Informational: the call succeeded but something is worth knowing.
+    NoRuleFired,  // no rule had a non-zero firing strength; the outputs are 0
+    // Faults: the call changed nothing and the last output is held.
+    NonFiniteInput,   // a NaN or infinite input
+    InvalidTimeStep,  // dt is not a finite positive number
+    InvalidConfig,    // a configuration failed validation
+    NumericOverflow,  // finite inputs produced a non-finite result (e.g. huge gains x huge error)
 };
 
 // True for the faults, false for Ok and the informational codes.

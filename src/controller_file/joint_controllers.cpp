@@ -64,13 +64,15 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
         }
         joints[i] = pid::Pid<double>(c);
       }
-      return JointControllers(spec, PidJoints(joints));
+      JointControllers out(spec, nullptr, nullptr);
+      out.joints_ = PidJoints(joints);
+      return out;
     }
     case Family::Fuzzy: {
-      const auto system = paper::make_system<double>(
+      auto tables = std::make_unique<const paper::System<double>>(paper::make_system<double>(
           spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
                                            ? paper::Tables::Corrected
-                                           : paper::Tables::Printed);
+                                           : paper::Tables::Printed));
       using Joint = control::FuzzyPid<double, paper::System<double>>;
       std::array<Joint, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
@@ -79,24 +81,27 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
           error = "invalid fuzzy PID configuration";
           return std::nullopt;
         }
-        joints[i] = Joint(system, fc);
+        joints[i] = Joint(tables.get(), fc);
       }
-      return JointControllers(spec, FuzzyJoints(joints));
+      JointControllers out(spec, std::move(tables), nullptr);
+      out.joints_ = FuzzyJoints(joints);
+      return out;
     }
     case Family::Scheduled: {
+      auto schedule = std::make_unique<const control::GainSchedule<double>>();
       using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
-      const control::GainSchedule<double> schedule;
-      const auto make = [&](std::size_t i) {
-        return Joint(schedule, fuzzy_pid_config(spec, output_limit[i]));
-      };
-      std::array<Joint, kJoints> joints = {make(0), make(1), make(2), make(3), make(4), make(5)};
+      std::array<Joint, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
-        if (!fuzzy_pid_config(spec, output_limit[i]).valid()) {
+        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+        if (!fc.valid()) {
           error = "invalid scheduled PID configuration";
           return std::nullopt;
         }
+        joints[i] = Joint(schedule.get(), fc);
       }
-      return JointControllers(spec, ScheduledJoints(joints));
+      JointControllers out(spec, nullptr, std::move(schedule));
+      out.joints_ = ScheduledJoints(joints);
+      return out;
     }
   }
   error = "unknown controller family";

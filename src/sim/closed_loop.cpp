@@ -46,14 +46,17 @@ TickResult ClosedLoop::tick(std::size_t k, bool advance) noexcept {
   r.theta_d_dot = path_->velocity_rad_s[k];
   r.theta = plant_.position();
   r.theta_dot = plant_.velocity();
-  robot::JointVector q_meas = r.theta;
-  robot::JointVector v_meas = r.theta_dot;
+  controller_file::Input in;
+  in.desired_position_rad = r.theta_d;
+  in.desired_velocity_rad_s = r.theta_d_dot;
+  in.measured_position_rad = r.theta;
+  in.measured_velocity_rad_s = r.theta_dot;
   for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-    q_meas[i] += noise_.normal(condition_.noise_position_rad);
-    v_meas[i] += noise_.normal(condition_.noise_velocity_rad_s);
+    in.measured_position_rad[i] += noise_.normal(condition_.noise_position_rad);
+    in.measured_velocity_rad_s[i] += noise_.normal(condition_.noise_velocity_rad_s);
   }
-  r.command = controller_->step(r.theta_d, r.theta_d_dot, q_meas, v_meas, tick_s_);
-  r.torque_nm = experiment_->torque_from_command(r.command.command, units_);
+  r.command = controller_->step(in, tick_s_);
+  r.torque_nm = experiment_->torque_from_command(r.command.torque_nm, units_);
   if (!advance) return r;
   robot::JointVector disturbance{};
   const double a = pulses_.at(r.t_s);

@@ -75,7 +75,8 @@ Experiment::Experiment(const robot::RobotModel& model, robot::JointPathResult pa
     : model_(model),
       path_(std::move(path)),
       reverse_path_(std::move(reverse_path)),
-      options_(options) {
+      options_(options),
+      supervisor_(paper::make_system<double>(options.conjunction, options.tables)) {
   const robot::JointVector links = model_.inertia_diagonal(path_.position_rad.front());
   for (std::size_t i = 0; i < kJoints; ++i)
     nominal_inertia_[i] = links[i] + options_.plant.armature_kgm2[i];
@@ -150,15 +151,15 @@ std::array<pid::Pid<double>, kJoints> Experiment::make_pid(const robot::JointVec
   return joints;
 }
 
-std::array<control::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
+std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
     const robot::JointVector& limit) const {
   const ControllerSpec spec = default_controller(options_, controller_file::Family::Fuzzy);
-  const auto system = paper::make_system<double>(options_.conjunction, options_.tables);
-  std::array<control::FuzzyPid<double>, kJoints> joints;
+  std::array<paper::FuzzyPid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] = control::FuzzyPid<double>(system, controller_file::fuzzy_pid_config(spec, u_max));
+    joints[i] =
+        paper::FuzzyPid<double>(&supervisor_, controller_file::fuzzy_pid_config(spec, u_max));
   }
   return joints;
 }
@@ -186,7 +187,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
       row.theta = r.theta[i];
       row.error = e;
       row.error_rate = r.theta_d_dot[i] - r.theta_dot[i];
-      row.u = r.command.command[i];
+      row.u = r.command.torque_nm[i];
       const pid::Gains<double> g = loop->controller().file_gains(i);
       row.kp = g.kp;
       row.ki = g.ki;

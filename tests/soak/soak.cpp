@@ -82,7 +82,7 @@ constexpr double kAccelLimit = 5.0;  // rad/s², the condition's actuator limit 
 constexpr double kMaxErrorRad = 20.0;
 constexpr double kMaxSpeedRadS = 50.0;
 
-using Fuzzy = control::FuzzyPid<double>;
+using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
 using Controller = control::JointController<double, kJoints, Fuzzy>;
 
 struct Options {
@@ -161,7 +161,6 @@ std::optional<Soak> build(std::string& error) {
   spec.gain_min = {0.0, 0.0, 0.0};
   spec.gain_max = gain_max_of(spec.gains);
   const robot::JointVector u_max = experiment->output_limit(condition, spec.units.gains);
-  const auto system = fuzzypid::paper::make_system<double>(options.conjunction, options.tables);
   std::array<Fuzzy, kJoints> joints;
   pid::Gains<double> gain_max{};
   for (std::size_t i = 0; i < kJoints; ++i) {
@@ -170,7 +169,8 @@ std::optional<Soak> build(std::string& error) {
     c.pid.integral_max = u_max[i];
     c.gain_update = i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
     gain_max = c.gain_max;
-    joints[i] = Fuzzy(system, control::paper_config<double>());
+    // The default options' supervisor (min conjunction, printed tables) is paper::kSystem.
+    joints[i] = Fuzzy(&fuzzypid::paper::kSystem<double>, fuzzypid::paper::paper_config<double>());
     if (joints[i].configure(c) != Status::Ok) {
       error = "invalid controller configuration";
       return std::nullopt;
@@ -309,7 +309,12 @@ const char* run(Soak& s, const Options& o, Counters& c) {
       ++c.injected_bad_dt;
     }
 
-    const auto command = s.controller.step(ref, ref_rate, q, qd, dt_controller);
+    control::JointInput<double, kJoints> in;
+    in.desired_position_rad = ref;
+    in.desired_velocity_rad_s = ref_rate;
+    in.measured_position_rad = q;
+    in.measured_velocity_rad_s = qd;
+    const auto command = s.controller.step(in, dt_controller);
 
     for (std::size_t i = 0; i < kJoints; ++i) {
       const Status st = command.joint_status[i];
@@ -318,7 +323,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
         return "bad dt not reported as invalid_time_step";
       if (!bad_dt && i == bad_joint && st != Status::NonFiniteInput)
         return "NaN/inf measurement not reported as non_finite_input";
-      const double u = command.command[i];
+      const double u = command.torque_nm[i];
       if (!std::isfinite(u)) {
         ++c.nonfinite;
         return "non-finite command";
@@ -335,7 +340,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
       c.max_abs_integral = std::fmax(c.max_abs_integral, std::fabs(integral));
       c.max_abs_gain = std::fmax(c.max_abs_gain, std::fmax(g.kp, std::fmax(g.ki, g.kd)));
     }
-    const robot::JointVector torque = s.experiment.torque_from_command(command.command);
+    const robot::JointVector torque = s.experiment.torque_from_command(command.torque_nm);
 
     bool saturated = false;
     for (std::size_t i = 0; i < kJoints; ++i)

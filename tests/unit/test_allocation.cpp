@@ -24,6 +24,19 @@ namespace {
 
 using fuzzypid::Status;
 using fuzzypid::control::JointController;
+using fuzzypid::control::JointInput;
+
+JointInput<double, 6> input(const std::array<double, 6>& qd, const std::array<double, 6>& vd,
+                            const std::array<double, 6>& q, const std::array<double, 6>& v,
+                            const std::array<double, 6>& ff = {}) {
+  JointInput<double, 6> in;
+  in.desired_position_rad = qd;
+  in.desired_velocity_rad_s = vd;
+  in.measured_position_rad = q;
+  in.measured_velocity_rad_s = v;
+  in.feed_forward_nm = ff;
+  return in;
+}
 using fuzzypid::support::allocation_count;
 
 constexpr int kTicks = 100000;
@@ -93,19 +106,21 @@ TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
   const auto trajectory = std::make_unique<Trajectory>(kSeed);
   SCOPED_TRACE("seed " + std::to_string(kSeed));
   const std::size_t before_construction = allocation_count();
-  JointController<double, 6> controller;
+  auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
   EXPECT_EQ(allocation_count(), before_construction);
   const std::array<double, 6> feed_forward{0.1, -0.1, 0.2, -0.2, 0.0, 0.3};
+  const std::array<double, 6> zero{};
 
   Status worst = Status::Ok;
   double checksum = 0.0;
   const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & (Trajectory::kSamples - 1);
-    const auto out = controller.step(trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
-                                     trajectory->v[s], 0.05, k % 2 == 0 ? &feed_forward : nullptr);
+    const auto out = controller.step(input(trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
+                                           trajectory->v[s], k % 2 == 0 ? feed_forward : zero),
+                                     0.05);
     worst = fuzzypid::worst(worst, out.status);
-    checksum += out.command[k % 6] + controller.joint(k % 6).gains().kd;
+    checksum += out.torque_nm[k % 6] + controller.joint(k % 6).gains().kd;
   }
   const std::size_t allocations = allocation_count() - start;
   report("joint_controller_fuzzy", allocations, kSeed);
@@ -115,14 +130,15 @@ TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
 }
 
 TEST(Allocation, FaultyTicksNeverAllocateEither) {
-  JointController<double, 6> controller;
+  auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
   std::array<double, 6> qd{}, vd{}, q{}, v{};
   q[3] = std::nan("");
   const std::size_t start = allocation_count();
   Status worst = Status::Ok;
   for (int k = 0; k < kTicks; ++k) {
     qd[0] = 1e-5 * k;
-    worst = fuzzypid::worst(worst, controller.step(qd, vd, q, v, k % 3 == 0 ? 0.0 : 0.05).status);
+    worst = fuzzypid::worst(worst,
+                            controller.step(input(qd, vd, q, v), k % 3 == 0 ? 0.0 : 0.05).status);
   }
   EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(fuzzypid::is_fault(worst));
@@ -146,9 +162,9 @@ TEST(Allocation, PidTicksNeverAllocate) {
     in.setpoint = trajectory->qd[s][0];
     in.measurement = trajectory->q[s][0];
     (void)pid.update(in, 0.001);
-    const auto out = joints.step(trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
-                                 trajectory->v[s], 0.001);
-    checksum += pid.output() + out.command[5];
+    const auto out = joints.step(
+        input(trajectory->qd[s], trajectory->vd[s], trajectory->q[s], trajectory->v[s]), 0.001);
+    checksum += pid.output() + out.torque_nm[5];
   }
   const std::size_t allocations = allocation_count() - start;
   report("pid", allocations, kSeed + 1);
@@ -168,12 +184,17 @@ TEST(Allocation, PaperSystemInferenceNeverAllocates) {
     ec[k] = u(rng);
   }
   double checksum = 0.0;
+  auto workspace = system_min.make_workspace();
   const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & 1023u;
     const auto r = system_min.infer(e[s], ec[s]);
     const auto f = system_prod.infer(static_cast<float>(e[s]), static_cast<float>(ec[s]));
-    checksum += r.output[0] + r.firing_strength(3, 3) + static_cast<double>(f.output[2]);
+    std::array<double, 3> delta{};
+    fuzzypid::paper::System<double>::Trace trace;
+    const Status traced = system_min.infer(e[s], ec[s], workspace, delta, trace);
+    checksum += r.output[0] + r.firing_strength(3, 3) + static_cast<double>(f.output[2]) +
+                delta[1] + trace.total_strength + static_cast<double>(traced);
   }
   const std::size_t allocations = allocation_count() - start;
   report("paper_system_infer", allocations, kSeed + 2);
@@ -182,7 +203,7 @@ TEST(Allocation, PaperSystemInferenceNeverAllocates) {
 }
 
 TEST(Allocation, FloatFuzzyJointControllerNeverAllocates) {
-  JointController<float, 6> controller;
+  auto controller = fuzzypid::paper::make_joint_controller<float, 6>();
   std::array<float, 6> qd{}, vd{}, q{}, v{};
   const std::size_t start = allocation_count();
   float checksum = 0.0f;
@@ -192,7 +213,12 @@ TEST(Allocation, FloatFuzzyJointControllerNeverAllocates) {
       q[i] = 0.5f * qd[i];
       v[i] = -0.1f * qd[i];
     }
-    checksum += controller.step(qd, vd, q, v, 0.05f).command[k % 6];
+    JointInput<float, 6> in;
+    in.desired_position_rad = qd;
+    in.desired_velocity_rad_s = vd;
+    in.measured_position_rad = q;
+    in.measured_velocity_rad_s = v;
+    checksum += controller.step(in, 0.05f).torque_nm[k % 6];
   }
   EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(std::isfinite(checksum));

@@ -13,6 +13,7 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/io/rule_file.hpp"
+#include "fuzzypid/paper.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 
 namespace {
@@ -61,8 +62,9 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
 TEST(EngineAllocation, FuzzyPidWithALoadedSystemAllocatesNothingPerTick) {
   const auto model = load(FUZZYPID_RULEBASES_DIR "/paper.fis");
   using Supervisor = fuzzypid::fuzzy::EngineSupervisor<double>;
+  const Supervisor supervisor(model.get());
   auto controller = std::make_unique<fuzzypid::control::FuzzyPid<double, Supervisor>>(
-      Supervisor(model.get()), fuzzypid::control::paper_config<double>());
+      &supervisor, fuzzypid::paper::paper_config<double>());
   const std::size_t before = allocation_count();
   fuzzypid::pid::Input<double> in;
   in.setpoint = 0.1;

@@ -13,12 +13,12 @@
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::FuzzyPid;
 using fuzzypid::control::FuzzyPidConfig;
 using fuzzypid::control::GainUpdate;
 using fuzzypid::fuzzy::Conjunction;
 using fuzzypid::fuzzy::LinguisticVariable;
 using fuzzypid::fuzzy::Term;
+using fuzzypid::paper::FuzzyPid;
 using fuzzypid::pid::DerivativeSource;
 using Gains = fuzzypid::pid::Gains<double>;
 using Input = fuzzypid::pid::Input<double>;
@@ -42,12 +42,12 @@ double clamp(double x, double lo, double hi) {
 }
 
 TEST(FuzzyPid, DefaultsToThePapersSystemGainsAndAbsoluteUpdate) {
-  FuzzyPid<double> fpid;
+  FuzzyPid<double> fpid = paper::make_fuzzy_pid<double>();
   EXPECT_EQ(fpid.config().gain_update, GainUpdate::Absolute);
   EXPECT_EQ(fpid.gains(), paper::kNominalGains<double>);
   EXPECT_EQ(fpid.config().pid.gains, (Gains{4.0, 0.001, 100.0}));
   EXPECT_EQ(fpid.config().error_scale, 1.0);
-  EXPECT_EQ(fpid.pid().gains(), fpid.gains());
+  EXPECT_EQ(fpid.nominal_gains(), fpid.gains());
 }
 
 TEST(FuzzyPid, AbsoluteModeSetsGainsToNominalPlusScaledDelta) {
@@ -58,9 +58,9 @@ TEST(FuzzyPid, AbsoluteModeSetsGainsToNominalPlusScaledDelta) {
   std::uniform_real_distribution<double> u(-0.4, 0.4);
   for (const auto conjunction : {Conjunction::Minimum, Conjunction::Product}) {
     const auto system = paper::make_system<double>(conjunction);
-    auto config = fuzzypid::control::paper_config<double>();
+    auto config = paper::paper_config<double>();
     config.output_scale = {10.0, 0.5, 20.0};
-    FuzzyPid<double> fpid(system, config);
+    FuzzyPid<double> fpid(&system, config);
     for (int k = 0; k < 2000; ++k) {
       const Input in = at(u(rng), u(rng), u(rng), u(rng));
       const double e = in.setpoint - in.measurement;
@@ -71,17 +71,17 @@ TEST(FuzzyPid, AbsoluteModeSetsGainsToNominalPlusScaledDelta) {
       EXPECT_EQ(fpid.gains().kp, clamp(4.0 + 10.0 * r.output[0], 0.0, kInf));
       EXPECT_EQ(fpid.gains().ki, clamp(0.001 + 0.5 * r.output[1], 0.0, kInf));
       EXPECT_EQ(fpid.gains().kd, clamp(100.0 + 20.0 * r.output[2], 0.0, kInf));
-      EXPECT_EQ(fpid.pid().gains(), fpid.gains());
+      EXPECT_EQ(fpid.nominal_gains(), paper::kNominalGains<double>);  // K0 never drifts
     }
   }
 }
 
 TEST(FuzzyPid, AbsoluteModeIsMemoryless) {
-  FuzzyPid<double> fpid;
+  FuzzyPid<double> fpid = paper::make_fuzzy_pid<double>();
   for (int k = 0; k < 50; ++k)
     ASSERT_EQ(fpid.update(at(0.3, 0.0, 0.3, 0.0), 0.05), Status::Ok);
   const Gains after_many = fpid.gains();
-  FuzzyPid<double> once;
+  FuzzyPid<double> once = paper::make_fuzzy_pid<double>();
   ASSERT_EQ(once.update(at(0.3, 0.0, 0.3, 0.0), 0.05), Status::Ok);
   EXPECT_EQ(once.gains(), after_many);
   // (PL, PL): dKp = -0.03, dKd = 0.3 (Tables 2 and 4).
@@ -91,7 +91,7 @@ TEST(FuzzyPid, AbsoluteModeIsMemoryless) {
 
 TEST(FuzzyPid, TheInnerPidRunsWithTheRetunedGains) {
   const auto system = paper::make_system<double>();
-  FuzzyPid<double> fpid;
+  FuzzyPid<double> fpid = paper::make_fuzzy_pid<double>();
   fuzzypid::pid::Pid<double> twin(fpid.config().pid);
   const std::uint64_t seed = 52;
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -113,9 +113,9 @@ TEST(FuzzyPid, TheInnerPidRunsWithTheRetunedGains) {
 }
 
 TEST(FuzzyPid, IncrementalModeAccumulatesTheDeltas) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.gain_update = GainUpdate::Incremental;
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   // (NL, NL): dKp = 0.03, dKi = -0.03, dKd = 0.1.
   const Input in = at(-0.3, 0.0, -0.3, 0.0);
   for (int k = 1; k <= 20; ++k) {
@@ -127,10 +127,10 @@ TEST(FuzzyPid, IncrementalModeAccumulatesTheDeltas) {
 }
 
 TEST(FuzzyPid, IncrementalModeDriftsUntilTheGainBoundsStopIt) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.gain_update = GainUpdate::Incremental;
   config.gain_max = {4.5, 1.0, 101.0};
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   for (int k = 0; k < 1000; ++k)
     ASSERT_EQ(fpid.update(at(-0.3, 0.0, -0.3, 0.0), 0.05), Status::Ok);
   EXPECT_EQ(fpid.gains().kp, 4.5);
@@ -138,9 +138,9 @@ TEST(FuzzyPid, IncrementalModeDriftsUntilTheGainBoundsStopIt) {
 }
 
 TEST(FuzzyPid, GainBoundsClampAndNoGainGoesNegativeByDefault) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.output_scale = {1000.0, 1000.0, 1000.0};
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   // (NL, NL): dKp = 0.03, dKi = -0.03, dKd = 0.1, scaled by 1000.
   ASSERT_EQ(fpid.update(at(-0.3, 0.0, -0.3, 0.0), 0.05), Status::Ok);
   EXPECT_EQ(fpid.gains().ki, 0.0);
@@ -151,7 +151,7 @@ TEST(FuzzyPid, GainBoundsClampAndNoGainGoesNegativeByDefault) {
 
   config.gain_min = {-kInf, -1.0, 50.0};
   config.gain_max = {10.0, kInf, kInf};
-  FuzzyPid<double> signed_gains(paper::make_system<double>(), config);
+  FuzzyPid<double> signed_gains(&paper::kSystem<double>, config);
   ASSERT_EQ(signed_gains.update(at(-0.3, 0.0, -0.3, 0.0), 0.05), Status::Ok);
   EXPECT_EQ(signed_gains.gains().kp, 10.0);
   EXPECT_EQ(signed_gains.gains().ki, -1.0);  // asked for: Ki may go negative down to -1
@@ -164,10 +164,10 @@ TEST(FuzzyPid, InputScalingMapsThePhysicalErrorOntoTheUniverse) {
   const double e_max = 0.05;  // rad
   const double ec_max = 0.5;  // rad/s
   const auto system = paper::make_system<double>();
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.error_scale = 0.3 / e_max;
   config.error_rate_scale = 0.3 / ec_max;
-  FuzzyPid<double> fpid(system, config);
+  FuzzyPid<double> fpid(&system, config);
   const std::uint64_t seed = 53;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
@@ -187,9 +187,9 @@ TEST(FuzzyPid, InputScalingMapsThePhysicalErrorOntoTheUniverse) {
 }
 
 TEST(FuzzyPid, DeltaIsReportedBeforeOutputScaling) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.output_scale = {2.0, 3.0, 4.0};
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   ASSERT_EQ(fpid.update(at(0.3, 0.0, 0.3, 0.0), 0.05), Status::Ok);
   EXPECT_NEAR(fpid.delta()[0], -0.03, 1e-15);
   EXPECT_NEAR(fpid.gains().kp, 4.0 - 2.0 * 0.03, 1e-15);
@@ -199,9 +199,9 @@ TEST(FuzzyPid, DeltaIsReportedBeforeOutputScaling) {
 
 TEST(FuzzyPid, DifferenceSourceComputesEcFromSuccessiveErrors) {
   const auto system = paper::make_system<double>();
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.pid.derivative_source = DerivativeSource::Difference;
-  FuzzyPid<double> fpid(system, config);
+  FuzzyPid<double> fpid(&system, config);
   const double dt = 0.5;
   // Rates are ignored with the difference source (even non-finite ones).
   ASSERT_EQ(fpid.update(at(0.1, 0.0, kNaN, 5.0), dt), Status::Ok);
@@ -228,8 +228,9 @@ GappySystem gappy_system() {
 }
 
 TEST(FuzzyPid, NoRuleFiredKeepsTheNominalGainsAndStillRunsThePid) {
-  auto config = fuzzypid::control::paper_config<double>();
-  FuzzyPid<double, GappySystem> fpid(gappy_system(), config);
+  auto config = paper::paper_config<double>();
+  const GappySystem gappy = gappy_system();
+  fuzzypid::control::FuzzyPid<double, GappySystem> fpid(&gappy, config);
   fuzzypid::pid::Pid<double> twin(config.pid);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);  // fires: K0 + 1
   EXPECT_EQ(fpid.gains(), (Gains{5.0, 1.001, 101.0}));
@@ -246,15 +247,60 @@ TEST(FuzzyPid, NoRuleFiredKeepsTheNominalGainsAndStillRunsThePid) {
 }
 
 TEST(FuzzyPid, NoRuleFiredInIncrementalModeKeepsThePreviousGains) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.gain_update = GainUpdate::Incremental;
-  FuzzyPid<double, GappySystem> fpid(gappy_system(), config);
+  const GappySystem gappy = gappy_system();
+  fuzzypid::control::FuzzyPid<double, GappySystem> fpid(&gappy, config);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);
   const Gains previous = fpid.gains();
   EXPECT_EQ(previous.kp, 6.0);
   EXPECT_EQ(fpid.update(at(0.5, 0.0, 0.5, 0.0), 0.05), Status::NoRuleFired);
   EXPECT_EQ(fpid.gains(), previous);
+}
+
+// The smallest supervisor of the concept (control/supervisor.hpp): constant corrections, and a
+// per-joint workspace that counts the inferences and records the last (e, ec).
+struct ConstantSupervisor {
+  struct Workspace {
+    int calls = 0;
+    double e = 0.0, ec = 0.0;
+  };
+  std::array<double, 3> delta{0.5, 0.25, 2.0};
+  Workspace make_workspace() const { return {}; }
+  Status infer(double e, double ec, Workspace& ws, std::array<double, 3>& out) const noexcept {
+    ++ws.calls;
+    ws.e = e;
+    ws.ec = ec;
+    out = delta;
+    return Status::Ok;
+  }
+};
+static_assert(fuzzypid::control::is_supervisor_v<ConstantSupervisor, double>);
+static_assert(fuzzypid::control::is_supervisor_v<paper::System<float>, float>);
+static_assert(!fuzzypid::control::is_supervisor_v<paper::System<float>, double>);
+
+TEST(FuzzyPid, AnySupervisorOfTheConceptSeesTheScaledErrorOncePerTick) {
+  const ConstantSupervisor supervisor;
+  auto config = paper::paper_config<double>();
+  config.error_scale = 2.0;
+  config.error_rate_scale = 3.0;
+  fuzzypid::control::FuzzyPid<double, ConstantSupervisor> fpid(&supervisor, config);
+  ASSERT_EQ(fpid.update(at(0.5, 0.25, 0.1, 0.4), 0.05), Status::Ok);
+  EXPECT_EQ(fpid.workspace().calls, 1);
+  EXPECT_EQ(fpid.workspace().e, 2.0 * 0.25);
+  EXPECT_EQ(fpid.workspace().ec, 3.0 * (0.1 - 0.4));
+  EXPECT_EQ(fpid.gains(), (Gains{4.5, 0.251, 102.0}));
+  EXPECT_EQ(fpid.supervisor(), &supervisor);
+}
+
+TEST(FuzzyPid, WithoutASupervisorItIsUnconfigured) {
+  FuzzyPid<double> none;
+  EXPECT_EQ(none.update(at(0.1, 0.0), 0.05), Status::InvalidConfig);
+  FuzzyPid<double> null_supervisor(nullptr, paper::paper_config<double>());
+  EXPECT_EQ(null_supervisor.update(at(0.1, 0.0), 0.05), Status::InvalidConfig);
+  EXPECT_EQ(null_supervisor.configure(paper::paper_config<double>()), Status::InvalidConfig);
+  EXPECT_EQ(null_supervisor.initialize(1.0, at(0.1, 0.0)), Status::InvalidConfig);
 }
 
 // Every observable of a fuzzy PID, to prove a fault changed nothing.
@@ -286,10 +332,10 @@ struct Snapshot {
 
 TEST(FuzzyPid, FaultsLeaveGainsAndPidUntouched) {
   for (const auto mode : {GainUpdate::Absolute, GainUpdate::Incremental}) {
-    auto config = fuzzypid::control::paper_config<double>();
+    auto config = paper::paper_config<double>();
     config.gain_update = mode;
     config.pid.derivative_filter_s = 0.1;
-    FuzzyPid<double> fpid(paper::make_system<double>(), config);
+    FuzzyPid<double> fpid(&paper::kSystem<double>, config);
     for (int k = 0; k < 10; ++k)
       ASSERT_EQ(fpid.update(at(0.2, 0.01 * k, 0.1, 0.05), 0.05), Status::Ok);
     const Snapshot before(fpid);
@@ -311,15 +357,15 @@ TEST(FuzzyPid, FaultsLeaveGainsAndPidUntouched) {
 }
 
 TEST(FuzzyPid, OverflowInTheScaledInputsOrThePidChangesNothing) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.error_scale = 1e300;
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   ASSERT_EQ(fpid.update(at(1e-301, 0.0), 0.05), Status::Ok);
   const Snapshot before(fpid);
   EXPECT_EQ(fpid.update(at(1e10, 0.0), 0.05), Status::NumericOverflow);  // Ke e = inf
   before.expect_equal(fpid);
 
-  FuzzyPid<double> plain;
+  FuzzyPid<double> plain = paper::make_fuzzy_pid<double>();
   ASSERT_EQ(plain.update(at(0.1, 0.0), 0.05), Status::Ok);
   const Snapshot before_plain(plain);
   // Finite error, but Kp e overflows inside the PID: gains must be rolled back too.
@@ -328,7 +374,7 @@ TEST(FuzzyPid, OverflowInTheScaledInputsOrThePidChangesNothing) {
 }
 
 TEST(FuzzyPid, InvalidConfigIsRejected) {
-  const auto good = fuzzypid::control::paper_config<double>();
+  const auto good = paper::paper_config<double>();
   std::array<FuzzyPidConfig<double>, 6> bad{};
   bad.fill(good);
   bad[0].error_scale = kNaN;
@@ -342,18 +388,18 @@ TEST(FuzzyPid, InvalidConfigIsRejected) {
   for (std::size_t k = 0; k < bad.size(); ++k) {
     SCOPED_TRACE("bad config " + std::to_string(k));
     EXPECT_FALSE(bad[k].valid());
-    FuzzyPid<double> constructed(paper::make_system<double>(), bad[k]);
+    FuzzyPid<double> constructed(&paper::kSystem<double>, bad[k]);
     EXPECT_EQ(constructed.update(at(0.1, 0.0), 0.05), Status::InvalidConfig);
-    FuzzyPid<double> configured;
+    FuzzyPid<double> configured = paper::make_fuzzy_pid<double>();
     EXPECT_EQ(configured.configure(bad[k]), Status::InvalidConfig);
     EXPECT_EQ(configured.update(at(0.1, 0.0), 0.05), Status::Ok);
   }
 }
 
 TEST(FuzzyPid, ResetAndInitializeRestoreTheNominalGains) {
-  auto config = fuzzypid::control::paper_config<double>();
+  auto config = paper::paper_config<double>();
   config.gain_update = GainUpdate::Incremental;
-  FuzzyPid<double> fpid(paper::make_system<double>(), config);
+  FuzzyPid<double> fpid(&paper::kSystem<double>, config);
   for (int k = 0; k < 5; ++k)
     ASSERT_EQ(fpid.update(at(0.3, 0.0, 0.3, 0.0), 0.05), Status::Ok);
   ASSERT_NE(fpid.gains(), config.pid.gains);
@@ -376,11 +422,11 @@ TEST(FuzzyPid, InitializeGivesABumplessStart) {
   // gains have drifted.
   for (const auto mode : {GainUpdate::Absolute, GainUpdate::Incremental}) {
     for (const auto source : {DerivativeSource::Rates, DerivativeSource::Difference}) {
-      auto config = fuzzypid::control::paper_config<double>();
+      auto config = paper::paper_config<double>();
       config.gain_update = mode;
       config.pid.derivative_source = source;
       config.output_scale = {50.0, 1.0, 10.0};
-      FuzzyPid<double> fpid(paper::make_system<double>(), config);
+      FuzzyPid<double> fpid(&paper::kSystem<double>, config);
       for (int k = 0; k < 20; ++k)
         ASSERT_EQ(fpid.update(at(0.3, 0.0, 0.3, 0.0), 0.05), Status::Ok);
       const Input in = at(0.25, 0.1);  // e = 0.15, no motion
@@ -395,8 +441,8 @@ TEST(FuzzyPid, InitializeGivesABumplessStart) {
 }
 
 TEST(FuzzyPid, FloatInstantiationTracksDouble) {
-  FuzzyPid<float> ff;
-  FuzzyPid<double> fd;
+  FuzzyPid<float> ff = paper::make_fuzzy_pid<float>();
+  FuzzyPid<double> fd = paper::make_fuzzy_pid<double>();
   for (int k = 0; k < 200; ++k) {
     const float e = 0.002f * static_cast<float>(k % 300) - 0.3f;
     fuzzypid::pid::Input<float> in;

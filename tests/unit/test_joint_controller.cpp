@@ -11,13 +11,29 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::FuzzyPid;
 using fuzzypid::control::JointController;
+using fuzzypid::control::JointInput;
+using fuzzypid::paper::FuzzyPid;
+
+// One tick's input from its five vectors.
+template <class Scalar, std::size_t N>
+JointInput<Scalar, N> input(const std::array<Scalar, N>& qd, const std::array<Scalar, N>& vd,
+                            const std::array<Scalar, N>& q, const std::array<Scalar, N>& v,
+                            const std::array<Scalar, N>& ff = {}) {
+  JointInput<Scalar, N> in;
+  in.desired_position_rad = qd;
+  in.desired_velocity_rad_s = vd;
+  in.measured_position_rad = q;
+  in.measured_velocity_rad_s = v;
+  in.feed_forward_nm = ff;
+  return in;
+}
 
 template <class Scalar>
 fuzzypid::pid::Pid<Scalar> make_pid(Scalar kp) {
@@ -30,10 +46,10 @@ fuzzypid::pid::Pid<Scalar> make_pid(Scalar kp) {
 
 template <class Scalar>
 FuzzyPid<Scalar> make_fuzzy(Scalar kp) {
-  auto config = fuzzypid::control::paper_config<Scalar>();
+  auto config = fuzzypid::paper::paper_config<Scalar>();
   config.pid.gains.kp = kp;
   config.error_scale = Scalar(3);
-  return FuzzyPid<Scalar>(fuzzypid::paper::make_system<Scalar>(), config);
+  return FuzzyPid<Scalar>(&fuzzypid::paper::kSystem<Scalar>, config);
 }
 
 template <class Scalar, class Controller>
@@ -88,7 +104,7 @@ TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
       v[i] = u(rng);
       ff[i] = u(rng);
     }
-    const auto out = controller.step(qd, vd, q, v, Scalar(0.01), &ff);
+    const auto out = controller.step(input(qd, vd, q, v, ff), Scalar(0.01));
     ASSERT_EQ(out.status, Status::Ok);
     for (std::size_t i = 0; i < kJoints; ++i) {
       fuzzypid::pid::Input<Scalar> in;
@@ -98,7 +114,7 @@ TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
       in.measurement_rate = v[i];
       in.feed_forward = ff[i];
       ASSERT_EQ(standalone[i].update(in, Scalar(0.01)), Status::Ok);
-      ASSERT_EQ(out.command[i], standalone[i].output()) << "joint " << i;
+      ASSERT_EQ(out.torque_nm[i], standalone[i].output()) << "joint " << i;
       ASSERT_EQ(out.joint_status[i], Status::Ok);
       ASSERT_EQ(controller.joint(i).output(), standalone[i].output());
     }
@@ -111,7 +127,7 @@ TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCom
   JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));
-  const auto first = controller.step(qd, vd, q, v, Scalar(0.01));
+  const auto first = controller.step(input(qd, vd, q, v), Scalar(0.01));
   ASSERT_EQ(first.status, Status::Ok);
 
   auto twin = controller;
@@ -119,22 +135,22 @@ TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCom
   bad_q[2] = std::numeric_limits<Scalar>::quiet_NaN();
   auto bad_v = v;
   bad_v[4] = std::numeric_limits<Scalar>::infinity();
-  const auto out = controller.step(qd, vd, bad_q, bad_v, Scalar(0.01));
-  const auto reference = twin.step(qd, vd, q, v, Scalar(0.01));
+  const auto out = controller.step(input(qd, vd, bad_q, bad_v), Scalar(0.01));
+  const auto reference = twin.step(input(qd, vd, q, v), Scalar(0.01));
   EXPECT_EQ(out.status, Status::NonFiniteInput);
   for (std::size_t i = 0; i < kJoints; ++i) {
     if (i == 2 || i == 4) {
       EXPECT_EQ(out.joint_status[i], Status::NonFiniteInput) << "joint " << i;
-      EXPECT_EQ(out.command[i], first.command[i]) << "joint " << i;
+      EXPECT_EQ(out.torque_nm[i], first.torque_nm[i]) << "joint " << i;
     } else {
       EXPECT_EQ(out.joint_status[i], Status::Ok) << "joint " << i;
-      EXPECT_EQ(out.command[i], reference.command[i]) << "joint " << i;
+      EXPECT_EQ(out.torque_nm[i], reference.torque_nm[i]) << "joint " << i;
     }
   }
   // The faulty joints recover on the next good tick.
-  const auto next = controller.step(qd, vd, q, v, Scalar(0.01));
+  const auto next = controller.step(input(qd, vd, q, v), Scalar(0.01));
   EXPECT_EQ(next.status, Status::Ok);
-  EXPECT_EQ(next.command[0], twin.step(qd, vd, q, v, Scalar(0.01)).command[0]);
+  EXPECT_EQ(next.torque_nm[0], twin.step(input(qd, vd, q, v), Scalar(0.01)).torque_nm[0]);
 }
 
 TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryCommand) {
@@ -143,12 +159,12 @@ TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryComman
   JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));
-  const auto first = controller.step(qd, vd, q, v, Scalar(0.01));
-  const auto out = controller.step(qd, vd, q, v, Scalar(0));
+  const auto first = controller.step(input(qd, vd, q, v), Scalar(0.01));
+  const auto out = controller.step(input(qd, vd, q, v), Scalar(0));
   EXPECT_EQ(out.status, Status::InvalidTimeStep);
   for (std::size_t i = 0; i < kJoints; ++i) {
     EXPECT_EQ(out.joint_status[i], Status::InvalidTimeStep);
-    EXPECT_EQ(out.command[i], first.command[i]);
+    EXPECT_EQ(out.torque_nm[i], first.torque_nm[i]);
   }
 }
 
@@ -159,7 +175,7 @@ TYPED_TEST(JointControllerTyped, ResetClearsEveryJoint) {
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));
   for (int k = 0; k < 5; ++k)
-    (void)controller.step(qd, vd, q, v, Scalar(0.01));
+    (void)controller.step(input(qd, vd, q, v), Scalar(0.01));
   controller.reset();
   for (std::size_t i = 0; i < kJoints; ++i)
     EXPECT_EQ(controller.joint(i).output(), Scalar(0));
@@ -168,20 +184,32 @@ TYPED_TEST(JointControllerTyped, ResetClearsEveryJoint) {
 TEST(JointController, PrototypeConstructorCopiesOneControllerIntoEveryJoint) {
   JointController<double, 3, fuzzypid::pid::Pid<double>> controller(make_pid<double>(2.0));
   EXPECT_EQ(controller.size(), 3u);
-  const auto out = controller.step({1.0, 2.0, 3.0}, {}, {}, {}, 0.01);
+  const auto out = controller.step(JointInput<double, 3>{{1.0, 2.0, 3.0}}, 0.01);
   ASSERT_EQ(out.status, Status::Ok);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(controller.joint(i).gains().kp, 2.0);
-    EXPECT_NEAR(out.command[i], 2.0 * (i + 1.0) + 0.5 * (i + 1.0) * 0.01, 1e-12);
+    EXPECT_NEAR(out.torque_nm[i], 2.0 * (i + 1.0) + 0.5 * (i + 1.0) * 0.01, 1e-12);
   }
 }
 
-TEST(JointController, DefaultsToThePapersFuzzyPidOnEveryJoint) {
-  JointController<double, 6> controller;
-  for (std::size_t i = 0; i < 6; ++i)
+TEST(JointController, ThePapersControllerRunsThePapersFuzzyPidOnEveryJoint) {
+  auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
+  for (std::size_t i = 0; i < 6; ++i) {
     EXPECT_EQ(controller.joint(i).gains(), fuzzypid::paper::kNominalGains<double>);
-  const auto out = controller.step({0.1, 0.1, 0.1, 0.1, 0.1, 0.1}, {}, {}, {}, 0.05);
+    EXPECT_EQ(controller.joint(i).supervisor(), &fuzzypid::paper::kSystem<double>);
+  }
+  const auto out = controller.step(JointInput<double, 6>{{0.1, 0.1, 0.1, 0.1, 0.1, 0.1}}, 0.05);
   EXPECT_EQ(out.status, Status::Ok);
+}
+
+TEST(JointController, SixPaperJointsShareOneRuleBaseAndFitInTwoKilobytes) {
+  // Per-joint state only (integrator, previous error, gains, filter); the rule base is shared.
+  static_assert(sizeof(fuzzypid::paper::JointController<double, 6>) <= 2048);
+  static_assert(sizeof(fuzzypid::paper::JointController<double, 6>) <
+                sizeof(fuzzypid::paper::System<double>) + 2048);
+  const auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
+  for (std::size_t i = 1; i < 6; ++i)
+    EXPECT_EQ(controller.joint(i).supervisor(), controller.joint(0).supervisor());
 }
 
 TEST(JointController, StatusIsTheWorstOfTheJoints) {
@@ -194,13 +222,15 @@ TEST(JointController, StatusIsTheWorstOfTheJoints) {
       fuzzypid::fuzzy::Term<double>::triangle(0.0, 1.0, 2.0)};
   gappy.e = fuzzypid::fuzzy::LinguisticVariable<double, 2>::custom(-1.0, 2.0, terms);
   gappy.ec = gappy.e;
-  const FuzzyPid<double, Gappy> joint(gappy, fuzzypid::control::paper_config<double>());
-  JointController<double, 2, FuzzyPid<double, Gappy>> controller(joint);
-  auto out = controller.step({0.5, 5.0}, {}, {}, {}, 0.05);
+  using Joint = fuzzypid::control::FuzzyPid<double, Gappy>;
+  const Joint joint(&gappy, fuzzypid::paper::paper_config<double>());
+  JointController<double, 2, Joint> controller(joint);
+  auto out = controller.step(JointInput<double, 2>{{0.5, 5.0}}, 0.05);
   EXPECT_EQ(out.joint_status[0], Status::Ok);
   EXPECT_EQ(out.joint_status[1], Status::NoRuleFired);
   EXPECT_EQ(out.status, Status::NoRuleFired);
-  out = controller.step({std::numeric_limits<double>::quiet_NaN(), 5.0}, {}, {}, {}, 0.05);
+  out =
+      controller.step(JointInput<double, 2>{{std::numeric_limits<double>::quiet_NaN(), 5.0}}, 0.05);
   EXPECT_EQ(out.joint_status[0], Status::NonFiniteInput);
   EXPECT_EQ(out.joint_status[1], Status::NoRuleFired);
   EXPECT_EQ(out.status, Status::NonFiniteInput);

@@ -20,7 +20,7 @@
 namespace {
 
 using fuzzypid::Status;
-using Fuzzy = fuzzypid::control::FuzzyPid<double>;
+using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
 using Controller = fuzzypid::control::JointController<double, 6, Fuzzy>;
 using Vector = Controller::Vector;
 
@@ -35,7 +35,7 @@ double uniform(std::mt19937_64& rng) {
 }
 
 fuzzypid::control::FuzzyPidConfig<double> config(std::size_t joint) {
-  auto c = fuzzypid::control::paper_config<double>();
+  auto c = fuzzypid::paper::paper_config<double>();
   c.pid.gains = {4.0, 0.02, 5.0};  // the paper's per-tick gains at 50 ms, continuous form
   c.pid.output_min = -kOutputLimit;
   c.pid.output_max = kOutputLimit;
@@ -51,7 +51,7 @@ fuzzypid::control::FuzzyPidConfig<double> config(std::size_t joint) {
 Controller make_controller() {
   std::array<Fuzzy, 6> joints;
   for (std::size_t i = 0; i < 6; ++i)
-    joints[i] = Fuzzy(fuzzypid::paper::make_system<double>(), config(i));
+    joints[i] = Fuzzy(&fuzzypid::paper::kSystem<double>, config(i));
   return Controller(joints);
 }
 
@@ -104,7 +104,12 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
       ++bad_dt_injected;
     }
 
-    const auto command = controller.step(setpoint, zero, q, qd, dt_controller);
+    Controller::Input in;
+    in.desired_position_rad = setpoint;
+    in.desired_velocity_rad_s = zero;
+    in.measured_position_rad = q;
+    in.measured_velocity_rad_s = qd;
+    const auto command = controller.step(in, dt_controller);
 
     for (std::size_t i = 0; i < 6; ++i) {
       const Status s = command.joint_status[i];
@@ -116,11 +121,11 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
       } else if (i != bad_joint) {
         ASSERT_FALSE(fuzzypid::is_fault(s)) << "tick " << tick << " joint " << i;
       }
-      ASSERT_EQ(command.command[i], controller.joint(i).output());
+      ASSERT_EQ(command.torque_nm[i], controller.joint(i).output());
       expect_sane(controller.joint(i), i, tick);
       // Unit double integrator, exact over dt with the command held.
-      position[i] += velocity[i] * dt + 0.5 * command.command[i] * dt * dt;
-      velocity[i] += command.command[i] * dt;
+      position[i] += velocity[i] * dt + 0.5 * command.torque_nm[i] * dt * dt;
+      velocity[i] += command.torque_nm[i] * dt;
     }
     if (!bad_dt && bad_joint < 6 && !std::isfinite(injected)) ++nonfinite_injected;
   }
@@ -129,11 +134,15 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
   EXPECT_GE(faults, nonfinite_injected + 6 * bad_dt_injected);
   // After all that, the loop still tracks: hold the last setpoint with clean input for 60 s.
   for (int tick = 0; tick < 1200; ++tick) {
-    const auto command = controller.step(setpoint, zero, position, velocity, 0.05);
+    Controller::Input in;
+    in.desired_position_rad = setpoint;
+    in.measured_position_rad = position;
+    in.measured_velocity_rad_s = velocity;
+    const auto command = controller.step(in, 0.05);
     ASSERT_FALSE(fuzzypid::is_fault(command.status));
     for (std::size_t i = 0; i < 6; ++i) {
-      position[i] += velocity[i] * 0.05 + 0.5 * command.command[i] * 0.0025;
-      velocity[i] += command.command[i] * 0.05;
+      position[i] += velocity[i] * 0.05 + 0.5 * command.torque_nm[i] * 0.0025;
+      velocity[i] += command.torque_nm[i] * 0.05;
     }
   }
   for (std::size_t i = 0; i < 6; i += 2)  // the absolute-update joints settle
@@ -141,7 +150,7 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
 }
 
 TEST(Robustness, LongSaturationKeepsTheIntegralBoundedAndReleasesAtOnce) {
-  Fuzzy joint(fuzzypid::paper::make_system<double>(), config(0));
+  Fuzzy joint(&fuzzypid::paper::kSystem<double>, config(0));
   fuzzypid::pid::Input<double> in;
   in.setpoint = 100.0;  // unreachable: the output saturates for the whole hour
   for (int tick = 0; tick < 72'000; ++tick) {

@@ -588,13 +588,13 @@ TEST(RuleFile, FuzzyPidWithALoadedPaperSystemTracksTheBuiltInOne) {
   const fuzzypid::fuzzy::EngineSupervisor<double> supervisor(model.get());
   ASSERT_TRUE(supervisor.valid());
 
-  auto config = control::paper_config<double>();
+  auto config = fuzzypid::paper::paper_config<double>();
   config.error_scale = 0.3;
   config.error_rate_scale = 0.1;
   auto loaded =
       std::make_unique<control::FuzzyPid<double, fuzzypid::fuzzy::EngineSupervisor<double>>>(
-          supervisor, config);
-  control::FuzzyPid<double> builtin(fuzzypid::paper::make_system<double>(), config);
+          &supervisor, config);
+  fuzzypid::paper::FuzzyPid<double> builtin(&fuzzypid::paper::kSystem<double>, config);
 
   // A unit-inertia joint driven to 0.5 rad at 100 Hz.
   double q = 0.0, v = 0.0;

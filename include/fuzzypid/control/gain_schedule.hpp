@@ -31,32 +31,19 @@ class GainSchedule {
  public:
   struct Workspace {};
 
-  // The outputs and status of one inference, as the table systems report them.
-  struct Result {
-    std::array<Scalar, 3> output{};
-    Status status = Status::Ok;
-  };
-
   Workspace make_workspace() const noexcept { return {}; }
 
   // w(x, y) = min(1, |x| + |y|) for all three outputs. Non-finite inputs are a fault (delta = 0).
   [[nodiscard]] Status infer(Scalar e, Scalar ec, Workspace& /*ws*/,
                              std::array<Scalar, 3>& delta) const noexcept {
-    const Result r = infer(e, ec);
-    delta = r.output;
-    return r.status;
-  }
-
-  [[nodiscard]] Result infer(Scalar e, Scalar ec) const noexcept {
-    Result r;
     if (!detail::is_finite(e) || !detail::is_finite(ec)) {
-      r.status = Status::NonFiniteInput;
-      return r;
+      delta = {Scalar(0), Scalar(0), Scalar(0)};
+      return Status::NonFiniteInput;
     }
     const Scalar a = (e < Scalar(0) ? -e : e) + (ec < Scalar(0) ? -ec : ec);
     const Scalar w = a < Scalar(1) ? a : Scalar(1);
-    r.output = {w, w, w};
-    return r;
+    delta = {w, w, w};
+    return Status::Ok;
   }
 };
 

@@ -5,7 +5,6 @@
 #include <cstddef>
 #include <utility>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
@@ -15,53 +14,68 @@ namespace fuzzypid::control {
 template <class Scalar, std::size_t N>
 using JointVector = std::array<Scalar, N>;
 
+// One tick's references and measurements, per joint.
+template <class Scalar, std::size_t N>
+struct JointInput {
+  JointVector<Scalar, N> desired_position_rad{};
+  JointVector<Scalar, N> desired_velocity_rad_s{};
+  JointVector<Scalar, N> measured_position_rad{};
+  JointVector<Scalar, N> measured_velocity_rad_s{};
+  JointVector<Scalar, N> feed_forward_nm{};  // added to each joint's output
+};
+
 // The commands of one tick. A joint whose input is faulty holds its previous command and reports
 // the fault in joint_status; the other joints are controlled normally. `status` is the worst of
 // the per-joint statuses.
 template <class Scalar, std::size_t N>
-struct JointCommand {
-  JointVector<Scalar, N> command{};  // e.g. joint torques, N·m
+struct JointOutput {
+  // The controllers' outputs: joint torques, N·m, with gains in N·m/rad (gains normalised by
+  // inertia give accelerations here instead, rad/s²).
+  JointVector<Scalar, N> torque_nm{};
   std::array<Status, N> joint_status{};
   Status status = Status::Ok;
 };
 
-// Controller is pid::Pid<Scalar> or FuzzyPid<Scalar, System> (anything with
-// `Status update(const pid::Input<Scalar>&, Scalar)` and `Scalar output()`).
-template <class Scalar, std::size_t N, class Controller = FuzzyPid<Scalar>>
+// Controller is pid::Pid<Scalar> or FuzzyPid<Scalar, Supervisor> (anything with
+// `Status update(const pid::Input<Scalar>&, Scalar)` and `Scalar output()`); paper.hpp has the
+// paper's as paper::JointController. The controllers hold per-joint state only: a fuzzy
+// supervisor is shared, not copied.
+template <class Scalar, std::size_t N, class Controller>
 class JointController {
   FUZZYPID_ASSERT_SCALAR(Scalar);
   static_assert(N >= 1, "a joint controller needs at least one joint");
 
  public:
   using Vector = JointVector<Scalar, N>;
-  using Command = JointCommand<Scalar, N>;
+  using Input = JointInput<Scalar, N>;
+  using Output = JointOutput<Scalar, N>;
 
   JointController() = default;
   // Every joint starts as a copy of `prototype`. Copy-constructed, so Controller need not be
-  // default-constructible (FuzzyPid with a custom System is not).
-  explicit JointController(const Controller& prototype) noexcept
+  // default-constructible.
+  explicit JointController(const Controller& prototype)
       : joints_(fill(prototype, std::make_index_sequence<N>{})) {}
-  explicit JointController(const std::array<Controller, N>& joints) noexcept : joints_(joints) {}
+  explicit JointController(const std::array<Controller, N>& joints) : joints_(joints) {}
 
-  // One tick for all joints. Positions in rad, velocities in rad/s, dt in s; the optional
-  // feed-forward is added to each joint's output.
-  Command step(const Vector& desired_position, const Vector& desired_velocity,
-               const Vector& measured_position, const Vector& measured_velocity, Scalar dt_s,
-               const Vector* feed_forward = nullptr) noexcept {
-    Command out;
+  // One tick for all joints over dt_s seconds.
+  [[gnu::flatten]] [[nodiscard]] Output step(const Input& in, Scalar dt_s) noexcept {
+    // Filled joint by joint and assembled at the end (no zero-fill of the result first).
+    JointVector<Scalar, N> torque;
+    std::array<Status, N> joint_status;
+    Status status = Status::Ok;
     for (std::size_t i = 0; i < N; ++i) {
-      pid::Input<Scalar> in;
-      in.setpoint = desired_position[i];
-      in.measurement = measured_position[i];
-      in.setpoint_rate = desired_velocity[i];
-      in.measurement_rate = measured_velocity[i];
-      in.feed_forward = feed_forward != nullptr ? (*feed_forward)[i] : Scalar(0);
-      const Status s = joints_[i].update(in, dt_s);
-      out.joint_status[i] = s;
-      out.status = worst(out.status, s);
-      out.command[i] = joints_[i].output();
+      pid::Input<Scalar> joint;
+      joint.setpoint = in.desired_position_rad[i];
+      joint.measurement = in.measured_position_rad[i];
+      joint.setpoint_rate = in.desired_velocity_rad_s[i];
+      joint.measurement_rate = in.measured_velocity_rad_s[i];
+      joint.feed_forward = in.feed_forward_nm[i];
+      const Status s = joints_[i].update(joint, dt_s);
+      joint_status[i] = s;
+      status = worst(status, s);
+      torque[i] = joints_[i].output();
     }
-    return out;
+    return {torque, joint_status, status};
   }
 
   void reset() noexcept {
@@ -75,8 +89,7 @@ class JointController {
 
  private:
   template <std::size_t... I>
-  static std::array<Controller, N> fill(const Controller& prototype,
-                                        std::index_sequence<I...>) noexcept {
+  static std::array<Controller, N> fill(const Controller& prototype, std::index_sequence<I...>) {
     return {{(static_cast<void>(I), prototype)...}};
   }
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -22,7 +23,8 @@ namespace fuzzypid::controller_file {
 inline constexpr std::size_t kJoints = 6;
 
 using Vector = std::array<double, kJoints>;
-using Command = control::JointCommand<double, kJoints>;
+using Input = control::JointInput<double, kJoints>;
+using Command = control::JointOutput<double, kJoints>;
 using PidJoints = control::JointController<double, kJoints, pid::Pid<double>>;
 using FuzzyJoints =
     control::JointController<double, kJoints, control::FuzzyPid<double, paper::System<double>>>;
@@ -37,6 +39,7 @@ using ScheduledJoints =
 [[nodiscard]] control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
                                                                double output_limit);
 
+// Owns the supervisor its fuzzy or scheduled joints point to: movable, not copyable.
 class JointControllers {
  public:
   // output_limit[i]: |u_i| <= output_limit[i] in the controller's units (rad/s² with acceleration
@@ -45,18 +48,12 @@ class JointControllers {
                                                               const Vector& output_limit,
                                                               std::string& error);
 
-  // One tick of all joints (see control::JointController::step).
-  Command step(const Vector& desired_position, const Vector& desired_velocity,
-               const Vector& measured_position, const Vector& measured_velocity,
-               double dt_s) noexcept {
-    if (auto* p = std::get_if<PidJoints>(&joints_))
-      return p->step(desired_position, desired_velocity, measured_position, measured_velocity,
-                     dt_s);
-    if (auto* f = std::get_if<FuzzyJoints>(&joints_))
-      return f->step(desired_position, desired_velocity, measured_position, measured_velocity,
-                     dt_s);
-    return std::get_if<ScheduledJoints>(&joints_)->step(desired_position, desired_velocity,
-                                                        measured_position, measured_velocity, dt_s);
+  // One tick of all joints (see control::JointController::step); the outputs (torque_nm) are
+  // in the controller's units (rad/s² with acceleration units).
+  [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
+    if (auto* p = std::get_if<PidJoints>(&joints_)) return p->step(in, dt_s);
+    if (auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->step(in, dt_s);
+    return std::get_if<ScheduledJoints>(&joints_)->step(in, dt_s);
   }
 
   // The gains joint i used in its last step, in continuous SI form.
@@ -73,11 +70,14 @@ class JointControllers {
   const ControllerSpec& spec() const noexcept { return spec_; }
 
  private:
-  template <class Joints>
-  JointControllers(const ControllerSpec& spec, Joints joints)
-      : spec_(spec), joints_(std::move(joints)) {}
+  JointControllers(const ControllerSpec& spec, std::unique_ptr<const paper::System<double>> tables,
+                   std::unique_ptr<const control::GainSchedule<double>> schedule)
+      : spec_(spec), tables_(std::move(tables)), schedule_(std::move(schedule)) {}
 
   ControllerSpec spec_;
+  // The shared supervisors (on the heap: their addresses survive moves of this object).
+  std::unique_ptr<const paper::System<double>> tables_;
+  std::unique_ptr<const control::GainSchedule<double>> schedule_;
   std::variant<PidJoints, FuzzyJoints, ScheduledJoints> joints_;
 };
 

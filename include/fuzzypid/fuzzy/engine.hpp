@@ -422,6 +422,17 @@ class EngineSupervisor {
   // True when the model is present, valid and has the 2 inputs and 3 outputs FuzzyPid needs.
   bool valid() const noexcept { return valid_; }
 
+  // The supervisor concept of control/supervisor.hpp: the caller's workspace instead of ws_.
+  using Workspace = EngineWorkspace<Scalar>;
+  Workspace make_workspace() const noexcept { return {}; }
+  [[nodiscard]] Status infer(Scalar e, Scalar ec, Workspace& ws,
+                             std::array<Scalar, 3>& delta) const noexcept {
+    delta = {};
+    if (!valid_) return Status::InvalidConfig;
+    const Scalar in[2] = {e, ec};
+    return fuzzy::evaluate(*model_, ws, in, delta.data());
+  }
+
   Result infer(Scalar e, Scalar ec) const noexcept {
     Result r;
     if (!valid_) {

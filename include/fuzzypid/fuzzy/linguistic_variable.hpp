@@ -4,14 +4,12 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/scalar.hpp"
 
 namespace fuzzypid::fuzzy {
-
-template <class Scalar, std::size_t NE, std::size_t NEC, std::size_t NOut>
-struct TskSystem;
 
 // The membership degrees of one crisp value in each of a variable's N terms. Only the indices
 // [first, last] can be non-zero; first > last means no term holds the value (e.g. NaN).
@@ -47,8 +45,12 @@ class LinguisticVariable {
     v.terms_[N - 1] = Term<Scalar>::right_shoulder(v.peak_[N - 2], v.peak_[N - 1]);
     for (std::size_t k = 1; k + 1 < N; ++k)
       v.terms_[k] = Term<Scalar>::triangle(v.peak_[k - 1], v.peak_[k], v.peak_[k + 1]);
-    v.step_ = h;
-    v.inverse_step_ = Scalar(1) / h;
+    // 1/h, rounded down until (max - min) / h <= N - 1 in floating point, so that locate()'s
+    // position t never passes the last peak (and equals N - 1 there when the rounding allows).
+    Scalar r = Scalar(N - 1) / (max - min);
+    for (int k = 0; k < 4 && (max - min) * r > Scalar(N - 1); ++k)
+      r -= r * std::numeric_limits<Scalar>::epsilon();
+    v.inverse_step_ = r;
     return v;
   }
 
@@ -91,41 +93,33 @@ class LinguisticVariable {
     return out;
   }
 
- private:
-  template <class, std::size_t, std::size_t, std::size_t>
-  friend struct TskSystem;
-
   // The two adjacent terms k, k + 1 of a uniform partition whose interval holds x, and x's
   // degrees in them (every other term's degree is 0). Outside the universe it is the edge term
   // with degree 1 and its neighbour with degree 0. A term whose degree here is not > 0 does not
-  // hold x (it is left out of the span [first, last]).
+  // hold x.
   struct Adjacent {
     std::size_t k;
     Scalar lower;  // degree of term k
     Scalar upper;  // degree of term k + 1
   };
 
-  // Requires a uniform partition and x not NaN. Shared by fuzzify_into() and
-  // TskSystem::infer_outputs(), so both see exactly the same degrees.
-  Adjacent locate(Scalar x) const noexcept {
-    if (x <= min_) return {0, Scalar(1), Scalar(0)};
-    if (x >= max_) return {N - 2, Scalar(0), Scalar(1)};
-    // Index of the left peak of the interval holding x, corrected for rounding so that
-    // peak_[k] <= x <= peak_[k + 1]. The estimate multiplies by 1/h rather than dividing by h (a
-    // division costs as much as the rest of this function); like the quotient it can be off by
-    // one next to a peak, which the two corrections absorb. On a peak both neighbouring intervals
-    // give the same degrees (1 for that peak's term, 0 elsewhere).
-    std::size_t k = static_cast<std::size_t>((x - min_) * inverse_step_);
-    if (k > N - 2) k = N - 2;
-    if (x < peak_[k] && k > 0) --k;
-    if (x > peak_[k + 1] && k < N - 2) ++k;
-    // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
-    const Scalar width = peak_[k + 1] - peak_[k];
-    return {k, (peak_[k + 1] - x) / width, (x - peak_[k]) / width};
+  // Requires a uniform partition and x not NaN (an infinity saturates). O(1), no division, no
+  // table look-up and no data-dependent branch: with x clamped into the universe (where the edge
+  // term holds it with degree 1), t = (x - min) / h is x's position in steps, k = floor(t) the
+  // interval, and the triangle formulas on [peak_k, peak_k+1] reduce to upper = t - k and
+  // lower = 1 - upper (uniform peaks; equal to evaluating the terms up to rounding, about
+  // N ulp). The step's reciprocal is precomputed by uniform().
+  constexpr Adjacent locate(Scalar x) const noexcept {
+    const Scalar t = (detail::clamp(x, min_, max_) - min_) * inverse_step_;  // in [0, N - 1]
+    // A signed conversion: t is small and non-negative, and int needs no range fix-up.
+    const int floor_t = static_cast<int>(t);
+    const std::size_t k = floor_t < int(N - 2) ? static_cast<std::size_t>(floor_t) : N - 2;
+    const Scalar upper = t - static_cast<Scalar>(static_cast<int>(k));
+    return {k, Scalar(1) - upper, upper};
   }
 
+ private:
   // fuzzify() written into `out`, which must be default-constructed (all degrees 0, empty span).
-  // TskSystem fuzzifies straight into its result with it, saving two copies of the degrees.
   void fuzzify_into(Scalar x, Fuzzified<Scalar, N>& out) const noexcept {
     if (x != x) return;
     if (!uniform_) {
@@ -155,8 +149,7 @@ class LinguisticVariable {
   std::array<Scalar, N> peak_{};
   Scalar min_{};
   Scalar max_{};
-  Scalar step_{};
-  Scalar inverse_step_{};  // 1 / step_, for the interval estimate of fuzzify_into()
+  Scalar inverse_step_{};  // 1 / h (rounded down, see uniform()), for locate()
   bool uniform_ = false;
 };
 

@@ -15,10 +15,15 @@ struct Gains {
   constexpr bool finite() const noexcept {
     return detail::is_finite(kp) && detail::is_finite(ki) && detail::is_finite(kd);
   }
-  friend constexpr bool operator==(const Gains& a, const Gains& b) noexcept {
-    return a.kp == b.kp && a.ki == b.ki && a.kd == b.kd;
-  }
-  friend constexpr bool operator!=(const Gains& a, const Gains& b) noexcept { return !(a == b); }
 };
+
+template <class Scalar>
+constexpr bool operator==(const Gains<Scalar>& a, const Gains<Scalar>& b) noexcept {
+  return a.kp == b.kp && a.ki == b.ki && a.kd == b.kd;
+}
+template <class Scalar>
+constexpr bool operator!=(const Gains<Scalar>& a, const Gains<Scalar>& b) noexcept {
+  return !(a == b);
+}
 
 }  // namespace fuzzypid::pid

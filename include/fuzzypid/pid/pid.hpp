@@ -1,19 +1,24 @@
 // A discrete PID controller in the parallel form of Eq. 2, written for a hard periodic loop.
 //
-// Each update(in, dt) computes, with e = setpoint - measurement,
+// Each update(in, dt, K) computes, with this tick's gains K = (Kp, Ki, Kd) and e = setpoint -
+// measurement,
 //
 //   P = Kp e
 //   I = I_prev + Ki e dt                         (backward Euler; the gain sits inside the sum)
 //   D = Kd d,  d = LPF(d_raw)                    (first-order filter, time constant Tf)
 //   v = P + I + D + feed_forward,   u = clamp(v, output_min, output_max)
 //
-// where d_raw is chosen by two switches:
-//   DerivativeSource::Rates       d_raw = setpoint_rate - measurement_rate   (Eq. 2 as written)
-//                                 or -measurement_rate with DerivativeOn::Measurement
-//   DerivativeSource::Difference  d_raw = (e - e_prev) / dt
-//                                 or -(y - y_prev) / dt with DerivativeOn::Measurement, which gives
-//                                 no derivative kick when the setpoint steps
-// and the filter is d = d_prev + dt / (Tf + dt) (d_raw - d_prev) (Tf = 0: no filter).
+// The error rate ec (error()) is the one definition of de/dt, chosen by DerivativeSource:
+//   Rates       ec = setpoint_rate - measurement_rate      (Eq. 2 as written)
+//   Difference  ec = (e - e_prev) / dt                     (0 without a previous sample)
+// and d_raw is ec with DerivativeOn::Error, or the measurement's part alone with
+// DerivativeOn::Measurement (-measurement_rate, or -(y - y_prev) / dt), which gives no derivative
+// kick when the setpoint steps. The filter is d = d_prev + dt / (Tf + dt) (d_raw - d_prev)
+// (Tf = 0: no filter).
+//
+// The gains are an argument of the tick: update(in, dt) runs with the configured gains
+// (config().gains), update(in, dt, gains) with the caller's -- a fuzzy supervisor passes the
+// gains it retuned for this tick and keeps them itself; the PID stores no copy.
 //
 // The integral is stored as its contribution to the output, I = sum(Ki e dt), not as sum(e dt):
 // changing Ki online (a fuzzy supervisor does so every tick) therefore never bumps the output.
@@ -28,20 +33,18 @@
 // Feed-forward is part of v, so it is covered by both schemes.
 //
 // Faults: a NaN/inf input or gain, a dt that is not finite and positive, or an overflow leave
-// every piece of state untouched, hold the last output and return the fault. Nothing in update()
+// every piece of state untouched, hold the last output and return the fault. Every input that the
+// tick reads reaches v, so the tick tests finiteness once, on v (and on I after back-calculation),
+// and only a non-finite result looks at the inputs to name the fault. Nothing in update()
 // allocates, throws, locks or prints.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
-
-namespace fuzzypid::control {
-template <class Scalar, class System>
-class FuzzyPid;
-}  // namespace fuzzypid::control
 
 namespace fuzzypid::pid {
 
@@ -51,16 +54,16 @@ enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
 
 template <class Scalar>
 struct Config {
-  Gains<Scalar> gains{Scalar(1), Scalar(0), Scalar(0)};
-  DerivativeOn derivative_on = DerivativeOn::Error;
-  DerivativeSource derivative_source = DerivativeSource::Rates;
-  Scalar derivative_filter_s = Scalar(0);  // Tf, s; 0 disables the filter
+  Gains<Scalar> gains{Scalar(1), Scalar(0), Scalar(0)};  // used by update(in, dt)
+  Scalar derivative_filter_s = Scalar(0);                // Tf, s; 0 disables the filter
   Scalar output_min = -detail::infinity<Scalar>();
   Scalar output_max = detail::infinity<Scalar>();
   Scalar integral_min = -detail::infinity<Scalar>();  // limits on I, in output units
   Scalar integral_max = detail::infinity<Scalar>();
-  AntiWindup anti_windup = AntiWindup::Clamping;
   Scalar tracking_gain_per_s = Scalar(0);  // Kt of back-calculation, 1/s
+  DerivativeOn derivative_on = DerivativeOn::Error;
+  DerivativeSource derivative_source = DerivativeSource::Rates;
+  AntiWindup anti_windup = AntiWindup::Clamping;
 
   // Gains finite; limits ordered (infinite allowed); Tf and Kt finite and non-negative.
   constexpr bool valid() const noexcept {
@@ -83,6 +86,14 @@ struct Input {
   Scalar feed_forward = Scalar(0);      // added to the output, in output units
 };
 
+// The error e = setpoint - measurement and its rate ec as the PID defines them for one tick (see
+// Pid::error()); a fuzzy supervisor reads the same two values.
+template <class Scalar>
+struct ErrorSignal {
+  Scalar e = Scalar(0);
+  Scalar ec = Scalar(0);
+};
+
 // The three terms of the last successful update, for logging.
 template <class Scalar>
 struct Terms {
@@ -99,6 +110,7 @@ class Pid {
   using Config = pid::Config<Scalar>;
   using Gains = pid::Gains<Scalar>;
   using Input = pid::Input<Scalar>;
+  using ErrorSignal = pid::ErrorSignal<Scalar>;
 
   constexpr Pid() noexcept = default;
   // An invalid configuration leaves the controller unconfigured: update() then returns
@@ -107,16 +119,17 @@ class Pid {
 
   // Replaces the configuration (keeps the state). Returns InvalidConfig and changes nothing when
   // the configuration is invalid.
-  constexpr Status configure(const Config& config) noexcept {
+  [[nodiscard]] constexpr Status configure(const Config& config) noexcept {
     if (!config.valid()) return Status::InvalidConfig;
     config_ = config;
     configured_ = Status::Ok;
     return Status::Ok;
   }
 
-  // Online gain change. The integral term keeps its value, so the output does not jump because of
-  // Ki; it moves at the next update only through the new Kp, Ki, Kd acting on new errors.
-  constexpr Status set_gains(const Gains& gains) noexcept {
+  // Online change of the configured gains (those of update(in, dt)). The integral term keeps its
+  // value, so the output does not jump because of Ki; it moves at the next update only through
+  // the new Kp, Ki, Kd acting on new errors.
+  [[nodiscard]] constexpr Status set_gains(const Gains& gains) noexcept {
     if (!gains.finite()) return Status::NonFiniteInput;
     config_.gains = gains;
     return Status::Ok;
@@ -127,17 +140,22 @@ class Pid {
     integral_ = derivative_ = output_ = unsaturated_ = Scalar(0);
     previous_error_ = previous_measurement_ = Scalar(0);
     terms_ = {};
-    has_previous_ = saturated_ = false;
+    has_previous_ = false;
   }
 
   // Bumpless start (e.g. manual -> automatic): sets the integral so that the next update with the
-  // same input produces `output` (P + I + feed-forward = output, clamped into the integral
-  // limits), and records the input as the previous sample so no derivative spike follows.
-  constexpr Status initialize(Scalar output, const Input& in) noexcept {
-    if (!detail::is_finite(output) || !finite(in)) return Status::NonFiniteInput;
+  // same input and gains produces `output` (P + I + feed-forward = output, clamped into the
+  // integral limits), and records the input as the previous sample so no derivative spike
+  // follows. The first form uses the configured gains.
+  [[nodiscard]] constexpr Status initialize(Scalar output, const Input& in) noexcept {
+    return initialize(output, in, config_.gains);
+  }
+  [[nodiscard]] constexpr Status initialize(Scalar output, const Input& in,
+                                            const Gains& gains) noexcept {
+    if (!detail::is_finite(output) || !finite(in) || !gains.finite()) return Status::NonFiniteInput;
     const Scalar e = in.setpoint - in.measurement;
-    const Scalar i = detail::clamp(output - config_.gains.kp * e - in.feed_forward,
-                                   config_.integral_min, config_.integral_max);
+    const Scalar i = detail::clamp(output - gains.kp * e - in.feed_forward, config_.integral_min,
+                                   config_.integral_max);
     if (!detail::is_finite(i)) return Status::NonFiniteInput;
     reset();
     integral_ = i;
@@ -148,50 +166,50 @@ class Pid {
     return Status::Ok;
   }
 
-  // One control step over dt_s seconds. Returns Ok or a fault (state untouched, output held).
-  constexpr Status update(const Input& in, Scalar dt_s) noexcept {
-    if (configured_ != Status::Ok) return configured_;
-    if (!(dt_s > Scalar(0)) || !detail::is_finite(dt_s)) return Status::InvalidTimeStep;
-    if (!finite(in)) return Status::NonFiniteInput;
-    return step<false>(in, dt_s, config_.gains);
+  // e and ec of this input (see the header comment): the one place the derivative source is
+  // chosen. Pure; meaningful for finite inputs and a valid dt.
+  constexpr ErrorSignal error(const Input& in, Scalar dt_s) const noexcept {
+    const Scalar e = in.setpoint - in.measurement;
+    Scalar ec = Scalar(0);
+    if (config_.derivative_source == DerivativeSource::Rates) {
+      ec = in.setpoint_rate - in.measurement_rate;
+    } else if (has_previous_) {
+      ec = (e - previous_error_) / dt_s;
+    }
+    return {e, ec};
   }
 
-  // Last output (held through faults), in output units.
-  constexpr Scalar output() const noexcept { return output_; }
-  // Last output before clamping.
-  constexpr Scalar unsaturated_output() const noexcept { return unsaturated_; }
-  constexpr bool saturated() const noexcept { return saturated_; }
-  // Integral term I (output units).
-  constexpr Scalar integral() const noexcept { return integral_; }
-  // Filtered derivative signal d (units of e per second).
-  constexpr Scalar derivative() const noexcept { return derivative_; }
-  constexpr const Terms<Scalar>& terms() const noexcept { return terms_; }
-  constexpr const Gains& gains() const noexcept { return config_.gains; }
-  constexpr const Config& config() const noexcept { return config_; }
-  // Whether a previous sample exists (false after construction and reset()).
-  constexpr bool has_previous() const noexcept { return has_previous_; }
-  constexpr Scalar previous_error() const noexcept { return previous_error_; }
+  // Whether update() would accept this input and dt: InvalidConfig, InvalidTimeStep,
+  // NonFiniteInput (a value the tick reads is NaN or infinite) or Ok. update() makes the same
+  // checks itself; this is for callers that need the verdict before running the tick.
+  [[nodiscard]] constexpr Status check(const Input& in, Scalar dt_s) const noexcept {
+    if (configured_ != Status::Ok) return configured_;
+    if (!valid_time_step(dt_s)) return Status::InvalidTimeStep;
+    return finite(in) ? Status::Ok : Status::NonFiniteInput;
+  }
 
- private:
-  template <class, class>
-  friend class control::FuzzyPid;
+  // One control step over dt_s seconds with the configured gains.
+  [[nodiscard]] constexpr Status update(const Input& in, Scalar dt_s) noexcept {
+    return update(in, dt_s, config_.gains);
+  }
 
-  // The body of update() once the controller is known to be configured, dt_s finite and
-  // positive, and `in` finite (finite(in)), with gains g. With kSetGains, g become the gains
-  // (set_gains) only if the step succeeds, so a fault still changes nothing. FuzzyPid, which has
-  // already made these checks and validated g, calls it directly instead of set_gains() + update().
-  template <bool kSetGains>
-  constexpr Status step(const Input& in, Scalar dt_s, const Gains& g) noexcept {
-    const Scalar e = in.setpoint - in.measurement;
+  // One control step over dt_s seconds with this tick's gains. Returns Ok or a fault (state
+  // untouched, output held): InvalidConfig, InvalidTimeStep, NonFiniteInput (an input or a gain),
+  // NumericOverflow (finite inputs, non-finite result).
+  [[nodiscard]] constexpr Status update(const Input& in, Scalar dt_s, const Gains& g) noexcept {
+    if (configured_ != Status::Ok) return configured_;
+    if (!valid_time_step(dt_s)) return Status::InvalidTimeStep;
+    const ErrorSignal err = error(in, dt_s);
+    const Scalar e = err.e;
 
-    Scalar d_raw = Scalar(0);
-    if (config_.derivative_source == DerivativeSource::Rates) {
-      d_raw = config_.derivative_on == DerivativeOn::Error ? in.setpoint_rate - in.measurement_rate
-                                                           : -in.measurement_rate;
-    } else if (has_previous_) {
-      d_raw = config_.derivative_on == DerivativeOn::Error
-                  ? (e - previous_error_) / dt_s
-                  : -(in.measurement - previous_measurement_) / dt_s;
+    Scalar d_raw = err.ec;
+    if (config_.derivative_on == DerivativeOn::Measurement) {
+      if (config_.derivative_source == DerivativeSource::Rates) {
+        // setpoint_rate * 0 keeps a NaN/inf setpoint rate visible to the check on v below.
+        d_raw = in.setpoint_rate * Scalar(0) - in.measurement_rate;
+      } else {
+        d_raw = has_previous_ ? -(in.measurement - previous_measurement_) / dt_s : Scalar(0);
+      }
     }
     const Scalar tf = config_.derivative_filter_s;
     const Scalar d = (tf > Scalar(0) && has_previous_)
@@ -211,19 +229,23 @@ class Pid {
       // of it would leave the output below the limit, unsaturated, with integral action stopped.
       const Scalar rest = p_term + d_term + in.feed_forward;
       const Scalar trial = rest + integral;
-      Scalar held = integral;
-      if (trial > hi && increment > Scalar(0)) held = detail::max(integral_, hi - rest);
-      if (trial < lo && increment < Scalar(0)) held = detail::min(integral_, lo - rest);
-      integral = detail::clamp(held, config_.integral_min, config_.integral_max);
+      if (trial > hi && increment > Scalar(0))
+        integral = detail::clamp(detail::max(integral_, hi - rest), config_.integral_min,
+                                 config_.integral_max);
+      if (trial < lo && increment < Scalar(0))
+        integral = detail::clamp(detail::min(integral_, lo - rest), config_.integral_min,
+                                 config_.integral_max);
     }
+    // v sums every value the tick read (e through P, ec through D, the feed-forward) with a
+    // finite or infinite coefficient: a NaN or infinite input or gain makes it non-finite.
     const Scalar v = p_term + integral + d_term + in.feed_forward;
+    if (!detail::is_finite(v)) return fault(in, dt_s, g);
     const Scalar u = detail::clamp(v, lo, hi);
     if (config_.anti_windup == AntiWindup::BackCalculation) {
       integral = detail::clamp(integral + config_.tracking_gain_per_s * (u - v) * dt_s,
                                config_.integral_min, config_.integral_max);
+      if (!detail::is_finite(integral)) return Status::NumericOverflow;
     }
-    if (!detail::is_finite(v) || !detail::is_finite(integral) || !detail::is_finite(d))
-      return Status::NumericOverflow;
 
     integral_ = integral;
     derivative_ = d;
@@ -232,12 +254,41 @@ class Pid {
     has_previous_ = true;
     unsaturated_ = v;
     output_ = u;
-    saturated_ = u != v;
     terms_ = {p_term, integral, d_term};
-    if constexpr (kSetGains) config_.gains = g;
     return Status::Ok;
   }
 
+  // Last output (held through faults), in output units.
+  constexpr Scalar output() const noexcept { return output_; }
+  // Last output before clamping.
+  constexpr Scalar unsaturated_output() const noexcept { return unsaturated_; }
+  constexpr bool saturated() const noexcept { return output_ != unsaturated_; }
+  // Integral term I (output units).
+  constexpr Scalar integral() const noexcept { return integral_; }
+  // Filtered derivative signal d (units of e per second).
+  constexpr Scalar derivative() const noexcept { return derivative_; }
+  constexpr const Terms<Scalar>& terms() const noexcept { return terms_; }
+  // The configured gains (those of update(in, dt)).
+  constexpr const Gains& gains() const noexcept { return config_.gains; }
+  constexpr const Config& config() const noexcept { return config_; }
+  // Whether a previous sample exists (false after construction and reset()).
+  constexpr bool has_previous() const noexcept { return has_previous_; }
+  constexpr Scalar previous_error() const noexcept { return previous_error_; }
+
+ private:
+  static constexpr bool valid_time_step(Scalar dt_s) noexcept {
+    return dt_s > Scalar(0) && dt_s <= std::numeric_limits<Scalar>::max();  // NaN fails both
+  }
+
+  // Names the fault behind a non-finite result; out of the tick's straight path.
+  [[gnu::cold]] [[gnu::noinline]] constexpr Status fault(Input in, Scalar dt_s,
+                                                         Gains g) const noexcept {
+    if (!valid_time_step(dt_s)) return Status::InvalidTimeStep;
+    if (!finite(in) || !g.finite()) return Status::NonFiniteInput;
+    return Status::NumericOverflow;
+  }
+
+  // The inputs the tick reads are finite (the rates only with DerivativeSource::Rates).
   constexpr bool finite(const Input& in) const noexcept {
     using detail::is_finite;
     const bool rates = config_.derivative_source == DerivativeSource::Rates;
@@ -246,7 +297,6 @@ class Pid {
   }
 
   Config config_{};
-  Status configured_ = Status::Ok;
   Scalar integral_ = Scalar(0);
   Scalar derivative_ = Scalar(0);
   Scalar output_ = Scalar(0);
@@ -254,8 +304,8 @@ class Pid {
   Scalar previous_error_ = Scalar(0);
   Scalar previous_measurement_ = Scalar(0);
   Terms<Scalar> terms_{};
+  Status configured_ = Status::Ok;
   bool has_previous_ = false;
-  bool saturated_ = false;
 };
 
 }  // namespace fuzzypid::pid

@@ -26,6 +26,7 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
@@ -130,7 +131,8 @@ class Experiment {
   }
   std::array<pid::Pid<double>, robot::kNumJoints> make_pid(
       const robot::JointVector& torque_limit) const;
-  std::array<control::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
+  // The fuzzy controllers point to this Experiment's supervisor: it must outlive them.
+  std::array<paper::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
       const robot::JointVector& torque_limit) const;
 
   const robot::JointVector& nominal_inertia() const noexcept { return nominal_inertia_; }
@@ -147,6 +149,7 @@ class Experiment {
   robot::JointPathResult reverse_path_;
   ExperimentOptions options_;
   robot::JointVector nominal_inertia_{};
+  paper::System<double> supervisor_{};  // of make_fuzzy_pid
 };
 
 // ITAE summed over the six joints of a run's rows.

@@ -1,0 +1,276 @@
+// `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
+// `fuzzypid export-header`: a controller file as a self-contained C++ header.
+#include <cctype>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller_file/export_header.hpp"
+#include "fuzzypid/robot/path.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/condition_set.hpp"
+#include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/tune/tune.hpp"
+
+namespace fuzzypid::cli {
+
+namespace {
+
+namespace cf = controller_file;
+
+bool parse_box(const std::string& text, cf::SearchBox& box) {
+  const auto eq = text.find('=');
+  const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
+  if (eq == std::string::npos || colon == std::string::npos) return false;
+  box.name = text.substr(0, eq);
+  char* end = nullptr;
+  const std::string lo = text.substr(eq + 1, colon - eq - 1);
+  const std::string hi = text.substr(colon + 1);
+  box.log10_min = std::strtod(lo.c_str(), &end);
+  if (lo.empty() || *end != '\0') return false;
+  box.log10_max = std::strtod(hi.c_str(), &end);
+  if (hi.empty() || *end != '\0') return false;
+  return std::isfinite(box.log10_min) && std::isfinite(box.log10_max) &&
+         box.log10_min <= box.log10_max;
+}
+
+struct TuneOptions {
+  std::string family_name, conditions, set = "training", out, base_file;
+  std::uint64_t budget = 16000, seed = 1, population = 0;
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  cf::Objective objective;
+  std::vector<std::string> boxes;
+  bool quiet = false;
+};
+
+int run_tune(const TuneOptions& t) {
+  const std::string& family_name = t.family_name;
+  const std::string& conditions = t.conditions;
+  const std::string& set = t.set;
+  const std::string& out = t.out;
+  const std::string& base_file = t.base_file;
+  const std::uint64_t budget = t.budget, seed = t.seed, population = t.population;
+  const unsigned threads = t.threads;
+  const cf::Objective& objective = t.objective;
+  const std::vector<std::string>& boxes = t.boxes;
+  const bool quiet = t.quiet;
+  const cf::Family family = *cf::parse_enum(cf::kFamilyNames, family_name);
+  tune::Options opt;
+  opt.family = family;
+  opt.budget = budget;
+  opt.seed = seed;
+  opt.threads = threads;
+  opt.population = population;
+  opt.objective = objective;
+  opt.base = cf::paper_pid();
+  opt.base.description.clear();
+  if (!base_file.empty()) {
+    cf::Error err;
+    if (!cf::load(base_file, opt.base, err)) {
+      std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
+      return 1;
+    }
+    opt.base.tuning.reset();
+  }
+  opt.box = tune::default_box(family);
+  for (const std::string& text : boxes) {
+    cf::SearchBox b;
+    if (!parse_box(text, b)) {
+      std::fprintf(stderr, "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, MIN <= MAX)\n",
+                   text.c_str());
+      return 2;
+    }
+    bool found = false;
+    for (auto& d : opt.box) {
+      if (d.name == b.name) {
+        d = b;
+        found = true;
+      }
+    }
+    if (!found) {
+      std::fprintf(stderr, "fuzzypid tune: --box: the %s family has no parameter '%s'\n",
+                   cf::to_string(family), b.name.c_str());
+      return 2;
+    }
+  }
+
+  sim::ConditionFile file;
+  cf::Error err;
+  if (!sim::load_conditions(conditions, file, err)) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
+    return 1;
+  }
+  const sim::ConditionSet* training = file.find(set);
+  if (training == nullptr) {
+    std::fprintf(stderr, "fuzzypid tune: %s has no set '%s' (it has: %s)\n", conditions.c_str(),
+                 set.c_str(), file.set_names().c_str());
+    return 1;
+  }
+  const std::string urdf = robot::default_urdf_path();
+  robot::LoadResult loaded = robot::RobotModel::load(urdf);
+  if (!loaded.model) {
+    std::fprintf(stderr, "fuzzypid tune: cannot load %s: %s\n", urdf.c_str(), loaded.error.c_str());
+    return 1;
+  }
+  sim::ExperimentOptions eo;
+  eo.tick_s = opt.base.units.tick_s;
+  std::string error;
+  const auto experiment =
+      sim::Experiment::create(*loaded.model, robot::paper_path_spec(), eo, error);
+  if (!experiment) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
+    return 1;
+  }
+
+  if (!quiet) {
+    std::fprintf(stderr,
+                 "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
+                 ", seed %" PRIu64 ", %u threads\n",
+                 cf::to_string(family), training->conditions.size(), set.c_str(), budget, seed,
+                 threads);
+    double last = -1.0;
+    opt.progress = [last](const tune::Progress& p) mutable {
+      if (p.elapsed_s - last < 2.0 && p.evaluations < p.budget) return;
+      last = p.elapsed_s;
+      const double rate = p.elapsed_s > 0 ? static_cast<double>(p.evaluations) / p.elapsed_s : 0;
+      const double eta = rate > 0 ? static_cast<double>(p.budget - p.evaluations) / rate : 0.0;
+      std::fprintf(stderr,
+                   "fuzzypid tune: %8" PRIu64 "/%" PRIu64
+                   " evaluations, best cost %.6g, %.1f evaluations/s, ETA %.0f s\n",
+                   p.evaluations, p.budget, p.best_cost, rate, eta);
+    };
+  }
+  auto result = tune::tune(*experiment, training->conditions, opt, error);
+  if (!result) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
+    return 2;
+  }
+  result->controller.tuning->conditions = conditions;
+  result->controller.tuning->set = set;
+  result->controller.description =
+      "tuned " + std::string(cf::to_string(family)) + " on " + conditions + " [" + set + "]";
+  if (const std::string bad = cf::save(out, result->controller); !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+    return 1;
+  }
+  const double rate = static_cast<double>(result->evaluations) / result->wall_s;
+  std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64
+              ") in %.1f s, %.1f "
+              "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
+              "penalty %.6g, %zu faulted runs) -> %s\n",
+              cf::to_string(family), result->evaluations, budget, result->wall_s, rate,
+              rate * static_cast<double>(training->conditions.size()), result->cost.total,
+              result->cost.itae, result->cost.overshoot_penalty, result->cost.faulted_runs,
+              out.c_str());
+  return 0;
+}
+
+struct ExportOptions {
+  std::string in, out, ns = "fuzzypid_controller";
+};
+
+int run_export_header(const ExportOptions& o) {
+  const std::string& in = o.in;
+  const std::string& out = o.out;
+  const std::string& ns = o.ns;
+  cf::ControllerSpec spec;
+  cf::Error err;
+  if (!cf::load(in, spec, err)) {
+    std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
+    return 1;
+  }
+  const std::string text = cf::export_header(spec, ns, in);
+  if (out.empty()) {
+    std::fputs(text.c_str(), stdout);
+    return std::ferror(stdout) ? 1 : 0;
+  }
+  std::FILE* f = std::fopen(out.c_str(), "w");
+  if (f == nullptr || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0) {
+    std::fprintf(stderr, "fuzzypid export-header: cannot write %s\n", out.c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_tune_command(CLI::App& app, std::function<int()>& run) {
+  auto t = std::make_shared<TuneOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "tune",
+      "Tune a controller family on a training set of conditions (pagmo2 self-adaptive "
+      "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
+      "as a controller file (docs/tuning.md). Progress goes to stderr.");
+  std::vector<std::string> family_names;
+  for (const auto& e : cf::kFamilyNames)
+    family_names.emplace_back(e.name);
+  cmd->add_option("--family", t->family_name,
+                  "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
+      ->required()
+      ->check(CLI::IsMember(family_names));
+  cmd->add_option("--conditions", t->conditions, "condition-set file (TOML)")->required();
+  cmd->add_option("--set", t->set, "the training set's name (default training)");
+  cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
+      ->check(unsigned_in(14, 100000000));
+  cmd->add_option("--seed", t->seed, "random seed (default 1)")->check(unsigned_in(0, 4294967295u));
+  cmd->add_option("--threads", t->threads,
+                  "threads evaluating the conditions (default: all cores; the result does not "
+                  "depend on it)")
+      ->check(unsigned_in(1, 256));
+  cmd->add_option("--population", t->population,
+                  "population size (default 5 x parameters, at least 20)")
+      ->check(unsigned_in(7, 100000));
+  cmd->add_option("--out", t->out, "controller file to write")->required();
+  cmd->add_option("--base", t->base_file,
+                  "controller file whose units, PID options, bounds and rule base the result "
+                  "keeps (default: the paper's, acceleration units per tick at 0.05 s)");
+  cmd->add_option("--overshoot-bound", t->objective.overshoot_bound_pct,
+                  "overshoot allowed without penalty, % (default 20)")
+      ->check(finite_in(0.0, 1e6));
+  cmd->add_option("--overshoot-weight", t->objective.overshoot_weight,
+                  "cost per percentage point above the bound, per joint (default 0.1)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--fault-cost", t->objective.fault_cost,
+                  "cost of a run that faults, diverges or gives non-finite ITAE (default 1000)")
+      ->check(finite_in(0.0, 1e12));
+  cmd->add_option("--divergence", t->objective.divergence_rad,
+                  "a run diverged once any |e| exceeds this, rad (default 1)")
+      ->check(finite_in(1e-9, 1e3));
+  cmd->add_option("--box", t->boxes,
+                  "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
+                  "docs/tuning.md)");
+  cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
+  cmd->callback([&run, t] { run = [t] { return run_tune(*t); }; });
+}
+
+void add_export_header_command(CLI::App& app, std::function<int()>& run) {
+  auto o = std::make_shared<ExportOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "export-header",
+      "Write a controller file as a self-contained C++ header of constexpr configuration (no "
+      "parser needed on the target).");
+  cmd->add_option("file", o->in, "controller file (TOML)")->required();
+  cmd->add_option("--out", o->out, "header to write (default: stdout)");
+  cmd->add_option("--namespace", o->ns, "namespace of the generated code")
+      ->check([](const std::string& s) -> std::string {
+        if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
+          return "not a C++ identifier: " + s;
+        for (char c : s)
+          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+            return "not a C++ identifier: " + s;
+        return {};
+      });
+  cmd->callback([&run, o] { run = [o] { return run_export_header(*o); }; });
+}
+
+}  // namespace fuzzypid::cli
