@@ -1,15 +1,15 @@
-// libFuzzer target for sim_ab's command-line parser. The parser lives in an anonymous namespace of
-// apps/sim_ab/main.cpp, so that file is compiled into this one with its main() renamed. The input
-// is split at NUL bytes into argv[1..]. Accepted options must leave finite numbers behind.
+// libFuzzer target for sim_ab's command-line parser (apps/sim_ab/options.cpp, the function
+// sim_ab's main() calls). The input is split at NUL bytes into argv[1..]. Accepted options must
+// leave finite numbers and valid conditions behind.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
-#define main sim_ab_main
-#include "../apps/sim_ab/main.cpp"
-#undef main
+#include "../apps/sim_ab/options.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > 4096) return 0;
@@ -24,19 +24,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   if (!current.empty()) args.push_back(current);
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
+  std::vector<const char*> argv;
+  for (const std::string& a : args)
+    argv.push_back(a.c_str());
   argv.push_back(nullptr);
 
-  Options o;
-  const int rc = parse(static_cast<int>(args.size()), argv.data(), o);
-  if (rc != 0 && rc != 2 && rc != -1) std::abort();
-  if (rc == 0) {
+  // --help and usage errors print; keep the fuzzer's output readable.
+  static std::FILE* const null_out = std::freopen("/dev/null", "w", stdout);
+  (void)null_out;
+  fuzzypid::sim_ab::Options o;
+  const auto rc = fuzzypid::sim_ab::parse(static_cast<int>(args.size()), argv.data(), o);
+  if (rc == fuzzypid::sim_ab::ParseResult::Run) {
     const auto& e = o.experiment;
     if (!e.gains.finite() || !std::isfinite(e.error_scale) || !std::isfinite(e.error_rate_scale) ||
-        !std::isfinite(e.initial_error_rad) || e.gains.kp < 0 || e.gains.ki < 0 || e.gains.kd < 0)
+        e.gains.kp < 0 || e.gains.ki < 0 || e.gains.kd < 0)
       std::abort();
+    for (const auto& c : fuzzypid::sim_ab::scenario_conditions(o))
+      if (!c.validate().empty()) std::abort();
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #   csv            the command-line tools' CSV reader
 #   urdf           the URDF loader (robot::RobotModel::load)
 #   sim_ab_args    sim_ab's command-line parser
+#   controller_file  the controller-file loader (TOML)
 #   FUZZ_SECONDS   time per target (default 30)
 #   FUZZ_TARGETS   space-separated subset of the names above (default: all)
 # Exits non-zero on any crash, leak, timeout or sanitizer report; the failing input is left in
@@ -12,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
-targets="${FUZZ_TARGETS:-fis fll csv urdf sim_ab_args}"
+targets="${FUZZ_TARGETS:-fis fll csv urdf sim_ab_args controller_file}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFUZZYPID_BUILD_FUZZERS=ON -DFUZZYPID_BUILD_TESTS=OFF -DFUZZYPID_BUILD_APPS=OFF \
   -DFUZZYPID_BUILD_BENCH=OFF -DFUZZYPID_WITH_ROBOT=ON >/dev/null

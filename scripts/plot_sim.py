@@ -2,11 +2,14 @@
 """Turns sim_ab's CSV files into the paper's figures (Figs. 9-14) plus a per-scenario summary.
 
 usage: scripts/plot_sim.py [--in DIR] [--out DIR] [--scenario NAME]
+       scripts/plot_sim.py --sweep DIR [--out DIR]
 
 Reads DIR/trajectory.csv, DIR/metrics.csv and DIR/endeffector.csv (default DIR = out) and writes
 fig09_path.png, fig10_joints.png, fig11_errors.png, fig12_kp.png, fig13_ki.png, fig14_kd.png
 (for --scenario, default paper) and summary.png (every scenario present) into --out (default: the
-input directory). Runs with Debian's python3-matplotlib and python3-numpy.
+input directory). With --sweep, reads DIR/sweep.csv (sim_ab --sweep) and writes
+sweep_<parameter>.png: summed ITAE and worst overshoot of every controller over the swept
+parameter, usable points filled. Runs with Debian's python3-matplotlib and python3-numpy.
 """
 import argparse
 import collections
@@ -19,7 +22,41 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-STYLE = {"pid": ("k", "--"), "fuzzy": ("r", "-"), "pid-tuned": ("tab:blue", ":")}
+STYLE = {"pid": ("k", "--"), "fuzzy": ("r", "-"), "paper_pid": ("k", "--"),
+         "paper_fuzzy": ("r", "--"), "tuned_pid": ("tab:blue", "-"),
+         "tuned_scheduled": ("tab:green", "-"), "tuned_fuzzy": ("tab:red", "-")}
+
+
+def plot_sweep(inp, out):
+    rows = read_csv(os.path.join(inp, "sweep.csv"))
+    if not rows:
+        sys.exit(f"plot_sim: {inp}/sweep.csv is empty")
+    param = rows[0]["parameter"]
+    ctrls = list(dict.fromkeys(r["controller"] for r in rows))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 4.5))
+    for c in ctrls:
+        pts = [r for r in rows if r["controller"] == c]
+        col, ls = STYLE.get(c, ("g", "-"))
+        x = [float(r["value"]) for r in pts]
+        itae = [float(r["itae"]) for r in pts]
+        over = [float(r["max_overshoot_pct"]) for r in pts]
+        ax1.plot(x, itae, color=col, ls=ls, label=c)
+        ax2.plot(x, over, color=col, ls=ls, label=c)
+        for ax, ys in ((ax1, itae), (ax2, over)):
+            ok = [(xi, yi) for xi, yi, r in zip(x, ys, pts) if r["usable"] == "1"]
+            ax.plot([p[0] for p in ok], [p[1] for p in ok], "o", color=col, ms=3)
+    ax1.set_yscale("log")
+    ax2.set_yscale("symlog", linthresh=1.0)
+    ax1.set_title("summed ITAE (dots: usable)")
+    ax2.set_title("worst overshoot / % (dots: usable)")
+    for ax in (ax1, ax2):
+        ax.set_xlabel(param)
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Robustness sweep over {param}")
+    name = os.path.join(out, f"sweep_{param}.png")
+    fig.savefig(name, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    print(f"plot_sim: wrote {name}")
 
 
 def read_csv(path):
@@ -52,7 +89,12 @@ def main():
     ap.add_argument("--in", dest="inp", default="out")
     ap.add_argument("--out", default=None)
     ap.add_argument("--scenario", default="paper")
+    ap.add_argument("--sweep", default=None)
     a = ap.parse_args()
+    if a.sweep:
+        os.makedirs(a.out or a.sweep, exist_ok=True)
+        plot_sweep(a.sweep, a.out or a.sweep)
+        return
     out = a.out or a.inp
     os.makedirs(out, exist_ok=True)
     try:
@@ -125,8 +167,6 @@ def main():
         for j in range(1, 7):
             ax = axes[j - 1]
             for c in ctrls:
-                if c == "pid-tuned":
-                    continue
                 col, ls = STYLE.get(c, ("g", "-"))
                 t, k = series(traj, sc, c, j, col_name)
                 ax.plot(t, k, color=col, ls=ls, label=c)

@@ -1,14 +1,34 @@
 #!/usr/bin/env bash
-# The main job: builds sim_ab into build/, runs the paper's A/B experiment on every scenario
-# (fixed PID, fuzzy PID and an ITAE-tuned fixed PID on the ER50-C20 model), prints the metrics
-# table and writes out/trajectory.csv, out/metrics.csv, out/endeffector.csv, out/settings.txt and
-# the figures out/*.png. Extra sim_ab options may be passed as arguments (e.g. --scenario paper).
+# The main job: builds sim_ab into build/ and runs the five-way A/B without re-tuning: the five
+# controller files of controllers/ (the paper's fixed and fuzzy PID; a fixed, a gain-scheduled
+# and a fuzzy PID tuned on tuning/robust.toml with the same optimiser and budget) on every
+# condition of tuning/robust.toml (training, held-out and stress sets). Prints the five-way table
+# (docs/tuning.md), writes out/{trajectory,metrics,endeffector,conditions}.csv, out/settings.txt,
+# the figures out/*.png, and the robustness sweeps out/sweep-payload/ and out/sweep-torque/ with
+# their plots. Arguments replace the default sim_ab run (e.g. --scenario all for the paper's
+# scenarios with the paper's two controllers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-}
 cmake --build build -j "$(nproc)" --target sim_ab
-if [ $# -eq 0 ]; then set -- --scenario all; fi
-build/bin/sim_ab --out out "$@"
-/usr/bin/python3 scripts/plot_sim.py --in out --out out
+controllers=()
+for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_fuzzy; do
+  controllers+=(--controller "controllers/${name}.toml")
+done
+if [ $# -gt 0 ]; then
+  build/bin/sim_ab --out out "$@"
+  /usr/bin/python3 scripts/plot_sim.py --in out --out out
+  exit 0
+fi
+build/bin/sim_ab --quiet --conditions tuning/robust.toml "${controllers[@]}" --out out
+/usr/bin/python3 scripts/summarize_sim.py out --per-condition --gains
+/usr/bin/python3 scripts/plot_sim.py --in out --out out --scenario nominal-ahead
+echo
+build/bin/sim_ab --scenario paper --sweep payload-scale=0.3:3:28 "${controllers[@]}" \
+  --out out/sweep-payload
+build/bin/sim_ab --scenario paper --sweep torque-limit=0.1:5:50 "${controllers[@]}" \
+  --out out/sweep-torque
+/usr/bin/python3 scripts/plot_sim.py --sweep out/sweep-payload
+/usr/bin/python3 scripts/plot_sim.py --sweep out/sweep-torque

@@ -1,15 +1,20 @@
 #!/usr/bin/python3
-"""Prints sim_ab results as Markdown tables (the tables of docs/reproduction.md).
+"""Prints sim_ab results as Markdown tables (docs/reproduction.md, docs/tuning.md).
 
-usage: scripts/summarize_sim.py [DIR]     (DIR defaults to out)
+usage: scripts/summarize_sim.py [DIR] [--per-condition] [--gains]    (DIR defaults to out)
 
-Per scenario and controller, over the six joints: the worst and the median settling time, the
-largest overshoot, the largest |error| after the first second and at the last tick, and the summed
-ITAE -- all from DIR/metrics.csv and DIR/trajectory.csv. Then the per-joint metrics of the paper
-scenario.
+1. Per set (conditions.csv; "scenario" when sim_ab ran --scenario) and controller, over the set's
+   conditions and the six joints: summed ITAE, its ratio to the first controller... of the tuned
+   ones (tuned_pid when present), the worst overshoot, how many conditions overshoot more than
+   20 %, the worst settling time and the largest |error| after the first second.
+2. --per-condition: summed ITAE (six joints) per condition and controller.
+3. --gains: the range of each controller's gains over every tick of the set (file units), and
+   relative to its nominal gains K0 (settings.txt).
+Without a set column (scenario runs) it also prints the per-joint metrics of the paper scenario.
 """
 import collections
 import csv
+import math
 import sys
 
 
@@ -18,47 +23,92 @@ def fmt_s(x):
 
 
 def main():
-    d = sys.argv[1] if len(sys.argv) > 1 else "out"
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    d = args[0] if args else "out"
     metrics = list(csv.DictReader(open(f"{d}/metrics.csv", newline="")))
-    traj = list(csv.DictReader(open(f"{d}/trajectory.csv", newline="")))
-    late = collections.defaultdict(float)
-    final = collections.defaultdict(float)
-    t_end = collections.defaultdict(float)
-    for r in traj:
-        key = (r["scenario"], r["controller"])
-        t_end[key] = max(t_end[key], float(r["t"]))
-    for r in traj:
-        key = (r["scenario"], r["controller"])
-        e = abs(float(r["error"]))
-        if float(r["t"]) >= 1.0 - 1e-9:
-            late[key] = max(late[key], e)
-        if abs(float(r["t"]) - t_end[key]) < 1e-9:
-            final[key] = max(final[key], e)
-    groups = collections.OrderedDict()
+    sets = collections.OrderedDict()
+    try:
+        for r in csv.DictReader(open(f"{d}/conditions.csv", newline="")):
+            sets[r["scenario"]] = r["set"]
+    except FileNotFoundError:
+        pass
+    controllers = list(dict.fromkeys(r["controller"] for r in metrics))
+    conds = list(dict.fromkeys(r["scenario"] for r in metrics))
+    by = collections.defaultdict(list)
     for r in metrics:
-        groups.setdefault((r["scenario"], r["controller"]), []).append(r)
-    print("| scenario | controller | settling, worst joint (s) | settling, median joint (s) |"
-          " max overshoot (%) | max abs(e) for t >= 1 s (rad) | max abs(e) at t = 5 s (rad) |"
-          " ITAE, sum of joints |")
-    print("|---|---|---|---|---|---|---|---|")
-    for (s, c), rows in groups.items():
-        st = sorted(float(r["settling_time_s"]) for r in rows)
-        median = 0.5 * (st[2] + st[3])
-        print(f"| {s} | {c} | {fmt_s(st[-1])} | {fmt_s(median)} |"
-              f" {max(float(r['overshoot_pct']) for r in rows):.1f} | {late[(s, c)]:.2e} |"
-              f" {final[(s, c)]:.2e} | {sum(float(r['itae']) for r in rows):.3e} |")
-    print()
-    print("| controller | joint | settling (s) | overshoot (%) | max abs(e) (rad) | rms e (rad) |"
-          " IAE | ITAE |")
-    print("|---|---|---|---|---|---|---|---|")
-    for (s, c), rows in groups.items():
-        if s != "paper":
-            continue
-        for r in rows:
-            print(f"| {c} | {r['joint']} | {fmt_s(float(r['settling_time_s']))} |"
-                  f" {float(r['overshoot_pct']):.1f} | {float(r['max_abs_error_rad']):.2e} |"
-                  f" {float(r['rms_error_rad']):.2e} | {float(r['iae']):.3e} |"
-                  f" {float(r['itae']):.3e} |")
+        by[(r["scenario"], r["controller"])].append(r)
+    itae = {k: sum(float(r["itae"]) for r in rows) for k, rows in by.items()}
+    set_names = list(dict.fromkeys(sets.get(c, "scenario") for c in conds))
+    ref = "tuned_pid" if "tuned_pid" in controllers else controllers[0]
+
+    print(f"| set | controller | conditions | ITAE, sum | ITAE / {ref} | worst overshoot (%) |"
+          " conditions with overshoot > 20 % | worst settling (s) | max abs(e) for t >= 1 s (rad) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for s in set_names:
+        cs = [c for c in conds if sets.get(c, "scenario") == s]
+        ref_sum = sum(itae[(c, ref)] for c in cs)
+        for ctl in controllers:
+            rows = [r for c in cs for r in by[(c, ctl)]]
+            total = sum(itae[(c, ctl)] for c in cs)
+            over = sum(1 for c in cs if max(float(r["overshoot_pct"]) for r in by[(c, ctl)]) > 20.0)
+            print(f"| {s} | {ctl} | {len(cs)} | {total:.4g} | {total / ref_sum:.3f} |"
+                  f" {max(float(r['overshoot_pct']) for r in rows):.1f} | {over} |"
+                  f" {fmt_s(max(float(r['settling_time_s']) for r in rows))} |"
+                  f" {max(float(r['max_abs_error_after_1s_rad']) for r in rows):.2e} |")
+
+    if "--per-condition" in sys.argv:
+        print()
+        print("| set | condition | " + " | ".join(controllers) + " |")
+        print("|---|---|" + "---|" * len(controllers))
+        for c in conds:
+            best = min(itae[(c, k)] for k in controllers)
+            cells = [(f"**{itae[(c, k)]:.3e}**" if itae[(c, k)] == best else f"{itae[(c, k)]:.3e}")
+                     for k in controllers]
+            print(f"| {sets.get(c, 'scenario')} | {c} | " + " | ".join(cells) + " |")
+
+    if "--gains" in sys.argv:
+        traj = csv.DictReader(open(f"{d}/trajectory.csv", newline=""))
+        lo = collections.defaultdict(lambda: [math.inf] * 3)
+        hi = collections.defaultdict(lambda: [-math.inf] * 3)
+        first = {}
+        for line in open(f"{d}/settings.txt"):
+            if line.startswith("controller."):
+                name = line.split("=", 1)[0][len("controller."):]
+                for field in line.split():
+                    if field.startswith("gains="):
+                        first[name] = [float(v) for v in field[len("gains="):].split(",")]
+        for r in traj:
+            s = sets.get(r["scenario"], "scenario")
+            g = [float(r["kp"]), float(r["ki"]), float(r["kd"])]
+            key = (s, r["controller"])
+            for i in range(3):
+                lo[key][i] = min(lo[key][i], g[i])
+                hi[key][i] = max(hi[key][i], g[i])
+        print()
+        print("| set | controller | Kp range | Ki range | Kd range | relative to K0 |")
+        print("|---|---|---|---|---|---|")
+        for (s, c), l in lo.items():
+            h = hi[(s, c)]
+            rel = ", ".join(
+                f"{n} {100 * (l[i] / first[c][i] - 1):+.1f} % .. {100 * (h[i] / first[c][i] - 1):+.1f} %"
+                if first[c][i] else f"{n} -"
+                for i, n in enumerate(("Kp", "Ki", "Kd")))
+            print(f"| {s} | {c} | {l[0]:.4g} .. {h[0]:.4g} | {l[1]:.4g} .. {h[1]:.4g} |"
+                  f" {l[2]:.4g} .. {h[2]:.4g} | {rel} |")
+
+    if not sets or set(sets.values()) == {"scenario"}:
+        print()
+        print("| controller | joint | settling (s) | overshoot (%) | max abs(e) (rad) | rms e (rad) |"
+              " IAE | ITAE |")
+        print("|---|---|---|---|---|---|---|---|")
+        for (s, c), rows in by.items():
+            if s != "paper":
+                continue
+            for r in rows:
+                print(f"| {c} | {r['joint']} | {fmt_s(float(r['settling_time_s']))} |"
+                      f" {float(r['overshoot_pct']):.1f} | {float(r['max_abs_error_rad']):.2e} |"
+                      f" {float(r['rms_error_rad']):.2e} | {float(r['iae']):.3e} |"
+                      f" {float(r['itae']):.3e} |")
 
 
 if __name__ == "__main__":

@@ -9,6 +9,8 @@ int run_eval(int argc, char** argv);
 #if FUZZYPID_HAVE_ROBOT
 int run_fk(int argc, char** argv);
 int run_ik(int argc, char** argv);
+int run_tune(int argc, char** argv);           // tune.cpp
+int run_export_header(int argc, char** argv);  // tune.cpp
 #endif
 
 }  // namespace fuzzypid::cli

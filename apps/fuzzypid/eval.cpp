@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "csv.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/io/rule_file.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/paper.hpp"
 
 namespace fuzzypid::cli {
@@ -19,9 +19,9 @@ namespace {
 
 // Evaluates a rule file on every row of stdin; 0, 1 (bad file or row) like the paper path.
 int eval_rule_file(const std::string& path, bool fis) {
-  auto model = std::make_unique<io::Model>();
-  io::LoadError error;
-  const bool loaded = fis ? io::load_fis(path, *model, error) : io::load_fll(path, *model, error);
+  auto model = std::make_unique<rulefile::Model>();
+  rulefile::LoadError error;
+  const bool loaded = fis ? rulefile::load_fis(path, *model, error) : rulefile::load_fll(path, *model, error);
   if (!loaded) {
     std::fprintf(stderr, "fuzzypid eval: %s\n", error.to_string().c_str());
     return 1;

@@ -16,6 +16,8 @@ void print_usage(std::FILE* out) {
       "  fk [--urdf FILE]        rows q1..q6 on stdin -> x,y,z,r11..r33 (SI units)\n"
       "  ik [--urdf FILE] [--solver analytic|kdl-nr|kdl-lma]\n"
       "                          rows x,y,z,r11..r33[,seed q1..q6] -> q1..q6,status\n"
+      "  tune --family F --conditions FILE --out FILE [...]   robust tuning (docs/tuning.md)\n"
+      "  export-header FILE [--out H]  a controller file as a constexpr C++ header\n"
 #endif
       "\n"
       "Rows are comma-separated; a header line is allowed. Output uses %.17g.\n",
@@ -38,6 +40,9 @@ int main(int argc, char** argv) {
 #if FUZZYPID_HAVE_ROBOT
   if (std::strcmp(command, "fk") == 0) return fuzzypid::cli::run_fk(argc - 2, argv + 2);
   if (std::strcmp(command, "ik") == 0) return fuzzypid::cli::run_ik(argc - 2, argv + 2);
+  if (std::strcmp(command, "tune") == 0) return fuzzypid::cli::run_tune(argc - 2, argv + 2);
+  if (std::strcmp(command, "export-header") == 0)
+    return fuzzypid::cli::run_export_header(argc - 2, argv + 2);
 #endif
   std::fprintf(stderr, "fuzzypid: unknown command '%s'\n\n", command);
   print_usage(stderr);

@@ -1,210 +1,35 @@
-// sim_ab: the paper's A/B experiment (section 6, Figs. 9-14) -- fixed PID vs fuzzy PID, plus a
-// fixed PID tuned offline on ITAE -- on the ER50-C20 model, for one scenario or all of them.
+// sim_ab: the paper's A/B experiment (section 6, Figs. 9-14) on the ER50-C20 model -- the
+// paper's fixed PID and fuzzy PID, or any controller files (--controller, repeatable), on
+// scenarios, single conditions or condition sets (--conditions), or a robustness sweep (--sweep).
 //
-// Writes, into --out (default out/): trajectory.csv, metrics.csv, endeffector.csv and
-// settings.txt. Files are written under temporary names and renamed only when the whole run has
-// succeeded, so a failed run never leaves a half-written CSV that looks complete.
+// Writes, into --out (default out/): trajectory.csv, metrics.csv, endeffector.csv,
+// conditions.csv and settings.txt (a sweep: sweep.csv and settings.txt). Files are written under
+// temporary names and renamed only when the whole run has succeeded, so a failed run never leaves
+// a half-written CSV that looks complete. Exit status: 0 success, 1 run-time failure (including
+// a run in which a controller reported a fault), 2 usage error.
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
-#include "fuzzypid/sim/scenario.hpp"
+#include "options.hpp"
 
 namespace {
 
 using namespace fuzzypid;
 namespace fs = std::filesystem;
-
-struct Options {
-  std::string scenario = "paper";
-  std::string out_dir = "out";
-  std::string urdf;
-  std::optional<Eigen::Vector3d> start_mm, end_mm;
-  sim::ExperimentOptions experiment{};
-  bool tune = true;
-  bool quiet = false;
-};
-
-void usage(std::FILE* f) {
-  std::fputs(
-      "usage: sim_ab [options]\n"
-      "  --scenario NAME|all        scenario to run (default paper; see --list)\n"
-      "  --list                     list the scenarios and exit\n"
-      "  --out DIR                  output directory (default out)\n"
-      "  --urdf FILE                robot description (default: the bundled ER50-C20)\n"
-      "  --start X,Y,Z --end X,Y,Z  path end points in mm (default the paper's A and B)\n"
-      "  --gain-units acceleration|torque   u is rad/s² scaled by the nominal inertia (default)\n"
-      "                             or a torque in N·m\n"
-      "  --pid-form per-tick|continuous     units of Ki, Kd (default per-tick)\n"
-      "  --derivative rates|difference      de/dt from velocities (default) or from errors\n"
-      "  --gain-update absolute|incremental K = K0 + dK (default, Eq. 6) or K += dK\n"
-      "  --error-scale KE --error-rate-scale KEC   input scaling (default 1, 1)\n"
-      "  --output-scale SP,SI,SD    scaling of dKp, dKi, dKd (default 1,1,1)\n"
-      "  --tables printed|corrected rule tables (default printed)\n"
-      "  --and min|prod             fuzzy conjunction (default min)\n"
-      "  --gains KP,KI,KD           nominal gains (default 4,0.001,100)\n"
-      "  --initial-error RAD        joints start this far behind the path (default 0.05)\n"
-      "  --seed N                   measurement-noise seed (default 1)\n"
-      "  --no-tune                  skip the pid-tuned controller\n"
-      "  --quiet                    no metrics table, no progress\n",
-      f);
-}
-
-bool parse_double(const char* s, double& v) {
-  char* end = nullptr;
-  v = std::strtod(s, &end);
-  return end != s && *end == '\0' && std::isfinite(v);
-}
-
-bool parse_triple(const char* s, double (&v)[3]) {
-  std::string text(s);
-  std::size_t pos = 0;
-  for (int k = 0; k < 3; ++k) {
-    const std::size_t comma = text.find(',', pos);
-    if ((k < 2) != (comma != std::string::npos)) return false;
-    const std::string field = text.substr(pos, comma == std::string::npos ? comma : comma - pos);
-    if (!parse_double(field.c_str(), v[k])) return false;
-    pos = comma + 1;
-  }
-  return true;
-}
-
-// Returns 0 on success, 2 after printing a usage error, -1 when the caller should exit 0.
-int parse(int argc, char** argv, Options& o) {
-  auto& e = o.experiment;
-  for (int k = 1; k < argc; ++k) {
-    const std::string a = argv[k];
-    const auto value = [&]() -> const char* {
-      if (k + 1 >= argc) return nullptr;
-      return argv[++k];
-    };
-    const auto bad = [&](const char* v) {
-      std::fprintf(stderr, "sim_ab: %s %s: invalid value (see --help)\n", a.c_str(),
-                   v ? v : "(missing)");
-      return 2;
-    };
-    if (a == "--help" || a == "-h") {
-      usage(stdout);
-      return -1;
-    } else if (a == "--list") {
-      for (const auto& s : sim::scenarios())
-        std::printf("%-14s %s\n", s.name.c_str(), s.description.c_str());
-      return -1;
-    } else if (a == "--no-tune") {
-      o.tune = false;
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else if (a == "--scenario") {
-      const char* v = value();
-      if (!v || (std::strcmp(v, "all") != 0 && !sim::find_scenario(v))) {
-        std::fprintf(stderr, "sim_ab: unknown scenario '%s' (see --list)\n", v ? v : "");
-        return 2;
-      }
-      o.scenario = v;
-    } else if (a == "--out") {
-      const char* v = value();
-      if (!v || !*v) return bad(v);
-      o.out_dir = v;
-    } else if (a == "--urdf") {
-      const char* v = value();
-      if (!v) return bad(v);
-      o.urdf = v;
-    } else if (a == "--start" || a == "--end") {
-      const char* v = value();
-      double xyz[3];
-      if (!v || !parse_triple(v, xyz)) return bad(v);
-      (a == "--start" ? o.start_mm : o.end_mm) = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-    } else if (a == "--gain-units") {
-      const char* v = value();
-      if (v && std::strcmp(v, "acceleration") == 0)
-        e.gain_units = sim::GainUnits::Acceleration;
-      else if (v && std::strcmp(v, "torque") == 0)
-        e.gain_units = sim::GainUnits::Torque;
-      else
-        return bad(v);
-    } else if (a == "--pid-form") {
-      const char* v = value();
-      if (v && std::strcmp(v, "per-tick") == 0)
-        e.pid_form = sim::PidForm::PerTick;
-      else if (v && std::strcmp(v, "continuous") == 0)
-        e.pid_form = sim::PidForm::Continuous;
-      else
-        return bad(v);
-    } else if (a == "--derivative") {
-      const char* v = value();
-      if (v && std::strcmp(v, "rates") == 0)
-        e.derivative = pid::DerivativeSource::Rates;
-      else if (v && std::strcmp(v, "difference") == 0)
-        e.derivative = pid::DerivativeSource::Difference;
-      else
-        return bad(v);
-    } else if (a == "--gain-update") {
-      const char* v = value();
-      if (v && std::strcmp(v, "absolute") == 0)
-        e.gain_update = control::GainUpdate::Absolute;
-      else if (v && std::strcmp(v, "incremental") == 0)
-        e.gain_update = control::GainUpdate::Incremental;
-      else
-        return bad(v);
-    } else if (a == "--tables") {
-      const char* v = value();
-      if (v && std::strcmp(v, "printed") == 0)
-        e.tables = paper::Tables::Printed;
-      else if (v && std::strcmp(v, "corrected") == 0)
-        e.tables = paper::Tables::Corrected;
-      else
-        return bad(v);
-    } else if (a == "--and") {
-      const char* v = value();
-      if (v && std::strcmp(v, "min") == 0)
-        e.conjunction = fuzzy::Conjunction::Minimum;
-      else if (v && std::strcmp(v, "prod") == 0)
-        e.conjunction = fuzzy::Conjunction::Product;
-      else
-        return bad(v);
-    } else if (a == "--error-scale" || a == "--error-rate-scale" || a == "--initial-error") {
-      const char* v = value();
-      double x = 0;
-      if (!v || !parse_double(v, x)) return bad(v);
-      if (a == "--error-scale")
-        e.error_scale = x;
-      else if (a == "--error-rate-scale")
-        e.error_rate_scale = x;
-      else
-        e.initial_error_rad = x;
-    } else if (a == "--output-scale" || a == "--gains") {
-      const char* v = value();
-      double t[3];
-      if (!v || !parse_triple(v, t)) return bad(v);
-      if (a == "--gains") {
-        if (t[0] < 0 || t[1] < 0 || t[2] < 0) return bad(v);
-        e.gains = {t[0], t[1], t[2]};
-      } else {
-        e.output_scale = {t[0], t[1], t[2]};
-      }
-    } else if (a == "--seed") {
-      const char* v = value();
-      char* end = nullptr;
-      if (!v) return bad(v);
-      const unsigned long long s = std::strtoull(v, &end, 10);
-      if (end == v || *end != '\0') return bad(v);
-      e.noise_seed = s;
-    } else {
-      std::fprintf(stderr, "sim_ab: unknown option '%s' (see --help)\n", a.c_str());
-      return 2;
-    }
-  }
-  return 0;
-}
+namespace cf = controller_file;
 
 struct Output {
   fs::path final_path;
@@ -253,17 +78,264 @@ bool commit(std::vector<Output>& outs, std::string& error) {
   return true;
 }
 
+// Opens every named output in `dir` (created if needed); on failure discards what it opened.
+bool open_outputs(const fs::path& dir, const std::vector<const char*>& names,
+                  std::vector<Output>& outs) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    std::fprintf(stderr, "sim_ab: cannot create output directory %s: %s\n", dir.c_str(),
+                 ec ? ec.message().c_str() : "not a directory");
+    return false;
+  }
+  outs.resize(names.size());
+  std::string error;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (!open_output(dir, names[k], outs[k], error)) {
+      std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
+      discard(outs);
+      return false;
+    }
+  }
+  return true;
+}
+
 std::string fmt(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
+struct NamedController {
+  std::string name;
+  std::string source;  // the file, or "built-in"
+  cf::ControllerSpec spec;
+};
+
+struct Run {
+  std::string set;
+  sim::Condition condition;
+};
+
+// Summary of one run over the six joints.
+struct Summary {
+  double itae = 0.0;
+  double max_overshoot_pct = 0.0;
+  double max_settling_s = 0.0;
+  double max_error_after_1s_rad = 0.0;
+};
+
+Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m) {
+  Summary s;
+  for (const auto& j : m) {
+    s.itae += j.itae;
+    s.max_overshoot_pct = std::max(s.max_overshoot_pct, j.overshoot_pct);
+    s.max_settling_s = std::max(s.max_settling_s, j.settling_time_s);
+    s.max_error_after_1s_rad = std::max(s.max_error_after_1s_rad, j.max_abs_error_after_1s_rad);
+  }
+  return s;
+}
+
+void write_settings(std::FILE* f, const sim_ab::Options& o, const std::string& urdf,
+                    const robot::CartesianPathSpec& spec, const sim::Experiment& ex,
+                    const std::vector<NamedController>& controllers) {
+  const auto& e = o.experiment;
+  std::fprintf(f, "urdf=%s\nstart_mm=%s,%s,%s\nend_mm=%s,%s,%s\nsamples=%zu\ntick_s=%s\n",
+               urdf.c_str(), fmt(spec.start_m.x() * 1e3).c_str(),
+               fmt(spec.start_m.y() * 1e3).c_str(), fmt(spec.start_m.z() * 1e3).c_str(),
+               fmt(spec.end_m.x() * 1e3).c_str(), fmt(spec.end_m.y() * 1e3).c_str(),
+               fmt(spec.end_m.z() * 1e3).c_str(), ex.ticks(), fmt(e.tick_s).c_str());
+  if (!o.conditions_file.empty()) std::fprintf(f, "conditions=%s\n", o.conditions_file.c_str());
+  const auto& J = ex.nominal_inertia();
+  std::fprintf(f, "nominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", fmt(J[0]).c_str(), fmt(J[1]).c_str(),
+               fmt(J[2]).c_str(), fmt(J[3]).c_str(), fmt(J[4]).c_str(), fmt(J[5]).c_str());
+  for (const auto& c : controllers) {
+    const auto& s = c.spec;
+    std::fprintf(f, "controller.%s=%s family=%s units=%s,%s gains=%s,%s,%s", c.name.c_str(),
+                 c.source.c_str(), cf::to_string(s.family), cf::to_string(s.units.gains),
+                 cf::to_string(s.units.form), fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(),
+                 fmt(s.gains.kd).c_str());
+    if (s.family != cf::Family::Pid)
+      std::fprintf(
+          f, " error_scale=%s error_rate_scale=%s output_scale=%s,%s,%s",
+          fmt(s.supervisor.error_scale).c_str(), fmt(s.supervisor.error_rate_scale).c_str(),
+          fmt(s.supervisor.output_scale[0]).c_str(), fmt(s.supervisor.output_scale[1]).c_str(),
+          fmt(s.supervisor.output_scale[2]).c_str());
+    if (s.family == cf::Family::Fuzzy)
+      std::fprintf(f, " gain_update=%s rule_base=%s and=%s",
+                   cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update),
+                   cf::to_string(s.supervisor.rule_base),
+                   cf::name_of(cf::kConjunctionNames, s.supervisor.conjunction));
+    std::fprintf(f, " derivative=%s\n", cf::name_of(cf::kDerivativeSourceNames, s.pid.derivative));
+  }
+}
+
+int run_sweep(const sim_ab::Options& o, const sim::Experiment& ex,
+              const std::vector<NamedController>& controllers, const std::string& urdf,
+              const robot::CartesianPathSpec& spec) {
+  const sim_ab::Sweep& sw = *o.sweep;
+  std::vector<Output> outs;
+  if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
+  std::FILE* csv = outs[0].file;
+  write_settings(outs[1].file, o, urdf, spec, ex, controllers);
+  std::fprintf(outs[1].file, "sweep=%s=%s:%s:%d\novershoot_bound_pct=%s\nitae_ratio=%s\n",
+               sw.parameter.c_str(), fmt(sw.lo).c_str(), fmt(sw.hi).c_str(), sw.count,
+               fmt(o.overshoot_bound_pct).c_str(), fmt(o.itae_ratio_bound).c_str());
+  std::fputs("controller,parameter,value,itae,max_overshoot_pct,faults,diverged,usable\n", csv);
+  const sim::Condition base = sim_ab::scenario_conditions(o).front();
+  const double tick = o.experiment.tick_s;
+  if (!o.quiet)
+    std::printf("%-22s %-14s %-28s %s\n", "controller", "parameter", "usable range",
+                "nominal ITAE");
+  for (const auto& c : controllers) {
+    const sim::RunResult nominal = ex.run(base, c.spec);
+    if (!nominal.ok) {
+      std::fprintf(stderr, "sim_ab: %s on %s: %s\n", c.name.c_str(), base.name.c_str(),
+                   nominal.error.c_str());
+      discard(outs);
+      return 1;
+    }
+    const double nominal_itae = sim::total_itae(nominal.rows, tick);
+    std::vector<bool> usable(static_cast<std::size_t>(sw.count));
+    for (int k = 0; k < sw.count; ++k) {
+      sim::Condition cond = base;
+      const double v = sw.value(k);
+      if (sw.parameter == "payload-scale") {
+        cond.payload_scale = v;
+      } else {
+        cond.torque_limit_rad_s2 = v;
+      }
+      sim::RunLimits limits;
+      limits.max_error_rad = 1.0;  // far outside anything usable; ends diverging runs early
+      const sim::RunResult r = ex.run(cond, c.spec, limits);
+      if (!r.ok) {
+        std::fprintf(stderr, "sim_ab: %s at %s=%g: %s\n", c.name.c_str(), sw.parameter.c_str(), v,
+                     r.error.c_str());
+        discard(outs);
+        return 1;
+      }
+      const Summary s = summarize(sim::run_metrics(r.rows, tick));
+      const bool ok = !r.diverged && r.controller_faults == 0 && std::isfinite(s.itae) &&
+                      s.max_overshoot_pct <= o.overshoot_bound_pct &&
+                      s.itae <= o.itae_ratio_bound * nominal_itae;
+      usable[static_cast<std::size_t>(k)] = ok;
+      std::fprintf(csv, "%s,%s,%s,%s,%s,%zu,%d,%d\n", c.name.c_str(), sw.parameter.c_str(),
+                   fmt(v).c_str(), r.diverged ? "inf" : fmt(s.itae).c_str(),
+                   r.diverged ? "inf" : fmt(s.max_overshoot_pct).c_str(), r.controller_faults,
+                   r.diverged ? 1 : 0, ok ? 1 : 0);
+    }
+    // The longest run of consecutive usable values.
+    int best_lo = -1, best_len = 0;
+    for (int k = 0; k < sw.count;) {
+      if (!usable[static_cast<std::size_t>(k)]) {
+        ++k;
+        continue;
+      }
+      int j = k;
+      while (j < sw.count && usable[static_cast<std::size_t>(j)])
+        ++j;
+      if (j - k > best_len) {
+        best_lo = k;
+        best_len = j - k;
+      }
+      k = j;
+    }
+    if (!o.quiet) {
+      char range[64] = "none";
+      if (best_len > 0)
+        std::snprintf(range, sizeof range, "%.4g .. %.4g", sw.value(best_lo),
+                      sw.value(best_lo + best_len - 1));
+      std::printf("%-22s %-14s %-28s %.4e\n", c.name.c_str(), sw.parameter.c_str(), range,
+                  nominal_itae);
+    }
+  }
+  std::string error;
+  if (!commit(outs, error)) {
+    std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
+    discard(outs);
+    return 1;
+  }
+  if (!o.quiet) std::fprintf(stderr, "sim_ab: wrote %s/sweep.csv\n", o.out_dir.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o;
-  if (const int rc = parse(argc, argv, o); rc != 0) return rc < 0 ? 0 : rc;
+  sim_ab::Options o;
+  switch (sim_ab::parse(argc, argv, o)) {
+    case sim_ab::ParseResult::Exit:
+      return 0;
+    case sim_ab::ParseResult::UsageError:
+      return 2;
+    case sim_ab::ParseResult::Run:
+      break;
+  }
+
+  // Controllers: the files, or the paper's two.
+  std::vector<NamedController> controllers;
+  for (const std::string& path : o.controllers) {
+    NamedController c;
+    cf::Error err;
+    if (!cf::load(path, c.spec, err)) {
+      std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
+      return 1;
+    }
+    c.name = fs::path(path).stem().string();
+    c.source = path;
+    for (const auto& other : controllers) {
+      if (other.name == c.name) {
+        std::fprintf(stderr, "sim_ab: two controller files named '%s'\n", c.name.c_str());
+        return 2;
+      }
+    }
+    if (c.spec.units.tick_s != o.experiment.tick_s && c.spec.units.form == cf::PidForm::PerTick)
+      std::fprintf(stderr,
+                   "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "
+                   "to continuous gains and run at the sim's %g s tick\n",
+                   path.c_str(), c.spec.units.tick_s, o.experiment.tick_s);
+    controllers.push_back(std::move(c));
+  }
+  if (controllers.empty()) {
+    controllers.push_back(
+        {"pid", "built-in", sim::default_controller(o.experiment, cf::Family::Pid)});
+    controllers.push_back(
+        {"fuzzy", "built-in", sim::default_controller(o.experiment, cf::Family::Fuzzy)});
+  }
+
+  // Conditions: a file's sets, or the scenario(s) with the overrides.
+  std::vector<Run> runs;
+  if (!o.conditions_file.empty()) {
+    sim::ConditionFile file;
+    cf::Error err;
+    if (!sim::load_conditions(o.conditions_file, file, err)) {
+      std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
+      return 1;
+    }
+    std::vector<std::string> sets = o.sets;
+    if (sets.empty())
+      for (const auto& s : file.sets)
+        sets.push_back(s.name);
+    for (const std::string& name : sets) {
+      const sim::ConditionSet* set = file.find(name);
+      if (set == nullptr) {
+        std::fprintf(stderr, "sim_ab: %s has no set '%s' (it has: %s)\n", o.conditions_file.c_str(),
+                     name.c_str(), file.set_names().c_str());
+        return 2;
+      }
+      for (const auto& c : set->conditions)
+        runs.push_back({set->name, c});
+    }
+  } else {
+    for (const auto& c : sim_ab::scenario_conditions(o))
+      runs.push_back({"scenario", c});
+  }
+  for (const auto& r : runs) {
+    if (const std::string bad = r.condition.validate(); !bad.empty()) {
+      std::fprintf(stderr, "sim_ab: condition %s: %s\n", r.condition.name.c_str(), bad.c_str());
+      return 2;
+    }
+  }
 
   const std::string urdf = o.urdf.empty() ? robot::default_urdf_path() : o.urdf;
   robot::LoadResult loaded = robot::RobotModel::load(urdf);
@@ -282,106 +354,60 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
     return 1;
   }
+  if (o.sweep) return run_sweep(o, *experiment, controllers, urdf, spec);
 
-  std::vector<const sim::Scenario*> runs;
-  if (o.scenario == "all") {
-    for (const auto& s : sim::scenarios())
-      runs.push_back(&s);
-  } else {
-    runs.push_back(sim::find_scenario(o.scenario));
-  }
-
-  const fs::path dir(o.out_dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    std::fprintf(stderr, "sim_ab: cannot create output directory %s: %s\n", dir.c_str(),
-                 ec ? ec.message().c_str() : "not a directory");
+  std::vector<Output> outs;
+  if (!open_outputs(
+          o.out_dir,
+          {"trajectory.csv", "metrics.csv", "endeffector.csv", "conditions.csv", "settings.txt"},
+          outs))
     return 1;
-  }
-  std::vector<Output> outs(4);
-  const char* names[4] = {"trajectory.csv", "metrics.csv", "endeffector.csv", "settings.txt"};
-  for (int k = 0; k < 4; ++k) {
-    if (!open_output(dir, names[k], outs[k], error)) {
-      std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
-      discard(outs);
-      return 1;
-    }
-  }
   std::FILE* traj = outs[0].file;
   std::FILE* metrics = outs[1].file;
   std::FILE* tip = outs[2].file;
-  std::FILE* settings = outs[3].file;
+  std::FILE* conds = outs[3].file;
+  write_settings(outs[4].file, o, urdf, spec, *experiment, controllers);
   std::fputs("scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd\n", traj);
   std::fputs(
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
-      "iae,itae\n",
+      "iae,itae,max_abs_error_after_1s_rad,faults\n",
       metrics);
   std::fputs("scenario,controller,t,x_d,y_d,z_d,x,y,z\n", tip);
-
-  const auto& ex = o.experiment;
-  std::fprintf(settings,
-               "urdf=%s\nstart_mm=%s,%s,%s\nend_mm=%s,%s,%s\nsamples=%zu\ntick_s=%s\n"
-               "gains=%s,%s,%s\ngain_units=%s\npid_form=%s\nderivative=%s\ngain_update=%s\n"
-               "error_scale=%s\nerror_rate_scale=%s\noutput_scale=%s,%s,%s\ntables=%s\nand=%s\n"
-               "initial_error_rad=%s\nnoise_seed=%llu\n",
-               urdf.c_str(), fmt(spec.start_m.x() * 1e3).c_str(),
-               fmt(spec.start_m.y() * 1e3).c_str(), fmt(spec.start_m.z() * 1e3).c_str(),
-               fmt(spec.end_m.x() * 1e3).c_str(), fmt(spec.end_m.y() * 1e3).c_str(),
-               fmt(spec.end_m.z() * 1e3).c_str(), experiment->ticks(), fmt(ex.tick_s).c_str(),
-               fmt(ex.gains.kp).c_str(), fmt(ex.gains.ki).c_str(), fmt(ex.gains.kd).c_str(),
-               sim::to_string(ex.gain_units), sim::to_string(ex.pid_form),
-               ex.derivative == pid::DerivativeSource::Rates ? "rates" : "difference",
-               control::to_string(ex.gain_update), fmt(ex.error_scale).c_str(),
-               fmt(ex.error_rate_scale).c_str(), fmt(ex.output_scale[0]).c_str(),
-               fmt(ex.output_scale[1]).c_str(), fmt(ex.output_scale[2]).c_str(),
-               ex.tables == paper::Tables::Printed ? "printed" : "corrected",
-               fuzzy::to_string(ex.conjunction), fmt(ex.initial_error_rad).c_str(),
-               static_cast<unsigned long long>(ex.noise_seed));
-  const auto& J = experiment->nominal_inertia();
-  std::fprintf(settings, "nominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", fmt(J[0]).c_str(),
-               fmt(J[1]).c_str(), fmt(J[2]).c_str(), fmt(J[3]).c_str(), fmt(J[4]).c_str(),
-               fmt(J[5]).c_str());
-
-  std::optional<pid::Gains<double>> tuned;
-  if (o.tune) {
-    if (!o.quiet) std::fprintf(stderr, "sim_ab: tuning pid-tuned on scenario paper (ITAE) ...\n");
-    const sim::TuningResult t = sim::tune_pid(*experiment, *sim::find_scenario("paper"));
-    tuned = t.gains;
-    std::fprintf(settings,
-                 "pid_tuned_gains=%s,%s,%s\npid_tuned_itae=%s\npid_tuned_evaluations=%zu\n",
-                 fmt(t.gains.kp).c_str(), fmt(t.gains.ki).c_str(), fmt(t.gains.kd).c_str(),
-                 fmt(t.itae).c_str(), t.evaluations);
-    if (!o.quiet)
-      std::fprintf(stderr, "sim_ab: pid-tuned gains Kp=%.6g Ki=%.6g Kd=%.6g (%zu runs)\n",
-                   t.gains.kp, t.gains.ki, t.gains.kd, t.evaluations);
+  std::fputs(
+      "scenario,set,payload_scale,friction,torque_limit,contact,noise_q,noise_qd,seed,reverse,"
+      "initial_error\n",
+      conds);
+  for (const auto& r : runs) {
+    const auto& c = r.condition;
+    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s\n", c.name.c_str(), r.set.c_str(),
+                 fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
+                 fmt(c.torque_limit_rad_s2).c_str(), fmt(c.contact_rad_s2).c_str(),
+                 fmt(c.noise_position_rad).c_str(), fmt(c.noise_velocity_rad_s).c_str(),
+                 static_cast<unsigned long long>(c.seed), c.reverse ? 1 : 0,
+                 fmt(c.initial_error_rad).c_str());
   }
 
-  std::vector<sim::ControllerKind> controllers = {sim::ControllerKind::Pid,
-                                                  sim::ControllerKind::Fuzzy};
-  if (tuned) controllers.push_back(sim::ControllerKind::PidTuned);
-
   if (!o.quiet)
-    std::printf("%-14s %-10s %5s %10s %10s %12s %12s %10s\n", "scenario", "controller", "joint",
-                "settle_s", "overshoot%", "max|e|_rad", "rms_e_rad", "itae");
+    std::printf("%-10s %-26s %-18s %11s %10s %10s %12s\n", "set", "condition", "controller", "ITAE",
+                "overshoot%", "settle_s", "max|e|>1s");
+  std::size_t faulted_runs = 0;
   std::size_t done = 0;
-  for (const sim::Scenario* scenario : runs) {
+  for (const Run& run : runs) {
     ++done;
+    const sim::Condition& cond = run.condition;
     if (!o.quiet && runs.size() > 1)
-      std::fprintf(stderr, "sim_ab: [%zu/%zu] scenario %s\n", done, runs.size(),
-                   scenario->name.c_str());
-    for (const sim::ControllerKind kind : controllers) {
-      const char* cname = sim::to_string(kind);
-      const auto gains = kind == sim::ControllerKind::PidTuned ? tuned : std::nullopt;
-      const sim::RunResult r = experiment->run(*scenario, kind, gains);
+      std::fprintf(stderr, "sim_ab: [%zu/%zu] %s\n", done, runs.size(), cond.name.c_str());
+    for (const NamedController& ctl : controllers) {
+      const char* cname = ctl.name.c_str();
+      const sim::RunResult r = experiment->run(cond, ctl.spec);
       if (!r.ok) {
-        std::fprintf(stderr, "sim_ab: scenario %s, controller %s: %s\n", scenario->name.c_str(),
-                     cname, r.error.c_str());
+        std::fprintf(stderr, "sim_ab: condition %s, controller %s: %s\n", cond.name.c_str(), cname,
+                     r.error.c_str());
         discard(outs);
         return 1;
       }
       for (const auto& row : r.rows) {
-        std::fprintf(traj, "%s,%s,%s,%d,%s,%s,%s,%s,%s,%s,%s,%s\n", scenario->name.c_str(), cname,
+        std::fprintf(traj, "%s,%s,%s,%d,%s,%s,%s,%s,%s,%s,%s,%s\n", cond.name.c_str(), cname,
                      fmt(row.t_s).c_str(), row.joint, fmt(row.theta_d).c_str(),
                      fmt(row.theta).c_str(), fmt(row.error).c_str(), fmt(row.error_rate).c_str(),
                      fmt(row.u).c_str(), fmt(row.kp).c_str(), fmt(row.ki).c_str(),
@@ -397,33 +423,29 @@ int main(int argc, char** argv) {
         }
         const Eigen::Vector3d pd = model.forward_kinematics(qd).position_m;
         const Eigen::Vector3d p = model.forward_kinematics(q).position_m;
-        std::fprintf(tip, "%s,%s,%s,%s,%s,%s,%s,%s,%s\n", scenario->name.c_str(), cname,
+        std::fprintf(tip, "%s,%s,%s,%s,%s,%s,%s,%s,%s\n", cond.name.c_str(), cname,
                      fmt(r.rows[k * robot::kNumJoints].t_s).c_str(), fmt(pd.x()).c_str(),
                      fmt(pd.y()).c_str(), fmt(pd.z()).c_str(), fmt(p.x()).c_str(),
                      fmt(p.y()).c_str(), fmt(p.z()).c_str());
       }
+      const auto m = sim::run_metrics(r.rows, o.experiment.tick_s);
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-        std::vector<double> t, theta_d, theta, err;
-        for (std::size_t k = 0; k < ticks; ++k) {
-          const auto& row = r.rows[k * robot::kNumJoints + i];
-          t.push_back(row.t_s);
-          theta_d.push_back(row.theta_d);
-          theta.push_back(row.theta);
-          err.push_back(row.error);
-        }
-        const sim::JointMetrics m = sim::joint_metrics(t, theta_d, theta, err, ex.tick_s);
-        std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s\n", scenario->name.c_str(), cname, i + 1,
-                     fmt(m.settling_time_s).c_str(), fmt(m.overshoot_pct).c_str(),
-                     fmt(m.max_abs_error_rad).c_str(), fmt(m.rms_error_rad).c_str(),
-                     fmt(m.iae).c_str(), fmt(m.itae).c_str());
-        if (!o.quiet)
-          std::printf("%-14s %-10s %5zu %10.3g %10.3g %12.3e %12.3e %10.3e\n",
-                      scenario->name.c_str(), cname, i + 1, m.settling_time_s, m.overshoot_pct,
-                      m.max_abs_error_rad, m.rms_error_rad, m.itae);
+        std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu\n", cond.name.c_str(), cname,
+                     i + 1, fmt(m[i].settling_time_s).c_str(), fmt(m[i].overshoot_pct).c_str(),
+                     fmt(m[i].max_abs_error_rad).c_str(), fmt(m[i].rms_error_rad).c_str(),
+                     fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
+                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.controller_faults);
       }
-      if (r.controller_faults != 0)
-        std::fprintf(stderr, "sim_ab: warning: %zu controller faults in %s/%s\n",
-                     r.controller_faults, scenario->name.c_str(), cname);
+      const Summary s = summarize(m);
+      if (!o.quiet)
+        std::printf("%-10s %-26s %-18s %11.4e %10.3g %10.3g %12.3e\n", run.set.c_str(),
+                    cond.name.c_str(), cname, s.itae, s.max_overshoot_pct, s.max_settling_s,
+                    s.max_error_after_1s_rad);
+      if (r.controller_faults != 0) {
+        ++faulted_runs;
+        std::fprintf(stderr, "sim_ab: error: %zu controller faults in %s/%s\n", r.controller_faults,
+                     cond.name.c_str(), cname);
+      }
     }
   }
   if (!commit(outs, error)) {
@@ -432,7 +454,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!o.quiet)
-    std::fprintf(stderr, "sim_ab: wrote %s/{trajectory,metrics,endeffector}.csv\n",
+    std::fprintf(stderr, "sim_ab: wrote %s/{trajectory,metrics,endeffector,conditions}.csv\n",
                  o.out_dir.c_str());
+  if (faulted_runs != 0) {
+    std::fprintf(stderr, "sim_ab: %zu run(s) with controller faults\n", faulted_runs);
+    return 1;
+  }
   return 0;
 }

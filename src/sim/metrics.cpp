@@ -25,6 +25,7 @@ JointMetrics joint_metrics(const std::vector<double>& t_s, const std::vector<dou
     const double e = error[k];
     const double a = std::fabs(e);
     m.max_abs_error_rad = std::max(m.max_abs_error_rad, a);
+    if (t_s[k] >= 1.0) m.max_abs_error_after_1s_rad = std::max(m.max_abs_error_after_1s_rad, a);
     sum_sq += e * e;
     m.iae += a * dt_s;
     m.itae += t_s[k] * a * dt_s;

@@ -15,7 +15,7 @@ import sys
 
 TRAJ_HEADER = "scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd"
 METRICS_HEADER = ("scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,"
-                  "rms_error_rad,iae,itae")
+                  "rms_error_rad,iae,itae,max_abs_error_after_1s_rad,faults")
 DT = 0.05
 
 
@@ -49,6 +49,8 @@ def metrics(t, theta_d, theta, e):
         "rms_error_rad": math.sqrt(sum(x * x for x in e) / len(e)),
         "iae": sum(abs(x) * DT for x in e),
         "itae": sum(tk * abs(x) * DT for tk, x in zip(t, e)),
+        "max_abs_error_after_1s_rad": max([abs(x) for tk, x in zip(t, e) if tk >= 1.0],
+                                          default=0.0),
     }
 
 

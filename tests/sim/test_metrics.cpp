@@ -4,9 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/metrics.hpp"
-#include "fuzzypid/sim/nelder_mead.hpp"
-#include "fuzzypid/sim/scenario.hpp"
 
 namespace {
 
@@ -54,16 +53,6 @@ TEST(JointMetrics, NotSettledWhenTheLastSampleIsOutsideTheBand) {
   const std::vector<double> t{0, 0.05}, ref{1, 1}, theta{0, 0.5}, e{1, 0.5};
   EXPECT_EQ(joint_metrics(t, ref, theta, e, 0.05).settling_time_s,
             std::numeric_limits<double>::infinity());
-}
-
-TEST(NelderMead, FindsTheMinimumOfAShiftedQuadratic) {
-  const auto f = [](const std::array<double, 2>& x) {
-    return (x[0] - 3.0) * (x[0] - 3.0) + 10.0 * (x[1] + 1.0) * (x[1] + 1.0);
-  };
-  const auto r = fuzzypid::sim::nelder_mead<2>(f, {0.0, 0.0}, {1.0, 1.0}, 1e-14, 1000);
-  EXPECT_TRUE(r.converged);
-  EXPECT_NEAR(r.x[0], 3.0, 1e-5);
-  EXPECT_NEAR(r.x[1], -1.0, 1e-5);
 }
 
 TEST(PulseTrain, AlternatesSignAndIsZeroOutsideItsWindow) {

@@ -1,19 +1,20 @@
-// The section 6 experiment: the ER50-C20 following the A -> B path under a fixed PID or a fuzzy
-// PID, on the joint plant, one controller tick at a time.
+// The section 6 experiment: the ER50-C20 following the A -> B path (or B -> A) under a controller
+// described by a controller file, on the joint plant, one controller tick at a time
+// (closed_loop.hpp), for any condition (condition.hpp).
 //
-// Every modelling choice the paper leaves open is a named field of ExperimentOptions with a
-// documented default (docs/reproduction.md discusses each):
-//   - gain_units:   the paper's gains act on an inertia-normalised loop (u in rad/s², torque
+// ExperimentOptions holds the settings of the plant and of the paper's default controllers (what
+// sim_ab runs without --controller); every modelling choice the paper leaves open is a named field
+// with a documented default (docs/reproduction.md discusses each):
+//   - gain_units:   the gains act on an inertia-normalised loop (u in rad/s², torque
 //                   tau_i = J^_i u_i with J^_i the nominal joint inertia at the path start) or
 //                   directly as torque gains (u in N·m);
 //   - pid_form:     per-tick gains (u = Kp e + Ki sum(e) + Kd (e_k - e_{k-1}), the textbook
-//                   discrete form) or continuous-time gains (u = Kp e + Ki int(e dt) + Kd de/dt);
-//                   per-tick gains are converted to continuous ones as Ki/dt and Kd dt;
+//                   discrete form) or continuous-time gains; per-tick gains are converted by
+//                   controller_file::to_continuous (Ki/dt, Kd dt);
 //   - derivative:   de/dt from the measured velocities (Eq. 2) or from successive errors;
 //   - gain_update, error_scale, error_rate_scale, output_scale: how the supervisor's
 //                   dKp, dKi, dKd reach the PID (control/fuzzy_pid.hpp);
-//   - initial_error_rad: the robot starts at rest at theta_d(0) - initial_error, which produces
-//                   the transient of Fig. 10.
+//   - initial_error_rad: the default condition's start error (the transient of Fig. 10).
 #pragma once
 
 #include <array>
@@ -24,24 +25,22 @@
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
+#include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/robot/types.hpp"
-#include "fuzzypid/sim/scenario.hpp"
+#include "fuzzypid/sim/condition.hpp"
+#include "fuzzypid/sim/metrics.hpp"
 
 namespace fuzzypid::sim {
 
-enum class GainUnits : std::uint8_t { Acceleration, Torque };
-enum class PidForm : std::uint8_t { PerTick, Continuous };
-enum class ControllerKind : std::uint8_t { Pid, Fuzzy, PidTuned };
-
-[[nodiscard]] const char* to_string(GainUnits g) noexcept;
-[[nodiscard]] const char* to_string(PidForm f) noexcept;
-// "pid", "fuzzy", "pid-tuned": the names used in the CSV files.
-[[nodiscard]] const char* to_string(ControllerKind c) noexcept;
+using GainUnits = controller_file::GainUnits;
+using PidForm = controller_file::PidForm;
+using controller_file::ControllerSpec;
 
 struct ExperimentOptions {
   double tick_s = 0.05;  // section 6: sampled once every 0.05 s
@@ -56,10 +55,14 @@ struct ExperimentOptions {
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
   paper::Tables tables = paper::Tables::Printed;
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
-  double initial_error_rad = 0.05;  // every joint starts this far behind theta_d(0)
-  std::uint64_t noise_seed = 1;     // for scenarios with measurement noise
-  robot::PlantConfig plant{};       // scenario fields are applied on top
+  double initial_error_rad = 0.05;  // of the default condition
+  std::uint64_t noise_seed = 1;     // of the default condition
+  robot::PlantConfig plant{};       // condition fields are applied on top
 };
+
+// The paper's fixed PID (Pid) or fuzzy PID (Fuzzy) with the options' gains and settings.
+[[nodiscard]] ControllerSpec default_controller(const ExperimentOptions& options,
+                                                controller_file::Family family);
 
 // One row of trajectory.csv: one joint at one tick under one controller.
 struct TrajectoryRow {
@@ -69,8 +72,8 @@ struct TrajectoryRow {
   double theta = 0.0;                   // rad, true (noise-free) joint angle
   double error = 0.0;                   // theta_d - theta, rad
   double error_rate = 0.0;              // theta_d dot - theta dot, rad/s
-  double u = 0.0;                       // controller output (rad/s² or N·m, see gain_units)
-  double kp = 0.0, ki = 0.0, kd = 0.0;  // gains of this tick, in the paper's units (pid_form)
+  double u = 0.0;                       // controller output (rad/s² or N·m, see gain units)
+  double kp = 0.0, ki = 0.0, kd = 0.0;  // gains of this tick, in the controller file's units
 };
 
 struct RunResult {
@@ -79,80 +82,80 @@ struct RunResult {
   std::vector<TrajectoryRow> rows;  // tick-major, joints 1..6 within a tick
   std::size_t controller_faults = 0;
   std::size_t saturated_ticks = 0;  // ticks in which the plant clamped at least one torque
+  bool diverged = false;            // stopped early: |e| exceeded RunLimits::max_error_rad
+};
+
+struct RunLimits {
+  // Stop the run (diverged) once any joint's |e| exceeds this; +inf never stops.
+  double max_error_rad = std::numeric_limits<double>::infinity();
+  bool record = true;  // fill RunResult::rows (metrics need them)
 };
 
 class Experiment {
  public:
-  // Plans the joint path (closed-form IK) and evaluates the nominal inertia J^ at its start.
-  // Returns an error message instead when the path cannot be planned.
+  // Plans the joint path A -> B (closed-form IK) and B -> A, and evaluates the nominal inertia J^
+  // at A. Returns an error message instead when the A -> B path cannot be planned (a B -> A path
+  // that cannot be planned is reported when a reversed condition is run).
   static std::optional<Experiment> create(const robot::RobotModel& model,
                                           const robot::CartesianPathSpec& path,
                                           const ExperimentOptions& options, std::string& error);
 
-  // Runs one controller on one scenario from the initial state. `gains` are the fixed PID's (or
-  // the fuzzy PID's nominal K0) in the paper's units; by default the options' gains.
-  RunResult run(const Scenario& scenario, ControllerKind kind,
-                const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
+  // Runs one controller on one condition from its initial state.
+  RunResult run(const Condition& condition, const ControllerSpec& controller,
+                const RunLimits& limits = {}) const;
 
-  // The pieces run() builds before its first tick, public so that a real-time loop or a soak test
-  // runs exactly the A/B simulation's settings.
+  // The pieces a closed loop is built from.
   //
-  // Torque limit of each joint in the scenario (N·m): the URDF effort limits, or the scenario's
-  // acceleration limit times J^_i.
-  robot::JointVector torque_limit(const Scenario& scenario) const;
-  // The plant configuration of the scenario (inertia scale, damping, torque limits applied).
-  robot::PlantConfig plant_config(const Scenario& scenario) const;
-  // Where the joints start: theta_d(0) - initial_error_rad, at rest.
-  robot::JointVector initial_position() const;
-  // The six controllers of a run, with output limits matching `torque_limit` (in the units of
-  // gain_units) and `gains` in the paper's units (default: the options' gains).
-  std::array<pid::Pid<double>, robot::kNumJoints> make_pid(
-      const robot::JointVector& torque_limit,
-      const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
-  // The fuzzy controllers point to this Experiment's supervisor (supervisor()): the Experiment
-  // must outlive them.
-  std::array<paper::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
-      const robot::JointVector& torque_limit,
-      const std::optional<pid::Gains<double>>& gains = std::nullopt) const;
-  // The torque a controller output asks for: J^_i u_i with GainUnits::Acceleration, u_i else.
-  robot::JointVector torque_from_command(const robot::JointVector& u) const noexcept;
-  // Gains of the PID's continuous SI form expressed in the paper's units (for logging).
-  pid::Gains<double> to_paper_units(const pid::Gains<double>& g) const noexcept;
+  // The planned path of the condition (A -> B, or B -> A when reversed); nullptr with `error`
+  // set when the reversed path could not be planned.
+  const robot::JointPathResult* path(const Condition& condition, std::string& error) const;
+  // Torque limit of each joint (N·m): the URDF effort limits, or the condition's limit times J^_i.
+  robot::JointVector torque_limit(const Condition& condition) const;
+  // The plant configuration of the condition (payload, friction, torque limits applied).
+  robot::PlantConfig plant_config(const Condition& condition) const;
+  // Where the joints start on `path`: its first sample minus the condition's initial error.
+  robot::JointVector initial_position(const robot::JointPathResult& path,
+                                      const Condition& condition) const;
+  // The controller's output limits (torque limit / J^_i with acceleration units).
+  robot::JointVector output_limit(const Condition& condition, GainUnits units) const;
+  // The torque a controller output asks for: J^_i u_i with acceleration units, u_i else.
+  robot::JointVector torque_from_command(const robot::JointVector& u,
+                                         GainUnits units) const noexcept;
 
+  // Compatibility for the real-time loop and the soak test: the A -> B path, the default
+  // condition's start, the paper's controllers with the options' settings.
   const robot::JointPathResult& path() const noexcept { return path_; }
+  robot::JointVector initial_position() const;
+  robot::JointVector torque_from_command(const robot::JointVector& u) const noexcept {
+    return torque_from_command(u, options_.gain_units);
+  }
+  std::array<pid::Pid<double>, robot::kNumJoints> make_pid(
+      const robot::JointVector& torque_limit) const;
+  // The fuzzy controllers point to this Experiment's supervisor: it must outlive them.
+  std::array<paper::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
+      const robot::JointVector& torque_limit) const;
+
   const robot::JointVector& nominal_inertia() const noexcept { return nominal_inertia_; }
   const ExperimentOptions& options() const noexcept { return options_; }
-  // The paper's supervisor with the options' conjunction and tables, shared by the fuzzy joints.
-  const paper::System<double>& supervisor() const noexcept { return supervisor_; }
+  const robot::RobotModel& model() const noexcept { return model_; }
   std::size_t ticks() const noexcept { return path_.time_s.size(); }
 
  private:
   Experiment(const robot::RobotModel& model, robot::JointPathResult path,
-             const ExperimentOptions& options);
-
-  // The paper-unit gains converted to the PID's continuous SI form.
-  pid::Gains<double> to_continuous(const pid::Gains<double>& g) const noexcept;
-  std::array<pid::Config<double>, robot::kNumJoints> pid_configs(
-      const robot::JointVector& torque_limit, const pid::Gains<double>& paper_gains) const;
+             robot::JointPathResult reverse_path, const ExperimentOptions& options);
 
   robot::RobotModel model_;
   robot::JointPathResult path_;
+  robot::JointPathResult reverse_path_;
   ExperimentOptions options_;
   robot::JointVector nominal_inertia_{};
-  paper::System<double> supervisor_{};
+  paper::System<double> supervisor_{};  // of make_fuzzy_pid
 };
 
-// ITAE summed over the six joints of a run's rows (the tuning objective).
+// ITAE summed over the six joints of a run's rows.
 [[nodiscard]] double total_itae(const std::vector<TrajectoryRow>& rows, double tick_s);
-
-struct TuningResult {
-  pid::Gains<double> gains;  // paper units
-  double itae = 0.0;
-  std::size_t evaluations = 0;
-};
-
-// Tunes the fixed PID's three gains for `scenario` by Nelder-Mead on log10 of the gains,
-// minimising the summed ITAE, starting from the options' gains.
-[[nodiscard]] TuningResult tune_pid(const Experiment& experiment, const Scenario& scenario);
+// The metrics of each joint of a run (rows of one run, tick-major).
+[[nodiscard]] std::array<JointMetrics, robot::kNumJoints> run_metrics(
+    const std::vector<TrajectoryRow>& rows, double tick_s);
 
 }  // namespace fuzzypid::sim

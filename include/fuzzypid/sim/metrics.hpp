@@ -9,6 +9,7 @@
 //                   travel when e_0 = 0): how far the joint runs past its reference, opposite to
 //                   where it started, relative to its travel
 //   max_abs_error   max_k |e_k|, rad
+//   max_abs_error_after_1s   max |e_k| over t_k >= 1 s (after the start transient), rad
 //   rms_error       sqrt(mean_k e_k^2), rad
 //   iae, itae       sum_k |e_k| dt and sum_k t_k |e_k| dt (rectangle rule over all K samples)
 #pragma once
@@ -24,6 +25,7 @@ struct JointMetrics {
   double settling_time_s = 0.0;
   double overshoot_pct = 0.0;
   double max_abs_error_rad = 0.0;
+  double max_abs_error_after_1s_rad = 0.0;
   double rms_error_rad = 0.0;
   double iae = 0.0;   // rad·s
   double itae = 0.0;  // rad·s²

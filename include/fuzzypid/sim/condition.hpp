@@ -1,0 +1,61 @@
+// Conditions of the section 6 experiment: a plant variant x a path x a start state. Every field is
+// settable from sim_ab's command line and from condition-set files (condition_set.hpp); the named
+// scenarios are shorthands for conditions.
+//
+// The controller is never told about the condition: it keeps the nominal inertia J^_i (of the
+// nominal plant at the start of the A -> B path), and friction, torque limits and contact forces
+// are given relative to that J^_i so that every joint sees the same accelerations.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fuzzypid::sim {
+
+// A disturbance torque pulse train, scaled per joint by the nominal inertia J^_i (so the same
+// pulse gives every joint the same disturbing acceleration): from start_s to end_s, every
+// period_s, a pulse of width_s seconds of +/- accel_rad_s2 (sign alternating).
+struct PulseTrain {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double period_s = 0.5;
+  double width_s = 0.1;
+  double accel_rad_s2 = 0.0;  // 0 = no pulses
+
+  // Disturbing acceleration at time t (the plant multiplies it by J^_i).
+  double at(double t_s) const noexcept;
+};
+
+// The deburring contact: 0.1 s pulses of +/- amplitude every 0.5 s from 1 s to 4 s.
+[[nodiscard]] PulseTrain contact_pulses(double amplitude_rad_s2) noexcept;
+
+struct Condition {
+  std::string name;
+  std::string description;
+  // Plant variant.
+  double payload_scale = 1.0;         // link inertia x S (armature unchanged); controller unchanged
+  double friction_per_s = 0.0;        // viscous b_i = B J^_i, N·m·s/rad
+  double torque_limit_rad_s2 = 0.0;   // |tau_i| <= L J^_i (0: the URDF effort limits)
+  double contact_rad_s2 = 0.0;        // amplitude of the deburring pulses (contact_pulses)
+  double noise_position_rad = 0.0;    // std. dev. of Gaussian noise on measured angles
+  double noise_velocity_rad_s = 0.0;  // std. dev. on measured velocities
+  std::uint64_t seed = 1;             // noise seed
+  // Path and start state.
+  bool reverse = false;             // follow the path B -> A
+  double initial_error_rad = 0.05;  // joints start this far behind the path (< 0: ahead), at rest
+
+  // Empty, or what is wrong (non-finite or out-of-range values).
+  [[nodiscard]] std::string validate() const;
+  [[nodiscard]] PulseTrain pulses() const noexcept { return contact_pulses(contact_rad_s2); }
+};
+
+// Kept for the programs that still say "scenario".
+using Scenario = Condition;
+
+// The named scenarios in the order `--scenario all` runs them; "paper" first.
+[[nodiscard]] const std::vector<Condition>& scenarios();
+// nullptr when no scenario has that name.
+[[nodiscard]] const Condition* find_scenario(const std::string& name);
+
+}  // namespace fuzzypid::sim

@@ -1,0 +1,49 @@
+// Condition sets: named lists of conditions in a TOML file (tuning/robust.toml), e.g. a training
+// set for `fuzzypid tune` and a held-out set that only sim_ab evaluates.
+//
+//   [sets.NAME]
+//   description = "..."                       # optional
+//   conditions = [                            # optional
+//     { name = "light-ahead", payload_scale = 0.5, initial_error = -0.05 },
+//     { name = "contact", scenario = "deburring" },   # a named scenario, fields override it
+//   ]
+//   [sets.NAME.monte_carlo]                   # optional: N seeded random draws
+//   count = 20
+//   seed = 7
+//   payload_scale = [0.5, 2.0]                # drawn log-uniformly in [min, max]
+//   friction = [0.0, 2.0]                     # uniformly
+//   initial_error = [-0.08, 0.08]             # uniformly
+//
+// Condition keys: name, description, scenario, payload_scale, friction, torque_limit, contact,
+// noise = [SIGMA_Q, SIGMA_QD], seed, reverse, initial_error (sim_ab's options of the same names).
+// Unknown keys, wrong types, NaN and out-of-range values are errors with file:line:column.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/sim/condition.hpp"
+
+namespace fuzzypid::sim {
+
+struct ConditionSet {
+  std::string name;
+  std::string description;
+  std::vector<Condition> conditions;  // listed ones first, then the Monte-Carlo draws
+};
+
+struct ConditionFile {
+  std::string path;
+  std::vector<ConditionSet> sets;  // in name order
+  [[nodiscard]] const ConditionSet* find(const std::string& name) const;
+  [[nodiscard]] std::string set_names() const;  // "a, b"
+};
+
+[[nodiscard]] bool parse_conditions(std::string_view text, const std::string& source,
+                                    ConditionFile& file, controller_file::Error& error);
+[[nodiscard]] bool load_conditions(const std::string& path, ConditionFile& file,
+                                   controller_file::Error& error);
+
+}  // namespace fuzzypid::sim

@@ -1,0 +1,317 @@
+#include "fuzzypid/controller_file/controller_file.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "fuzzypid/controller_file/toml_reader.hpp"
+
+namespace fuzzypid::controller_file {
+
+namespace {
+
+bool positive_finite(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+
+std::string triple_text(double a, double b, double c) {
+  return "[" + format_double(a) + ", " + format_double(b) + ", " + format_double(c) + "]";
+}
+
+// TOML basic string with the characters TOML requires escaped.
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+ControllerSpec read_spec(const toml::table& root, const std::string& file) {
+  TableReader r(root, file);
+  ControllerSpec s;
+  s.family = r.choice("family", kFamilyNames);
+  s.description = r.text("description", std::string());
+
+  auto units = r.table("units", true);
+  s.units.gains = units->choice("gains", kGainUnitsNames);
+  s.units.form = units->choice("form", kPidFormNames);
+  s.units.tick_s = units->number("tick_s");
+  if (!(s.units.tick_s > 0.0)) units->fail(*units->raw().get("tick_s"), "'tick_s' must be > 0");
+  units->finish();
+
+  auto gains = r.table("gains", true);
+  s.gains.kp = gains->number("kp");
+  s.gains.ki = gains->number("ki");
+  s.gains.kd = gains->number("kd");
+  for (const char* k : {"kp", "ki", "kd"})
+    if (gains->number(k) < 0.0) gains->fail(*gains->raw().get(k), "gains must be >= 0");
+  gains->finish();
+
+  const bool supervised = s.family != Family::Pid;
+  auto sup = r.table("supervisor", supervised);
+  if (sup && !supervised)
+    r.fail(*root.get("supervisor"), "a 'pid' controller has no [supervisor] table");
+  if (sup) {
+    s.supervisor.error_scale = sup->number("error_scale");
+    s.supervisor.error_rate_scale = sup->number("error_rate_scale");
+    s.supervisor.output_scale = sup->triple("output_scale", std::nullopt);
+    if (s.family == Family::Fuzzy) {
+      s.supervisor.gain_update =
+          sup->choice("gain_update", kGainUpdateNames, control::GainUpdate::Absolute);
+      s.supervisor.rule_base = sup->choice("rule_base", kRuleBaseNames, RuleBase::PaperPrinted);
+      s.supervisor.conjunction =
+          sup->choice("conjunction", kConjunctionNames, fuzzy::Conjunction::Minimum);
+    }
+    for (const char* k : {"error_scale", "error_rate_scale"})
+      if (!(sup->number(k) > 0.0)) sup->fail(*sup->raw().get(k), std::string(k) + " must be > 0");
+    if (s.family == Family::Scheduled)
+      for (double ratio : s.supervisor.output_scale)
+        if (!(ratio > 0.0))
+          sup->fail(*sup->raw().get("output_scale"),
+                    "the scheduled family's output_scale holds gain ratios, which must be > 0");
+    sup->finish();
+  }
+
+  if (auto bounds = r.table("bounds", false)) {
+    const auto lo = bounds->triple("gain_min", std::array<double, 3>{0.0, 0.0, 0.0}, true);
+    const auto hi = bounds->triple(
+        "gain_max", std::array<double, 3>{s.gain_max.kp, s.gain_max.ki, s.gain_max.kd}, true);
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (lo[k] < 0.0 || std::isinf(lo[k]))
+        bounds->fail(*bounds->raw().get("gain_min"), "gain_min must be finite and >= 0");
+      if (hi[k] < lo[k])
+        bounds->fail(bounds->has("gain_max") ? *bounds->raw().get("gain_max")
+                                             : *bounds->raw().get("gain_min"),
+                     "gain_max must not be below gain_min");
+    }
+    s.gain_min = {lo[0], lo[1], lo[2]};
+    s.gain_max = {hi[0], hi[1], hi[2]};
+    bounds->finish();
+  }
+
+  if (auto p = r.table("pid", false)) {
+    s.pid.derivative = p->choice("derivative", kDerivativeSourceNames, s.pid.derivative);
+    s.pid.derivative_on = p->choice("derivative_on", kDerivativeOnNames, s.pid.derivative_on);
+    s.pid.anti_windup = p->choice("anti_windup", kAntiWindupNames, s.pid.anti_windup);
+    s.pid.derivative_filter_s = p->number("derivative_filter_s", 0.0);
+    if (s.pid.derivative_filter_s < 0.0)
+      p->fail(*p->raw().get("derivative_filter_s"), "derivative_filter_s must be >= 0");
+    p->finish();
+  }
+
+  if (auto t = r.table("tuning", false)) {
+    Tuning tu;
+    tu.conditions = t->text("conditions");
+    tu.set = t->text("set");
+    tu.algorithm = t->text("algorithm");
+    tu.budget = t->count("budget");
+    tu.evaluations = t->count("evaluations");
+    if (tu.evaluations > tu.budget)
+      t->fail(*t->raw().get("evaluations"), "evaluations exceed the budget");
+    tu.seed = t->count("seed");
+    tu.threads = t->count("threads");
+    tu.population = t->count("population");
+    tu.training_cost = t->number("training_cost", std::nullopt, true);
+    auto o = t->table("objective", true);
+    tu.objective.overshoot_bound_pct = o->number("overshoot_bound_pct");
+    tu.objective.overshoot_weight = o->number("overshoot_weight");
+    tu.objective.fault_cost = o->number("fault_cost");
+    tu.objective.divergence_rad = o->number("divergence_rad");
+    o->finish();
+    const toml::array* box = t->array("box", true);
+    for (const toml::node& entry : *box) {
+      const auto* bt = entry.as_table();
+      if (bt == nullptr)
+        t->fail(entry, "box entries must be { name = \"...\", log10 = [min, max] }");
+      TableReader br(*bt, file);
+      SearchBox b;
+      b.name = br.text("name");
+      const toml::array* range = br.array("log10", true);
+      if (range->size() != 2) br.fail(*range, "log10 must be [min, max]");
+      b.log10_min = number_of(br, *range->get(0), "box '" + b.name + "' minimum");
+      b.log10_max = number_of(br, *range->get(1), "box '" + b.name + "' maximum");
+      if (b.log10_max < b.log10_min) br.fail(*range, "box '" + b.name + "' is reversed");
+      br.finish();
+      tu.box.push_back(b);
+    }
+    t->finish();
+    s.tuning = tu;
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace
+
+std::string format_double(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::string s = buf;
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
+ControllerSpec paper_pid() {
+  ControllerSpec s;
+  s.family = Family::Pid;
+  s.description = "the paper's fixed PID (section 6: Kp = 4, Ki = 0.001, Kd = 100 per tick)";
+  return s;
+}
+
+ControllerSpec paper_fuzzy() {
+  ControllerSpec s;
+  s.family = Family::Fuzzy;
+  s.description =
+      "the paper's fuzzy PID (section 6 gains, Tables 2-4 as printed, unit scales, Eq. 6)";
+  return s;
+}
+
+std::string validate(const ControllerSpec& s) {
+  if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
+  if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
+    return "gains must be finite and >= 0";
+  const auto& sup = s.supervisor;
+  if (s.family != Family::Pid) {
+    if (!positive_finite(sup.error_scale) || !positive_finite(sup.error_rate_scale))
+      return "error_scale and error_rate_scale must be finite and > 0";
+    for (double v : sup.output_scale) {
+      if (!std::isfinite(v)) return "output_scale must be finite";
+      if (s.family == Family::Scheduled && !(v > 0.0))
+        return "the scheduled family's output_scale (gain ratios) must be > 0";
+    }
+  }
+  const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
+  const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
+  for (int k = 0; k < 3; ++k)
+    if (!(lo[k] >= 0.0) || std::isinf(lo[k]) || !(hi[k] >= lo[k]))
+      return "gain bounds must satisfy 0 <= gain_min <= gain_max";
+  if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
+    return "derivative_filter_s must be finite and >= 0";
+  return {};
+}
+
+bool parse(std::string_view text, const std::string& source, ControllerSpec& spec, Error& error) {
+  try {
+    const toml::table root = parse_toml(text, source);
+    ControllerSpec s = read_spec(root, source);
+    if (const std::string bad = validate(s); !bad.empty()) {
+      error = Error{source, 1, 1, bad};
+      return false;
+    }
+    spec = std::move(s);
+    return true;
+  } catch (const ReadError& e) {
+    error = e.error;
+    return false;
+  }
+}
+
+bool load(const std::string& path, ControllerSpec& spec, Error& error) {
+  try {
+    const std::string text = read_text(path);
+    return parse(text, path, spec, error);
+  } catch (const ReadError& e) {
+    error = e.error;
+    return false;
+  }
+}
+
+std::string to_toml(const ControllerSpec& s) {
+  std::string o;
+  o += "# fuzzypid controller file (docs/tuning.md). Gains in the units of [units].\n";
+  o += "family = " + quoted(to_string(s.family)) + "\n";
+  if (!s.description.empty()) o += "description = " + quoted(s.description) + "\n";
+  o += "\n[units]\n";
+  o += "gains = " + quoted(to_string(s.units.gains)) + "\n";
+  o += "form = " + quoted(to_string(s.units.form)) + "\n";
+  o += "tick_s = " + format_double(s.units.tick_s) + "\n";
+  o += "\n[gains]";
+  o += s.family == Family::Pid ? "\n" : "  # the nominal gains K0\n";
+  o += "kp = " + format_double(s.gains.kp) + "\n";
+  o += "ki = " + format_double(s.gains.ki) + "\n";
+  o += "kd = " + format_double(s.gains.kd) + "\n";
+  if (s.family != Family::Pid) {
+    const auto& sup = s.supervisor;
+    o += "\n[supervisor]\n";
+    o += "error_scale = " + format_double(sup.error_scale) + "\n";
+    o += "error_rate_scale = " + format_double(sup.error_rate_scale) + "\n";
+    o += "output_scale = " +
+         triple_text(sup.output_scale[0], sup.output_scale[1], sup.output_scale[2]);
+    o += s.family == Family::Scheduled ? "  # large-error gain ratios Rp, Ri, Rd\n"
+                                       : "  # Sp, Si, Sd\n";
+    if (s.family == Family::Fuzzy) {
+      o += "gain_update = " + quoted(name_of(kGainUpdateNames, sup.gain_update)) + "\n";
+      o += "rule_base = " + quoted(to_string(sup.rule_base)) + "\n";
+      o += "conjunction = " + quoted(name_of(kConjunctionNames, sup.conjunction)) + "\n";
+    }
+  }
+  o += "\n[bounds]  # on the retuned gains\n";
+  o += "gain_min = " + triple_text(s.gain_min.kp, s.gain_min.ki, s.gain_min.kd) + "\n";
+  o += "gain_max = " + triple_text(s.gain_max.kp, s.gain_max.ki, s.gain_max.kd) + "\n";
+  o += "\n[pid]\n";
+  o += "derivative = " + quoted(name_of(kDerivativeSourceNames, s.pid.derivative)) + "\n";
+  o += "derivative_on = " + quoted(name_of(kDerivativeOnNames, s.pid.derivative_on)) + "\n";
+  o += "anti_windup = " + quoted(name_of(kAntiWindupNames, s.pid.anti_windup)) + "\n";
+  o += "derivative_filter_s = " + format_double(s.pid.derivative_filter_s) + "\n";
+  if (s.tuning) {
+    const Tuning& t = *s.tuning;
+    o += "\n[tuning]\n";
+    o += "conditions = " + quoted(t.conditions) + "\n";
+    o += "set = " + quoted(t.set) + "\n";
+    o += "algorithm = " + quoted(t.algorithm) + "\n";
+    o += "budget = " + std::to_string(t.budget) + "\n";
+    o += "evaluations = " + std::to_string(t.evaluations) + "\n";
+    o += "seed = " + std::to_string(t.seed) + "\n";
+    o += "threads = " + std::to_string(t.threads) + "\n";
+    o += "population = " + std::to_string(t.population) + "\n";
+    o += "training_cost = " + format_double(t.training_cost) + "\n";
+    o += "box = [  # log10 of each searched parameter\n";
+    for (const SearchBox& b : t.box)
+      o += "  { name = " + quoted(b.name) + ", log10 = [" + format_double(b.log10_min) + ", " +
+           format_double(b.log10_max) + "] },\n";
+    o += "]\n";
+    o += "\n[tuning.objective]\n";
+    o += "overshoot_bound_pct = " + format_double(t.objective.overshoot_bound_pct) + "\n";
+    o += "overshoot_weight = " + format_double(t.objective.overshoot_weight) + "\n";
+    o += "fault_cost = " + format_double(t.objective.fault_cost) + "\n";
+    o += "divergence_rad = " + format_double(t.objective.divergence_rad) + "\n";
+  }
+  return o;
+}
+
+std::string save(const std::string& path, const ControllerSpec& spec) {
+  namespace fs = std::filesystem;
+  const std::string text = to_toml(spec);
+  const std::string temp = path + ".partial";
+  std::FILE* f = std::fopen(temp.c_str(), "wb");
+  if (f == nullptr) return "cannot write " + temp + ": " + std::strerror(errno);
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) {
+    std::remove(temp.c_str());
+    return "write error on " + temp;
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) {
+    std::remove(temp.c_str());
+    return "cannot rename " + temp + " to " + path + ": " + ec.message();
+  }
+  return {};
+}
+
+}  // namespace fuzzypid::controller_file

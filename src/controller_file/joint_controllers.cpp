@@ -1,0 +1,111 @@
+#include "fuzzypid/controller_file/joint_controllers.hpp"
+
+namespace fuzzypid::controller_file {
+
+pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit) {
+  pid::Config<double> c;
+  c.gains = to_continuous(spec.gains, spec.units.form, spec.units.tick_s);
+  c.derivative_source = spec.pid.derivative;
+  c.derivative_on = spec.pid.derivative_on;
+  c.anti_windup = spec.pid.anti_windup;
+  c.derivative_filter_s = spec.pid.derivative_filter_s;
+  // The controller knows the actuator limit (in its own units), so conditional integration stops
+  // windup when the plant saturates.
+  c.output_min = -output_limit;
+  c.output_max = output_limit;
+  return c;
+}
+
+control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, double output_limit) {
+  const PidForm form = spec.units.form;
+  const double dt = spec.units.tick_s;
+  control::FuzzyPidConfig<double> fc;
+  fc.pid = pid_config(spec, output_limit);
+  fc.error_scale = spec.supervisor.error_scale;
+  fc.error_rate_scale = spec.supervisor.error_rate_scale;
+  fc.gain_min = to_continuous(spec.gain_min, form, dt);
+  fc.gain_max = to_continuous(spec.gain_max, form, dt);
+  const auto& s = spec.supervisor.output_scale;
+  if (spec.family == Family::Scheduled) {
+    // K = K0 + K0 (R - 1) w: from K0 on the path to K0 R at large errors (gain_schedule.hpp).
+    const pid::Gains<double>& k0 = fc.pid.gains;
+    fc.output_scale = {k0.kp * (s[0] - 1.0), k0.ki * (s[1] - 1.0), k0.kd * (s[2] - 1.0)};
+    fc.gain_update = control::GainUpdate::Absolute;
+  } else {
+    // dK is in the file's units: convert it like the gains themselves.
+    const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0}, form, dt);
+    fc.output_scale = {s[0] * unit.kp, s[1] * unit.ki, s[2] * unit.kd};
+    fc.gain_update = spec.supervisor.gain_update;
+  }
+  return fc;
+}
+
+std::optional<JointControllers> JointControllers::create(const ControllerSpec& spec,
+                                                         const Vector& output_limit,
+                                                         std::string& error) {
+  if (std::string bad = validate(spec); !bad.empty()) {
+    error = std::move(bad);
+    return std::nullopt;
+  }
+  for (double l : output_limit) {
+    if (!(l > 0.0)) {
+      error = "output limits must be > 0";
+      return std::nullopt;
+    }
+  }
+  switch (spec.family) {
+    case Family::Pid: {
+      std::array<pid::Pid<double>, kJoints> joints;
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        const pid::Config<double> c = pid_config(spec, output_limit[i]);
+        if (!c.valid()) {
+          error = "invalid PID configuration";
+          return std::nullopt;
+        }
+        joints[i] = pid::Pid<double>(c);
+      }
+      JointControllers out(spec, nullptr, nullptr);
+      out.joints_ = PidJoints(joints);
+      return out;
+    }
+    case Family::Fuzzy: {
+      auto tables = std::make_unique<const paper::System<double>>(paper::make_system<double>(
+          spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
+                                           ? paper::Tables::Corrected
+                                           : paper::Tables::Printed));
+      using Joint = control::FuzzyPid<double, paper::System<double>>;
+      std::array<Joint, kJoints> joints;
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+        if (!fc.valid()) {
+          error = "invalid fuzzy PID configuration";
+          return std::nullopt;
+        }
+        joints[i] = Joint(tables.get(), fc);
+      }
+      JointControllers out(spec, std::move(tables), nullptr);
+      out.joints_ = FuzzyJoints(joints);
+      return out;
+    }
+    case Family::Scheduled: {
+      auto schedule = std::make_unique<const control::GainSchedule<double>>();
+      using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
+      std::array<Joint, kJoints> joints;
+      for (std::size_t i = 0; i < kJoints; ++i) {
+        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+        if (!fc.valid()) {
+          error = "invalid scheduled PID configuration";
+          return std::nullopt;
+        }
+        joints[i] = Joint(schedule.get(), fc);
+      }
+      JointControllers out(spec, nullptr, std::move(schedule));
+      out.joints_ = ScheduledJoints(joints);
+      return out;
+    }
+  }
+  error = "unknown controller family";
+  return std::nullopt;
+}
+
+}  // namespace fuzzypid::controller_file

@@ -1,0 +1,90 @@
+#include "fuzzypid/sim/condition.hpp"
+
+#include <cmath>
+
+namespace fuzzypid::sim {
+
+double PulseTrain::at(double t_s) const noexcept {
+  if (accel_rad_s2 == 0.0 || t_s < start_s || t_s >= end_s || period_s <= 0.0) return 0.0;
+  const double phase = t_s - start_s;
+  const double cycle = std::floor(phase / period_s);
+  if (phase - cycle * period_s >= width_s) return 0.0;
+  return static_cast<long long>(cycle) % 2 == 0 ? accel_rad_s2 : -accel_rad_s2;
+}
+
+PulseTrain contact_pulses(double amplitude_rad_s2) noexcept {
+  return PulseTrain{1.0, 4.0, 0.5, 0.1, amplitude_rad_s2};
+}
+
+std::string Condition::validate() const {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (!finite(payload_scale) || !(payload_scale > 0.0)) return "payload scale must be > 0";
+  if (!finite(friction_per_s) || friction_per_s < 0.0) return "friction must be >= 0";
+  if (!finite(torque_limit_rad_s2) || torque_limit_rad_s2 < 0.0)
+    return "torque limit must be >= 0 (0: the URDF effort limits)";
+  if (!finite(contact_rad_s2)) return "contact amplitude must be finite";
+  if (!finite(noise_position_rad) || noise_position_rad < 0.0 || !finite(noise_velocity_rad_s) ||
+      noise_velocity_rad_s < 0.0)
+    return "noise standard deviations must be >= 0";
+  if (!finite(initial_error_rad) || std::fabs(initial_error_rad) > 1.0)
+    return "initial error must be finite and within +/-1 rad";
+  return {};
+}
+
+const std::vector<Condition>& scenarios() {
+  static const std::vector<Condition> all = [] {
+    std::vector<Condition> v;
+    Condition paper;
+    paper.name = "paper";
+    paper.description = "section 6: A -> B, nominal plant, exact measurements";
+    v.push_back(paper);
+
+    Condition light = paper;
+    light.name = "payload-light";
+    light.description = "link inertia x0.5 (lighter workpiece); controller unchanged";
+    light.payload_scale = 0.5;
+    v.push_back(light);
+
+    Condition heavy = paper;
+    heavy.name = "payload-heavy";
+    heavy.description = "link inertia x2 (heavier workpiece); controller unchanged";
+    heavy.payload_scale = 2.0;
+    v.push_back(heavy);
+
+    Condition friction = paper;
+    friction.name = "friction";
+    friction.description = "viscous friction b_i = 2 J^_i N·m·s/rad (none in the nominal plant)";
+    friction.friction_per_s = 2.0;
+    v.push_back(friction);
+
+    Condition deburring = paper;
+    deburring.name = "deburring";
+    deburring.description =
+        "contact-force pulses while moving: 0.1 s of +/-0.5 rad/s² x J^_i every 0.5 s, 1-4 s";
+    deburring.contact_rad_s2 = 0.5;
+    v.push_back(deburring);
+
+    Condition noise = paper;
+    noise.name = "noise";
+    noise.description = "Gaussian measurement noise: 2e-4 rad on angles, 5e-3 rad/s on velocities";
+    noise.noise_position_rad = 2e-4;
+    noise.noise_velocity_rad_s = 5e-3;
+    v.push_back(noise);
+
+    Condition saturation = paper;
+    saturation.name = "saturation";
+    saturation.description = "actuator limit |tau_i| <= 0.1 rad/s² x J^_i";
+    saturation.torque_limit_rad_s2 = 0.1;
+    v.push_back(saturation);
+    return v;
+  }();
+  return all;
+}
+
+const Condition* find_scenario(const std::string& name) {
+  for (const auto& s : scenarios())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+}  // namespace fuzzypid::sim

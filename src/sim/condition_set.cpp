@@ -1,0 +1,169 @@
+#include "fuzzypid/sim/condition_set.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "fuzzypid/controller_file/toml_reader.hpp"
+#include "fuzzypid/sim/random.hpp"
+
+namespace fuzzypid::sim {
+
+namespace {
+
+using controller_file::ReadError;
+using controller_file::TableReader;
+
+// The fields of a condition common to listed conditions and Monte-Carlo sets.
+void read_fields(TableReader& r, Condition& c) {
+  c.payload_scale = r.number("payload_scale", c.payload_scale);
+  c.friction_per_s = r.number("friction", c.friction_per_s);
+  c.torque_limit_rad_s2 = r.number("torque_limit", c.torque_limit_rad_s2);
+  c.contact_rad_s2 = r.number("contact", c.contact_rad_s2);
+  if (r.has("noise")) {
+    const toml::array* a = r.array("noise", true);
+    if (a->size() != 2) r.fail(*a, "'noise' must be [SIGMA_Q, SIGMA_QD]");
+    c.noise_position_rad = controller_file::number_of(r, *a->get(0), "'noise[0]'");
+    c.noise_velocity_rad_s = controller_file::number_of(r, *a->get(1), "'noise[1]'");
+  }
+  c.seed = r.count("seed", c.seed);
+  c.reverse = r.flag("reverse", c.reverse);
+  c.initial_error_rad = r.number("initial_error", c.initial_error_rad);
+}
+
+Condition read_condition(const toml::node& node, const std::string& file) {
+  const toml::table* t = node.as_table();
+  if (t == nullptr)
+    throw ReadError{controller_file::Error{file, static_cast<int>(node.source().begin.line),
+                                           static_cast<int>(node.source().begin.column),
+                                           "a condition must be a table"}};
+  TableReader r(*t, file);
+  Condition c;
+  const std::string base = r.text("scenario", std::string());
+  if (!base.empty()) {
+    const Condition* s = find_scenario(base);
+    if (s == nullptr) r.fail(*t->get("scenario"), "unknown scenario '" + base + "'");
+    c = *s;
+  }
+  c.name = r.text("name");
+  if (c.name.empty() || c.name.find_first_of(",\n\r\"") != std::string::npos)
+    r.fail(*t->get("name"), "a condition name must be non-empty, without commas or quotes");
+  c.description = r.text("description", c.description);
+  read_fields(r, c);
+  r.finish();
+  if (const std::string bad = c.validate(); !bad.empty())
+    r.fail_here("condition " + c.name + ": " + bad);
+  return c;
+}
+
+std::pair<double, double> range(TableReader& r, const char* key, double lo, double hi) {
+  if (!r.has(key)) {
+    (void)r.number(key, 0.0);  // marks the key as known
+    return {lo, hi};
+  }
+  const toml::array* a = r.array(key, true);
+  if (a->size() != 2) r.fail(*a, std::string("'") + key + "' must be [min, max]");
+  const double mn = controller_file::number_of(r, *a->get(0), std::string("'") + key + "[0]'");
+  const double mx = controller_file::number_of(r, *a->get(1), std::string("'") + key + "[1]'");
+  if (mx < mn) r.fail(*a, std::string("'") + key + "' is reversed");
+  return {mn, mx};
+}
+
+void read_monte_carlo(TableReader& r, const std::string& set_name, ConditionSet& set) {
+  const std::uint64_t count = r.count("count");
+  if (count == 0 || count > 10000) r.fail(*r.raw().get("count"), "'count' must be 1..10000");
+  const std::uint64_t seed = r.count("seed");
+  const auto payload = range(r, "payload_scale", 1.0, 1.0);
+  if (!(payload.first > 0.0)) r.fail(*r.raw().get("payload_scale"), "payload_scale must be > 0");
+  const auto friction = range(r, "friction", 0.0, 0.0);
+  const auto initial = range(r, "initial_error", 0.05, 0.05);
+  Condition base;
+  base.reverse = r.flag("reverse", false);
+  base.contact_rad_s2 = r.number("contact", 0.0);
+  base.torque_limit_rad_s2 = r.number("torque_limit", 0.0);
+  r.finish();
+  Random rng(seed);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    Condition c = base;
+    char name[64];
+    std::snprintf(name, sizeof name, "%s-mc%03llu", set_name.c_str(),
+                  static_cast<unsigned long long>(k + 1));
+    c.name = name;
+    // Three draws per condition, always in this order, whatever the ranges.
+    const double u_payload = rng.uniform();
+    const double u_friction = rng.uniform();
+    const double u_initial = rng.uniform();
+    c.payload_scale = payload.first * std::pow(payload.second / payload.first, u_payload);
+    c.friction_per_s = friction.first + (friction.second - friction.first) * u_friction;
+    c.initial_error_rad = initial.first + (initial.second - initial.first) * u_initial;
+    c.description = "Monte-Carlo draw";
+    if (const std::string bad = c.validate(); !bad.empty()) r.fail_here(c.name + ": " + bad);
+    set.conditions.push_back(c);
+  }
+}
+
+}  // namespace
+
+const ConditionSet* ConditionFile::find(const std::string& name) const {
+  for (const auto& s : sets)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::string ConditionFile::set_names() const {
+  std::string out;
+  for (const auto& s : sets)
+    out += (out.empty() ? "" : ", ") + s.name;
+  return out;
+}
+
+bool parse_conditions(std::string_view text, const std::string& source, ConditionFile& file,
+                      controller_file::Error& error) {
+  try {
+    const toml::table root = controller_file::parse_toml(text, source);
+    TableReader r(root, source);
+    auto sets = r.table("sets", true);
+    ConditionFile out;
+    out.path = source;
+    for (auto&& [key, node] : sets->raw()) {
+      const std::string name(key.str());
+      auto st = sets->table(name, true);
+      ConditionSet set;
+      set.name = name;
+      set.description = st->text("description", std::string());
+      std::set<std::string> names;
+      if (const toml::array* list = st->array("conditions", false)) {
+        for (const toml::node& n : *list) {
+          Condition c = read_condition(n, source);
+          if (!names.insert(c.name).second)
+            st->fail(n, "duplicate condition name '" + c.name + "'");
+          set.conditions.push_back(std::move(c));
+        }
+      }
+      if (auto mc = st->table("monte_carlo", false)) read_monte_carlo(*mc, name, set);
+      st->finish();
+      if (set.conditions.empty()) st->fail_here("set '" + name + "' has no conditions");
+      out.sets.push_back(std::move(set));
+    }
+    sets->finish();
+    r.finish();
+    if (out.sets.empty()) r.fail_here("no condition sets");
+    file = std::move(out);
+    return true;
+  } catch (const ReadError& e) {
+    error = e.error;
+    return false;
+  }
+}
+
+bool load_conditions(const std::string& path, ConditionFile& file, controller_file::Error& error) {
+  try {
+    const std::string text = controller_file::read_text(path);
+    return parse_conditions(text, path, file, error);
+  } catch (const ReadError& e) {
+    error = e.error;
+    return false;
+  }
+}
+
+}  // namespace fuzzypid::sim

@@ -1,0 +1,18 @@
+// Compiled (not run) for a Cortex-M4F, float, -fno-exceptions -fno-rtti: a controller exported by
+// `fuzzypid export-header` needs no parser, heap or OS on the target.
+#include "tuned_fuzzy.hpp"
+#include "tuned_scheduled.hpp"
+
+namespace {
+auto fuzzy = tuned_fuzzy::make_controller<float>(5.0f);
+auto scheduled = tuned_scheduled::make_controller<float>(5.0f);
+}  // namespace
+
+extern "C" float exported_tick(float setpoint, float measurement) {
+  fuzzypid::pid::Input<float> in;
+  in.setpoint = setpoint;
+  in.measurement = measurement;
+  const bool ok = !fuzzypid::is_fault(fuzzy.update(in, 0.05f)) &&
+                  !fuzzypid::is_fault(scheduled.update(in, 0.05f));
+  return ok ? fuzzy.output() + scheduled.output() : 0.0f;
+}

@@ -1,0 +1,223 @@
+// Controller files (fuzzypid/controller_file): exact round trip, the shipped paper files, and
+// file:line:column errors for malformed files.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "fuzzypid/controller_file/controller_file.hpp"
+
+namespace {
+
+namespace cf = fuzzypid::controller_file;
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+cf::ControllerSpec tuned_example() {
+  cf::ControllerSpec s = cf::paper_fuzzy();
+  s.description = "a \"quoted\" description\twith a tab";
+  s.gains = {207.02946541923043, 0.0086027041784963332, 421.61049466377909};
+  s.supervisor.error_scale = 961.29293435760724;
+  s.supervisor.error_rate_scale = 0.1 + 0.2;  // not exactly representable in few digits
+  s.supervisor.output_scale = {1038.9657241991415, 4.7364552446661055e-300, 1e300};
+  s.supervisor.conjunction = fuzzypid::fuzzy::Conjunction::Product;
+  s.supervisor.rule_base = cf::RuleBase::PaperCorrected;
+  s.gain_max = {1e4, 2.5, std::numeric_limits<double>::infinity()};
+  s.pid.derivative = fuzzypid::pid::DerivativeSource::Difference;
+  s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;
+  cf::Tuning t;
+  t.conditions = "tuning/robust.toml";
+  t.set = "training";
+  t.algorithm = "pagmo::sade";
+  t.budget = 16000;
+  t.evaluations = 15980;
+  t.seed = 7;
+  t.threads = 2;
+  t.population = 40;
+  t.training_cost = 0.058396812345678901;
+  t.box = {{"kp", -1.0, 4.0},  {"ki", -6.0, 1.0}, {"kd", 0.0, 4.0},  {"ke", -1.0, 4.0},
+           {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0},  {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
+  s.tuning = t;
+  return s;
+}
+
+void expect_same(const cf::ControllerSpec& a, const cf::ControllerSpec& b) {
+  EXPECT_EQ(a.family, b.family);
+  EXPECT_EQ(a.description, b.description);
+  EXPECT_EQ(a.gains, b.gains);
+  EXPECT_EQ(a.supervisor.error_scale, b.supervisor.error_scale);
+  EXPECT_EQ(a.supervisor.error_rate_scale, b.supervisor.error_rate_scale);
+  EXPECT_EQ(a.supervisor.output_scale, b.supervisor.output_scale);
+  EXPECT_EQ(a.supervisor.conjunction, b.supervisor.conjunction);
+  EXPECT_EQ(a.supervisor.rule_base, b.supervisor.rule_base);
+  EXPECT_EQ(a.gain_min, b.gain_min);
+  EXPECT_EQ(a.gain_max, b.gain_max);
+  EXPECT_EQ(a.pid.derivative, b.pid.derivative);
+  EXPECT_EQ(a.pid.anti_windup, b.pid.anti_windup);
+  ASSERT_EQ(a.tuning.has_value(), b.tuning.has_value());
+  if (a.tuning) {
+    EXPECT_EQ(a.tuning->training_cost, b.tuning->training_cost);
+    EXPECT_EQ(a.tuning->evaluations, b.tuning->evaluations);
+    ASSERT_EQ(a.tuning->box.size(), b.tuning->box.size());
+    for (std::size_t k = 0; k < a.tuning->box.size(); ++k)
+      EXPECT_EQ(a.tuning->box[k].name, b.tuning->box[k].name);
+  }
+}
+
+TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
+  for (const cf::ControllerSpec& spec : {cf::paper_pid(), cf::paper_fuzzy(), tuned_example()}) {
+    const std::string text = cf::to_toml(spec);
+    cf::ControllerSpec back;
+    cf::Error error;
+    ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
+    expect_same(spec, back);
+    EXPECT_EQ(cf::to_toml(back), text);
+  }
+}
+
+TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
+  const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
+  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", cf::paper_pid()},
+                                   std::pair{"paper_fuzzy.toml", cf::paper_fuzzy()}}) {
+    cf::ControllerSpec loaded;
+    cf::Error error;
+    ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
+    expect_same(spec, loaded);
+    EXPECT_EQ(read(dir + file), cf::to_toml(spec)) << file;
+  }
+}
+
+TEST(ControllerFile, ShippedTunedFilesReadBackToTheirOwnText) {
+  const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
+  for (const char* file : {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml"}) {
+    cf::ControllerSpec loaded;
+    cf::Error error;
+    ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
+    ASSERT_TRUE(loaded.tuning.has_value()) << file;
+    EXPECT_LE(loaded.tuning->evaluations, loaded.tuning->budget);
+    EXPECT_EQ(read(dir + file), cf::to_toml(loaded)) << file;
+  }
+}
+
+struct Malformed {
+  const char* what;
+  const char* text;
+  int line;
+  int column;
+  const char* message;  // a part of the message
+};
+
+// A valid pid file with one line replaced (line numbers refer to the result).
+const char* const kValid =
+    "family = \"pid\"\n"          // 1
+    "[units]\n"                   // 2
+    "gains = \"acceleration\"\n"  // 3
+    "form = \"per-tick\"\n"       // 4
+    "tick_s = 0.05\n"             // 5
+    "[gains]\n"                   // 6
+    "kp = 4.0\n"                  // 7
+    "ki = 0.001\n"                // 8
+    "kd = 100.0\n";               // 9
+
+void PrintTo(const Malformed& m, std::ostream* os) {
+  *os << m.what;
+}
+
+class MalformedFile : public ::testing::TestWithParam<Malformed> {};
+
+TEST_P(MalformedFile, IsRejectedWithFileLineAndColumn) {
+  const Malformed& m = GetParam();
+  cf::ControllerSpec spec;
+  cf::Error error;
+  ASSERT_FALSE(cf::parse(m.text, "bad.toml", spec, error)) << m.what;
+  EXPECT_EQ(error.file, "bad.toml");
+  EXPECT_EQ(error.line, m.line) << m.what << ": " << error.to_string();
+  EXPECT_EQ(error.column, m.column) << m.what << ": " << error.to_string();
+  EXPECT_NE(error.message.find(m.message), std::string::npos)
+      << m.what << ": " << error.to_string();
+  EXPECT_EQ(error.to_string().rfind(
+                "bad.toml:" + std::to_string(m.line) + ":" + std::to_string(m.column) + ": ", 0),
+            0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ControllerFile, MalformedFile,
+    ::testing::Values(
+        Malformed{"missing key",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\n"
+                  "form = \"per-tick\"\n[gains]\nkp = 1.0\nki = 0.0\nkd = 1.0\n",
+                  2, 1, "missing key 'tick_s'"},
+        Malformed{"unknown key",
+                  "family = \"pid\"\nbogus = 1\n[units]\ngains = \"acceleration\"\n"
+                  "form = \"per-tick\"\ntick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n",
+                  2, 1, "unknown key 'bogus'"},
+        Malformed{"wrong type",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = \"four\"\nki = 0.001\nkd = 100.0\n",
+                  7, 6, "'kp' must be a number"},
+        Malformed{"NaN",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = nan\nkd = 100.0\n",
+                  8, 6, "NaN"},
+        Malformed{"negative gain",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = -100.0\n",
+                  9, 6, ">= 0"},
+        Malformed{"reversed bounds",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n[bounds]\n"
+                  "gain_min = [0.0, 0.0, 5.0]\ngain_max = [10.0, 10.0, 1.0]\n",
+                  12, 12, "gain_max must not be below gain_min"},
+        Malformed{"negative bound",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n[bounds]\n"
+                  "gain_min = [0.0, -1.0, 0.0]\n",
+                  11, 12, "gain_min must be finite and >= 0"},
+        Malformed{"unknown family", "family = \"lqr\"\n", 1, 10, "unknown value 'lqr'"},
+        Malformed{"unknown rule base",
+                  "family = \"fuzzy\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n[supervisor]\n"
+                  "error_scale = 1.0\nerror_rate_scale = 1.0\noutput_scale = [1.0, 1.0, 1.0]\n"
+                  "rule_base = \"rules/missing.fll\"\n",
+                  14, 13, "unknown value 'rules/missing.fll'"},
+        Malformed{"supervisor missing for fuzzy",
+                  "family = \"fuzzy\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.05\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n",
+                  1, 1, "missing key 'supervisor'"},
+        Malformed{"syntax error", "family = \"pid\n", 1, 14, "unescaped control character"},
+        Malformed{"zero tick",
+                  "family = \"pid\"\n[units]\ngains = \"acceleration\"\nform = \"per-tick\"\n"
+                  "tick_s = 0.0\n[gains]\nkp = 4.0\nki = 0.001\nkd = 100.0\n",
+                  5, 10, "'tick_s' must be > 0"}),
+    [](const ::testing::TestParamInfo<Malformed>& info) {
+      std::string name = info.param.what;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
+
+TEST(ControllerFile, AValidFileIsAccepted) {
+  cf::ControllerSpec spec;
+  cf::Error error;
+  ASSERT_TRUE(cf::parse(kValid, "ok.toml", spec, error)) << error.to_string();
+  EXPECT_EQ(spec.family, cf::Family::Pid);
+  EXPECT_EQ(spec.gains.kd, 100.0);
+}
+
+TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
+  cf::ControllerSpec spec;
+  cf::Error error;
+  EXPECT_FALSE(cf::load("/nonexistent/controller.toml", spec, error));
+  EXPECT_NE(error.to_string().find("/nonexistent/controller.toml"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,182 @@
+// The tuner (fuzzypid/tune): the optimiser finds a brute-forced optimum, never exceeds its budget,
+// and tuning is deterministic for a seed (and independent of the thread count).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/robot/path.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/tune/tune.hpp"
+
+namespace {
+
+namespace cf = fuzzypid::controller_file;
+namespace tune = fuzzypid::tune;
+
+// ITAE of a unit double integrator (x'' = u, zero-order hold, exact discretisation at dt) under
+// the library's PID with gains 10^x (continuous form), following a unit step for 8 s. Sampling
+// makes large gains unstable, so the optimum lies inside the box.
+double double_integrator_itae(const std::vector<double>& x) {
+  constexpr double dt = 0.1;
+  fuzzypid::pid::Config<double> c;
+  c.gains = {std::pow(10.0, x[0]), std::pow(10.0, x[1]), std::pow(10.0, x[2])};
+  fuzzypid::pid::Pid<double> pid(c);
+  double pos = 0.0, vel = 0.0, itae = 0.0;
+  for (int k = 0; k <= 80; ++k) {
+    const double t = k * dt;
+    const double e = 1.0 - pos;
+    itae += t * std::fabs(e) * dt;
+    if (std::fabs(e) > 10.0) return 1e3;  // diverged
+    fuzzypid::pid::Input<double> in;
+    in.setpoint = 1.0;
+    in.measurement = pos;
+    in.setpoint_rate = 0.0;
+    in.measurement_rate = vel;
+    (void)pid.update(in, dt);
+    const double u = pid.output();
+    pos += vel * dt + 0.5 * u * dt * dt;
+    vel += u * dt;
+  }
+  return itae;
+}
+
+const std::vector<cf::SearchBox> kToyBox = {
+    {"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
+
+TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
+  // Brute force on a 61 x 41 x 61 grid (0.05 decade steps in kp and kd, 0.1 in ki).
+  std::vector<double> best_x;
+  double best = 1e300;
+  for (int i = 0; i <= 60; ++i)
+    for (int j = 0; j <= 40; ++j)
+      for (int k = 0; k <= 60; ++k) {
+        const std::vector<double> x = {-1.0 + 0.05 * i, -3.0 + 0.1 * j, -1.0 + 0.05 * k};
+        const double f = double_integrator_itae(x);
+        if (f < best) {
+          best = f;
+          best_x = x;
+        }
+      }
+  tune::MinimizeOptions o;
+  o.budget = 3000;
+  o.seed = 1;
+  std::string error;
+  const auto m = tune::minimize(double_integrator_itae, kToyBox, o, error);
+  ASSERT_TRUE(m) << error;
+  // At least as good as the grid (to 0.5 %), at the grid optimum's gains (to one grid step).
+  EXPECT_LE(m->f, best * 1.005);
+  EXPECT_NEAR(m->x[0], best_x[0], 0.05);
+  EXPECT_NEAR(m->x[2], best_x[2], 0.05);
+}
+
+TEST(Minimize, NeverExceedsTheBudgetAndSpendsWholeGenerations) {
+  for (const std::uint64_t budget : {40u, 41u, 59u, 100u, 257u}) {
+    std::uint64_t calls = 0;
+    const auto f = [&calls](const std::vector<double>& x) {
+      ++calls;
+      return double_integrator_itae(x);
+    };
+    tune::MinimizeOptions o;
+    o.budget = budget;
+    o.population = 20;
+    std::string error;
+    const auto m = tune::minimize(f, kToyBox, o, error);
+    ASSERT_TRUE(m) << error;
+    EXPECT_LE(calls, budget);
+    EXPECT_EQ(m->evaluations, calls);
+    EXPECT_EQ(calls, budget / 20 * 20);  // the initial population plus whole generations
+  }
+}
+
+TEST(Minimize, RejectsABudgetBelowTwoGenerations) {
+  tune::MinimizeOptions o;
+  o.budget = 39;
+  o.population = 20;
+  std::string error;
+  EXPECT_FALSE(tune::minimize(double_integrator_itae, kToyBox, o, error));
+  EXPECT_NE(error.find("budget"), std::string::npos);
+}
+
+class TuneOnTheRobot : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto loaded = fuzzypid::robot::RobotModel::load(fuzzypid::robot::default_urdf_path());
+    ASSERT_TRUE(loaded.model) << loaded.error;
+    model_ = std::move(loaded.model);
+    std::string error;
+    experiment_ =
+        fuzzypid::sim::Experiment::create(*model_, fuzzypid::robot::paper_path_spec(), {}, error);
+    ASSERT_TRUE(experiment_) << error;
+    fuzzypid::sim::Condition behind, ahead;
+    behind.name = "behind";
+    ahead.name = "ahead";
+    ahead.initial_error_rad = -0.05;
+    ahead.payload_scale = 2.0;
+    training_ = {behind, ahead};
+  }
+
+  std::string tuned(cf::Family family, unsigned threads, std::uint64_t seed) {
+    tune::Options o;
+    o.family = family;
+    o.budget = 60;
+    o.population = 20;
+    o.seed = seed;
+    o.threads = threads;
+    std::string error;
+    auto r = tune::tune(*experiment_, training_, o, error);
+    EXPECT_TRUE(r) << error;
+    if (!r) return {};
+    EXPECT_LE(r->evaluations, 60u);
+    r->controller.tuning->threads = 0;  // recorded, not part of the comparison
+    return cf::to_toml(r->controller);
+  }
+
+  std::optional<fuzzypid::robot::RobotModel> model_;
+  std::optional<fuzzypid::sim::Experiment> experiment_;
+  std::vector<fuzzypid::sim::Condition> training_;
+};
+
+TEST_F(TuneOnTheRobot, TheSameSeedGivesTheSameFileWithAnyThreadCount) {
+  for (const cf::Family f : {cf::Family::Pid, cf::Family::Scheduled, cf::Family::Fuzzy}) {
+    const std::string a = tuned(f, 1, 5);
+    EXPECT_EQ(a, tuned(f, 1, 5));
+    EXPECT_EQ(a, tuned(f, 2, 5));
+    EXPECT_NE(a, tuned(f, 1, 6));
+  }
+}
+
+TEST_F(TuneOnTheRobot, TheRecordedCostIsTheObjectiveOfTheResult) {
+  tune::Options o;
+  o.family = cf::Family::Fuzzy;
+  o.budget = 60;
+  o.population = 20;
+  std::string error;
+  const auto r = tune::tune(*experiment_, training_, o, error);
+  ASSERT_TRUE(r) << error;
+  const tune::Cost c = tune::evaluate(*experiment_, training_, r->controller, o.objective, 1);
+  EXPECT_EQ(c.total, r->controller.tuning->training_cost);
+  EXPECT_EQ(c.total, r->cost.total);
+}
+
+TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
+  const auto s =
+      tune::to_spec(cf::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0}, cf::paper_pid());
+  EXPECT_EQ(s.family, cf::Family::Scheduled);
+  EXPECT_DOUBLE_EQ(s.gains.kp, 100.0);
+  EXPECT_DOUBLE_EQ(s.gains.ki, 1e-3);
+  EXPECT_DOUBLE_EQ(s.gains.kd, 10.0);
+  EXPECT_DOUBLE_EQ(s.supervisor.error_scale, 1.0);
+  EXPECT_DOUBLE_EQ(s.supervisor.error_rate_scale, 0.1);
+  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[0], std::sqrt(10.0));
+  const auto x = tune::from_spec(s);
+  ASSERT_EQ(x.size(), 8u);
+  EXPECT_NEAR(x[5], 0.5, 1e-15);
+}
+
+}  // namespace
