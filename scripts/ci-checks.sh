@@ -5,7 +5,7 @@
 #   2. werror    covered by stage 1 (FUZZYPID_WERROR=ON in the same build).
 #   3. tidy      clang-tidy (.clang-tidy) over the project's .cpp files and, through the
 #                standalone-header test sources, every public core header.
-#   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/ and the headers.
+#   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/, tests/soak/ and the headers.
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
 #   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
 #   7. main      the README's main command, scripts/run-main.sh, as a fresh user runs it.
@@ -78,8 +78,8 @@ stage_cppcheck() {
   cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr \
     --std=c++17 --language=c++ --quiet -j "${jobs}" \
     --suppressions-list=scripts/cppcheck-suppressions.txt \
-    -I include -I apps/common -I src/rulefile -I src/robot \
-    src apps fuzz
+    -I include -I apps/common -I src/rulefile -I src/robot -I support \
+    src apps fuzz tests/soak
   echo "cppcheck: clean"
 }
 
@@ -90,7 +90,8 @@ stage_fuzz() {
 stage_soak() {
   local soak=build/bin/fuzzypid_soak
   if [ ! -x "${soak}" ]; then
-    cmake -S . -B build-soak -G Ninja -DCMAKE_BUILD_TYPE=Release -DFUZZYPID_BUILD_TESTS=OFF \
+    # The soak is a test (tests/soak/): it is configured with the tests.
+    cmake -S . -B build-soak -G Ninja -DCMAKE_BUILD_TYPE=Release -DFUZZYPID_BUILD_TESTS=ON \
       -DFUZZYPID_BUILD_BENCH=OFF >/dev/null
     cmake --build build-soak -j "${jobs}" --target fuzzypid_soak
     soak=build-soak/bin/fuzzypid_soak

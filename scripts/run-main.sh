@@ -3,10 +3,10 @@
 # controller files of controllers/ (the paper's fixed and fuzzy PID; a fixed, a gain-scheduled
 # and a fuzzy PID tuned on tuning/robust.toml with the same optimiser and budget) on every
 # condition of tuning/robust.toml (training, held-out and stress sets). Prints the five-way table
-# (docs/tuning.md), writes out/{trajectory,metrics,endeffector,conditions}.csv, out/settings.txt,
-# the figures out/*.png, and the robustness sweeps out/sweep-payload/ and out/sweep-torque/ with
-# their plots. Arguments replace the default sim_ab run (e.g. --scenario all for the paper's
-# scenarios with the paper's two controllers).
+# (docs/tuning.md), writes out/ab/{trajectory,metrics,endeffector,conditions}.csv,
+# out/ab/settings.txt, the figures out/ab/*.png, and the robustness sweeps out/sweep-payload/ and
+# out/sweep-torque/ with their plots. Arguments replace the default run: sim_ab with them, output
+# and figures in out/run/ (e.g. --scenario all: the paper's scenarios, the paper's controllers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -18,13 +18,13 @@ for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_fuzzy; do
   controllers+=(--controller "controllers/${name}.toml")
 done
 if [ $# -gt 0 ]; then
-  build/bin/sim_ab --out out "$@"
-  /usr/bin/python3 scripts/plot_sim.py --in out --out out
+  build/bin/sim_ab --out out/run "$@"
+  /usr/bin/python3 scripts/plot_sim.py --in out/run --out out/run
   exit 0
 fi
-build/bin/sim_ab --quiet --conditions tuning/robust.toml "${controllers[@]}" --out out
-/usr/bin/python3 scripts/summarize_sim.py out --per-condition --gains
-/usr/bin/python3 scripts/plot_sim.py --in out --out out --scenario nominal-ahead
+build/bin/sim_ab --quiet --conditions tuning/robust.toml "${controllers[@]}" --out out/ab
+/usr/bin/python3 scripts/summarize_sim.py out/ab --per-condition --gains
+/usr/bin/python3 scripts/plot_sim.py --in out/ab --out out/ab --scenario nominal-ahead
 echo
 build/bin/sim_ab --scenario paper --sweep payload-scale=0.3:3:28 "${controllers[@]}" \
   --out out/sweep-payload

@@ -1,9 +1,11 @@
 // Strict CSV input and %.17g output for the command-line tools.
 //
 // Rows are comma-separated numbers. Blank lines and lines starting with '#' are skipped. The first
-// non-blank line may be a header: it is skipped when none of its fields parses as a number. Every
-// other malformed row is an error whose message names the line, so a user piping a file through a
-// tool learns exactly where it is wrong.
+// non-blank line may be a header: it is skipped when every one of its fields is text, i.e. not a
+// number as strtod reads one (so "nan", "inf" and "1e999" are numbers -- not finite, hence errors
+// -- and never pass for a header). Every other malformed row is an error whose message names the
+// line, so a user piping a file through a tool learns exactly where it is wrong. Lines are read
+// with a bound (kMaxLineBytes): a longer line is an error, not an unbounded allocation.
 #pragma once
 
 #include <cerrno>
@@ -12,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <istream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -24,31 +27,41 @@ struct CsvRow {
 
 class CsvReader {
  public:
+  // Longest accepted line in bytes (without the newline). A row of the tools is at most 18
+  // numbers of some 25 characters.
+  static constexpr std::size_t kMaxLineBytes = 64 * 1024;
+
   explicit CsvReader(std::istream& in) : in_(in) {}
 
   // Reads the next data row. Returns false at the end of input or on error; error() is empty at
   // the end of input and names the line otherwise.
   bool next(CsvRow& row) {
     std::string text;
-    while (std::getline(in_, text)) {
+    for (;;) {
+      const LineRead got = read_line(text);
+      if (got == LineRead::End) return false;
       ++line_;
+      if (got == LineRead::TooLong) {
+        error_ = "line " + std::to_string(line_) + ": longer than " +
+                 std::to_string(kMaxLineBytes) + " bytes";
+        return false;
+      }
       if (!text.empty() && text.back() == '\r') text.pop_back();
       if (is_blank(text) || text[0] == '#') continue;
       std::vector<std::string> fields = split(text);
       row.line = line_;
       row.values.clear();
-      std::size_t parsed = 0;
+      bool all_text = true;
       std::string first_bad;
       for (std::size_t k = 0; k < fields.size(); ++k) {
         double v = 0.0;
-        if (parse_number(fields[k], v)) {
-          ++parsed;
-        } else if (first_bad.empty()) {
-          first_bad = "column " + std::to_string(k + 1) + " ('" + trim(fields[k]) + "')";
-        }
+        const Field kind = parse_field(fields[k], v);
+        if (kind != Field::Text) all_text = false;
+        if (kind != Field::Finite && first_bad.empty())
+          first_bad = "column " + std::to_string(k + 1) + " ('" + shown(fields[k]) + "')";
         row.values.push_back(v);
       }
-      if (!seen_data_ && parsed == 0) {  // header line
+      if (!seen_data_ && all_text) {  // header line
         seen_data_ = true;
         continue;
       }
@@ -65,7 +78,6 @@ class CsvReader {
       }
       return true;
     }
-    return false;
   }
 
   // Requires every data row to have between min_columns and max_columns fields.
@@ -77,6 +89,30 @@ class CsvReader {
   const std::string& error() const { return error_; }
 
  private:
+  enum class LineRead { Line, TooLong, End };
+  // A field is a finite number, another number (NaN, inf, out of range), or text (a header).
+  enum class Field { Finite, NotFinite, Text };
+
+  // Reads up to the next '\n' (not stored). At the end of the input sets the stream's eofbit.
+  LineRead read_line(std::string& text) {
+    using traits = std::char_traits<char>;
+    text.clear();
+    std::streambuf* buffer = in_.rdbuf();
+    if (buffer == nullptr) return LineRead::End;
+    bool any = false;
+    for (;;) {
+      const traits::int_type c = buffer->sbumpc();
+      if (traits::eq_int_type(c, traits::eof())) {
+        in_.setstate(std::ios::eofbit);
+        return any ? LineRead::Line : LineRead::End;
+      }
+      any = true;
+      if (traits::to_char_type(c) == '\n') return LineRead::Line;
+      if (text.size() >= kMaxLineBytes) return LineRead::TooLong;
+      text.push_back(traits::to_char_type(c));
+    }
+  }
+
   static bool is_blank(const std::string& s) {
     return s.find_first_not_of(" \t") == std::string::npos;
   }
@@ -85,6 +121,11 @@ class CsvReader {
     if (b == std::string::npos) return {};
     const auto e = s.find_last_not_of(" \t");
     return s.substr(b, e - b + 1);
+  }
+  // The field as quoted in a message: trimmed, at most 40 characters.
+  static std::string shown(const std::string& field) {
+    const std::string t = trim(field);
+    return t.size() <= 40 ? t : t.substr(0, 40) + "...";
   }
   static std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> out;
@@ -98,16 +139,19 @@ class CsvReader {
     }
     return out;
   }
-  // Accepts a complete finite decimal number, surrounded by optional blanks.
-  static bool parse_number(const std::string& field, double& value) {
+  // A number is a field strtod reads completely (surrounding blanks allowed); it is Finite when
+  // its value is finite and within the range of double (no overflow or underflow). Text is any
+  // other non-empty field; an empty field is neither a number nor a header name.
+  static Field parse_field(const std::string& field, double& value) {
     const std::string t = trim(field);
-    if (t.empty()) return false;
+    if (t.empty()) return Field::NotFinite;
     const char* begin = t.c_str();
     char* end = nullptr;
     errno = 0;
     value = std::strtod(begin, &end);
-    if (end != begin + t.size() || errno == ERANGE) return false;
-    return std::isfinite(value);
+    if (end != begin + t.size()) return Field::Text;
+    if (errno == ERANGE) return Field::NotFinite;  // beyond the range of double
+    return std::isfinite(value) ? Field::Finite : Field::NotFinite;
   }
   std::string columns_text() const {
     if (expected_columns_min_ == expected_columns_max_)
@@ -124,7 +168,8 @@ class CsvReader {
   std::string error_;
 };
 
-// Writes one CSV line of numbers with round-trip precision.
+// Writes one CSV line of numbers with round-trip precision. Write errors are sticky in the stream
+// (ferror); the tools check them once at the end (cli::finish_stdout).
 inline void write_row(std::FILE* out, const double* values, std::size_t count) {
   for (std::size_t k = 0; k < count; ++k)
     std::fprintf(out, k == 0 ? "%.17g" : ",%.17g", values[k]);

@@ -1,16 +1,23 @@
-// Subcommands of the `fuzzypid` command-line tool. Each takes the arguments after its own name
-// and returns the process exit code (0 on success, 1 on bad input, 2 on bad usage).
+// Subcommands of the `fuzzypid` command-line tool. Each registers its options on the tool's CLI11
+// application and runs from the parsed options, returning the process exit code (cli.hpp: 0 ok, 1 a
+// run-time failure such as a bad input row, a URDF or rule file that does not load, or a write
+// error; 2 bad usage, reported by the parser before any command runs).
 #pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
 
 namespace fuzzypid::cli {
 
-int run_eval(int argc, char** argv);
+// Adds the subcommand to `app`; `run` is set to the function that runs it once parsed.
+void add_eval_command(CLI::App& app, std::function<int()>& run);
 
 #if FUZZYPID_HAVE_ROBOT
-int run_fk(int argc, char** argv);
-int run_ik(int argc, char** argv);
-int run_tune(int argc, char** argv);           // tune.cpp
-int run_export_header(int argc, char** argv);  // tune.cpp
+void add_fk_command(CLI::App& app, std::function<int()>& run);
+void add_ik_command(CLI::App& app, std::function<int()>& run);
+void add_tune_command(CLI::App& app, std::function<int()>& run);           // tune.cpp
+void add_export_header_command(CLI::App& app, std::function<int()>& run);  // tune.cpp
 #endif
 
 }  // namespace fuzzypid::cli

@@ -1,30 +1,87 @@
 // `fuzzypid eval`: the paper's supervisor from the shell. Rows e,ec on stdin ->
-// e,ec,dKp,dKi,dKd on stdout. With --fis FILE or --fll FILE, the loaded rule base instead: rows of
-// its inputs (in file order) -> the inputs followed by its outputs.
+// e,ec,dKp,dKi,dKd on stdout. With --fis, --fll or --fcl FILE, the loaded rule base instead: rows
+// of its inputs (in file order) -> the inputs followed by its outputs.
+//
+// A row on which no rule fires (Status::NoRuleFired) is still written -- with the rule base's
+// default outputs (0 when the default is NaN), so that output rows keep matching input rows -- but
+// each such row is reported on stderr with its line and the run exits 1: a number that no rule
+// produced is never passed off as an inference.
 #include <cstdio>
-#include <cstring>
 #include <iostream>
 #include <memory>
 #include <string>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/status.hpp"
 
 namespace fuzzypid::cli {
 
 namespace {
 
-// Evaluates a rule file on every row of stdin; 0, 1 (bad file or row) like the paper path.
-int eval_rule_file(const std::string& path, bool fis) {
+constexpr const char* kTool = "fuzzypid eval";
+// Rows with no rule fired are each named on stderr up to this count, then only counted.
+constexpr std::size_t kMaxNamedRows = 10;
+
+// The conjunctions the paper's table system takes, named by the enum's own to_string.
+const NameTable<fuzzy::Conjunction, 2> kAndNames = {
+    {{to_string(fuzzy::Conjunction::Minimum), fuzzy::Conjunction::Minimum},
+     {to_string(fuzzy::Conjunction::Product), fuzzy::Conjunction::Product}}};
+
+struct EvalOptions {
+  fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
+  bool corrected = false;
+  std::string fis, fll, fcl;
+};
+
+// Counts the rows whose evaluation reported NoRuleFired and names the first few.
+class NoRuleReport {
+ public:
+  void row(std::size_t line) {
+    if (++count_ <= kMaxNamedRows)
+      std::fprintf(stderr, "%s: line %zu: no rule fired; the row holds the default outputs\n",
+                   kTool, line);
+  }
+  // The exit code of a run whose input was read completely.
+  int finish() const {
+    if (count_ == 0) return kExitOk;
+    std::fprintf(stderr, "%s: no rule fired on %zu row(s); their outputs are not inferences\n",
+                 kTool, count_);
+    return kExitFailure;
+  }
+
+ private:
+  std::size_t count_ = 0;
+};
+
+int input_failure(const CsvReader& reader) {
+  std::string error = reader.error();
+  if (error.empty()) error = stdin_read_error();
+  if (error.empty()) return kExitOk;
+  std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
+  return kExitFailure;
+}
+
+// Evaluates a rule file on every row of stdin.
+int eval_rule_file(const EvalOptions& o) {
   auto model = std::make_unique<rulefile::Model>();
   rulefile::LoadError error;
-  const bool loaded = fis ? rulefile::load_fis(path, *model, error) : rulefile::load_fll(path, *model, error);
+  bool loaded = false;
+  if (!o.fis.empty()) {
+    loaded = rulefile::load_fis(o.fis, *model, error);
+  } else if (!o.fll.empty()) {
+    loaded = rulefile::load_fll(o.fll, *model, error);
+  } else {
+    loaded = rulefile::load_fcl(o.fcl, *model, error);
+  }
   if (!loaded) {
-    std::fprintf(stderr, "fuzzypid eval: %s\n", error.to_string().c_str());
-    return 1;
+    std::fprintf(stderr, "%s: %s\n", kTool, error.to_string().c_str());
+    return kExitFailure;
   }
   auto engine = std::make_unique<fuzzy::Engine<double>>(*model);
   const std::size_t n_in = model->num_inputs;
@@ -32,82 +89,87 @@ int eval_rule_file(const std::string& path, bool fis) {
   std::string header;
   for (std::size_t i = 0; i < n_in; ++i)
     header += (i ? "," : "") + std::string(model->inputs[i].name.data());
-  for (std::size_t o = 0; o < n_out; ++o)
-    header += "," + std::string(model->outputs[o].name.data());
+  for (std::size_t o_index = 0; o_index < n_out; ++o_index)
+    header += "," + std::string(model->outputs[o_index].name.data());
   std::puts(header.c_str());
   CsvReader reader(std::cin);
   reader.expect_columns(n_in, n_in);
   CsvRow row;
+  NoRuleReport no_rule;
   double values[fuzzy::kMaxInputs + fuzzy::kMaxOutputs] = {};
   while (reader.next(row)) {
     for (std::size_t i = 0; i < n_in; ++i)
       values[i] = row.values[i];
-    (void)engine->evaluate(values, values + n_in);
+    const Status status = engine->evaluate(values, values + n_in);
+    if (is_fault(status)) {
+      std::fprintf(stderr, "%s: line %zu: evaluation failed: %s\n", kTool, row.line,
+                   to_string(status));
+      return kExitFailure;
+    }
     write_row(stdout, values, n_in + n_out);
+    if (status == Status::NoRuleFired) no_rule.row(row.line);
   }
-  if (!reader.error().empty()) {
-    std::fprintf(stderr, "fuzzypid eval: %s\n", reader.error().c_str());
-    return 1;
+  if (const int rc = input_failure(reader); rc != kExitOk) return rc;
+  return no_rule.finish();
+}
+
+int eval_paper(const EvalOptions& o) {
+  const auto system = paper::make_system<double>(
+      o.conjunction, o.corrected ? paper::Tables::Corrected : paper::Tables::Printed);
+  CsvReader reader(std::cin);
+  reader.expect_columns(2, 2);
+  CsvRow row;
+  NoRuleReport no_rule;
+  std::puts("e,ec,dKp,dKi,dKd");
+  while (reader.next(row)) {
+    const auto r = system.infer(row.values[0], row.values[1]);
+    if (is_fault(r.status)) {
+      std::fprintf(stderr, "%s: line %zu: inference failed: %s\n", kTool, row.line,
+                   to_string(r.status));
+      return kExitFailure;
+    }
+    const double out[5] = {row.values[0], row.values[1], r.output[0], r.output[1], r.output[2]};
+    write_row(stdout, out, 5);
+    if (r.status == Status::NoRuleFired) no_rule.row(row.line);
   }
-  return 0;
+  if (const int rc = input_failure(reader); rc != kExitOk) return rc;
+  return no_rule.finish();
+}
+
+int run_eval(const EvalOptions& o) {
+  if (const std::string error = check_stdin_is_data(); !error.empty()) {
+    std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
+    return kExitFailure;
+  }
+  if (!o.fis.empty() || !o.fll.empty() || !o.fcl.empty()) return eval_rule_file(o);
+  return eval_paper(o);
 }
 
 }  // namespace
 
-int run_eval(int argc, char** argv) {
-  fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
-  paper::Tables tables = paper::Tables::Printed;
-  std::string rule_file;
-  bool rule_file_is_fis = false;
-  for (int k = 0; k < argc; ++k) {
-    if (std::strcmp(argv[k], "--and") == 0 && k + 1 < argc) {
-      const char* v = argv[++k];
-      if (std::strcmp(v, "min") == 0) {
-        conjunction = fuzzy::Conjunction::Minimum;
-      } else if (std::strcmp(v, "prod") == 0) {
-        conjunction = fuzzy::Conjunction::Product;
-      } else {
-        std::fprintf(stderr, "fuzzypid eval: --and takes min or prod, not '%s'\n", v);
-        return 2;
-      }
-    } else if ((std::strcmp(argv[k], "--fis") == 0 || std::strcmp(argv[k], "--fll") == 0) &&
-               k + 1 < argc) {
-      rule_file_is_fis = std::strcmp(argv[k], "--fis") == 0;
-      rule_file = argv[++k];
-    } else if (std::strcmp(argv[k], "--corrected") == 0) {
-      tables = paper::Tables::Corrected;
-    } else if (std::strcmp(argv[k], "--help") == 0) {
-      std::puts(
-          "usage: fuzzypid eval [--and min|prod] [--corrected]\n"
-          "       fuzzypid eval --fis FILE | --fll FILE\n"
-          "Reads rows e,ec (fuzzy universe units) from stdin and writes e,ec,dKp,dKi,dKd using\n"
-          "the paper's rule base (Tables 2-4; --corrected fixes the two suspected misprints).\n"
-          "With a MATLAB .fis or fuzzylite .fll file, reads rows of that system's inputs (file\n"
-          "order) and writes the inputs followed by its outputs (docs/rule_files.md).");
-      return 0;
-    } else {
-      std::fprintf(stderr, "fuzzypid eval: unknown or incomplete option '%s'\n", argv[k]);
-      return 2;
-    }
-  }
-
-  if (!rule_file.empty()) return eval_rule_file(rule_file, rule_file_is_fis);
-
-  const auto system = paper::make_system<double>(conjunction, tables);
-  CsvReader reader(std::cin);
-  reader.expect_columns(2, 2);
-  CsvRow row;
-  std::puts("e,ec,dKp,dKi,dKd");
-  while (reader.next(row)) {
-    const auto r = system.infer(row.values[0], row.values[1]);
-    const double out[5] = {row.values[0], row.values[1], r.output[0], r.output[1], r.output[2]};
-    write_row(stdout, out, 5);
-  }
-  if (!reader.error().empty()) {
-    std::fprintf(stderr, "fuzzypid eval: %s\n", reader.error().c_str());
-    return 1;
-  }
-  return 0;
+void add_eval_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "eval",
+      "Rows e,ec (fuzzy universe units) -> e,ec,dKp,dKi,dKd from the paper's rule base (Tables "
+      "2-4). With --fis, --fll or --fcl, rows of that rule base's inputs (file order) -> the "
+      "inputs followed by its outputs (docs/rule_files.md). A row on which no rule fires is "
+      "reported on stderr and the run exits 1.");
+  CLI::Option* conj = add_enum_option(*cmd, "--and", options->conjunction, kAndNames,
+                                      "fuzzy AND of the paper's system");
+  CLI::Option* corrected = cmd->add_flag(
+      "--corrected", options->corrected,
+      "the paper's tables with the two suspected misprints fixed (docs/reproduction.md)");
+  CLI::Option* fis =
+      cmd->add_option("--fis", options->fis, "a MATLAB .fis rule base")->option_text("FILE");
+  CLI::Option* fll =
+      cmd->add_option("--fll", options->fll, "a fuzzylite .fll rule base")->option_text("FILE");
+  CLI::Option* fcl =
+      cmd->add_option("--fcl", options->fcl, "an IEC 61131-7 .fcl rule base")->option_text("FILE");
+  fis->excludes(fll)->excludes(fcl)->excludes(conj)->excludes(corrected);
+  fll->excludes(fcl)->excludes(conj)->excludes(corrected);
+  fcl->excludes(conj)->excludes(corrected);
+  cmd->callback([&run, options] { run = [options] { return run_eval(*options); }; });
 }
 
 }  // namespace fuzzypid::cli

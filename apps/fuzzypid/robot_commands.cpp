@@ -6,14 +6,16 @@
 //
 // SI units (m, rad); the rotation is row-major, tip axes in the root frame. A row whose IK fails is
 // not an input error: it prints the seed (zeros when none is given) and the status word, so the
-// output keeps one numeric row per input row. Exit codes: 0 ok, 1 a malformed input row (named on
-// stderr, processing stops there), 2 bad usage or a URDF that does not load.
+// output keeps one numeric row per input row. Exit codes (cli.hpp): 0 ok, 1 a malformed input row
+// (named on stderr, processing stops there), a URDF that does not load or a write error, 2 bad
+// usage.
 #include <cstdio>
-#include <cstring>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "csv.hpp"
 #include "fuzzypid/robot/ik.hpp"
@@ -28,28 +30,8 @@ using robot::Pose;
 
 struct RobotOptions {
   std::string urdf;
-  std::string solver = "analytic";
+  robot::IkSolver solver = robot::IkSolver::Analytic;
 };
-
-// Parses --urdf and (for ik) --solver; false after printing a message on a bad argument.
-bool parse_options(const char* command, int argc, char** argv, bool allow_solver,
-                   RobotOptions& options) {
-  for (int i = 0; i < argc; ++i) {
-    const char* arg = argv[i];
-    const bool is_urdf = std::strcmp(arg, "--urdf") == 0;
-    const bool is_solver = allow_solver && std::strcmp(arg, "--solver") == 0;
-    if ((is_urdf || is_solver) && i + 1 < argc) {
-      (is_urdf ? options.urdf : options.solver) = argv[++i];
-    } else {
-      std::fprintf(stderr, "fuzzypid %s: unexpected argument '%s'\nusage: fuzzypid %s\n", command,
-                   arg,
-                   allow_solver ? "ik [--urdf FILE] [--solver analytic|kdl-nr|kdl-lma]"
-                                : "fk [--urdf FILE]");
-      return false;
-    }
-  }
-  return true;
-}
 
 std::optional<robot::RobotModel> load_model(const char* command, const RobotOptions& options) {
   const std::string path = options.urdf.empty() ? robot::default_urdf_path() : options.urdf;
@@ -60,16 +42,20 @@ std::optional<robot::RobotModel> load_model(const char* command, const RobotOpti
 
 int input_error(const char* command, const std::string& message) {
   std::fprintf(stderr, "fuzzypid %s: %s\n", command, message.c_str());
-  return 1;
+  return kExitFailure;
 }
 
-}  // namespace
+// The reader's error, else a read error of stdin, else kExitOk.
+int input_failure(const char* command, const CsvReader& reader) {
+  if (!reader.error().empty()) return input_error(command, reader.error());
+  if (const std::string e = stdin_read_error(); !e.empty()) return input_error(command, e);
+  return kExitOk;
+}
 
-int run_fk(int argc, char** argv) {
-  RobotOptions options;
-  if (!parse_options("fk", argc, argv, false, options)) return 2;
+int run_fk(const RobotOptions& options) {
+  if (const std::string e = check_stdin_is_data(); !e.empty()) return input_error("fk", e);
   const std::optional<robot::RobotModel> model = load_model("fk", options);
-  if (!model) return 2;
+  if (!model) return kExitFailure;
 
   CsvReader reader(std::cin);
   reader.expect_columns(kNumJoints, kNumJoints);
@@ -85,27 +71,19 @@ int run_fk(int argc, char** argv) {
         out[3 + 3 * r + c] = p.rotation(r, c);
     write_row(stdout, out, 12);
   }
-  if (!reader.error().empty()) return input_error("fk", reader.error());
-  return 0;
+  return input_failure("fk", reader);
 }
 
-int run_ik(int argc, char** argv) {
-  RobotOptions options;
-  if (!parse_options("ik", argc, argv, true, options)) return 2;
-  const std::optional<robot::IkSolver> solver = robot::ik_solver_from_string(options.solver);
-  if (!solver) {
-    std::fprintf(stderr, "fuzzypid ik: unknown solver '%s' (analytic, kdl-nr or kdl-lma)\n",
-                 options.solver.c_str());
-    return 2;
-  }
+int run_ik(const RobotOptions& options) {
+  if (const std::string e = check_stdin_is_data(); !e.empty()) return input_error("ik", e);
   const std::optional<robot::RobotModel> model = load_model("ik", options);
-  if (!model) return 2;
+  if (!model) return kExitFailure;
   const robot::InverseKinematics ik(*model);
-  if (*solver == robot::IkSolver::Analytic && !ik.has_analytic()) {
+  if (options.solver == robot::IkSolver::Analytic && !ik.has_analytic()) {
     std::fprintf(stderr,
                  "fuzzypid ik: the model is not the Table 1 geometry; use --solver kdl-nr or "
                  "kdl-lma\n");
-    return 2;
+    return kExitFailure;
   }
 
   CsvReader reader(std::cin);
@@ -133,13 +111,41 @@ int run_ik(int argc, char** argv) {
         seed[j] = row.values[12 + j];
     }
     JointVector q = seed;
-    const robot::IkStatus status = ik.solve(*solver, target, seed, q);
+    const robot::IkStatus status = ik.solve(options.solver, target, seed, q);
     for (std::size_t j = 0; j < kNumJoints; ++j)
       std::printf(j == 0 ? "%.17g" : ",%.17g", q[j]);
     std::printf(",%s\n", robot::to_string(status));
   }
-  if (!reader.error().empty()) return input_error("ik", reader.error());
-  return 0;
+  return input_failure("ik", reader);
+}
+
+CLI::Option* add_urdf_option(CLI::App& cmd, RobotOptions& options) {
+  return cmd
+      .add_option(
+          "--urdf", options.urdf,
+          "robot description (default: the bundled ER50-C20, " + robot::default_urdf_path() + ")")
+      ->option_text("FILE");
+}
+
+}  // namespace
+
+void add_fk_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<RobotOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "fk", "Forward kinematics: rows q1..q6 (rad) -> x,y,z (m),r11..r33 (row-major rotation)");
+  add_urdf_option(*cmd, *options);
+  cmd->callback([&run, options] { run = [options] { return run_fk(*options); }; });
+}
+
+void add_ik_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<RobotOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "ik",
+      "Inverse kinematics: rows x,y,z,r11..r33[,seed q1..q6] -> q1..q6,status (the seed, zeros "
+      "by default, when no solution is found)");
+  add_urdf_option(*cmd, *options);
+  add_enum_option(*cmd, "--solver", options->solver, robot::kIkSolverNames, "IK solver");
+  cmd->callback([&run, options] { run = [options] { return run_ik(*options); }; });
 }
 
 }  // namespace fuzzypid::cli

@@ -1,14 +1,18 @@
 // `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
 // `fuzzypid export-header`: a controller file as a self-contained C++ header.
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "cli.hpp"
 #include "commands.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/controller_file/export_header.hpp"
@@ -23,23 +27,6 @@ namespace fuzzypid::cli {
 namespace {
 
 namespace cf = controller_file;
-
-// CLI11 reports usage errors itself; 0 after --help, 2 after a usage error, -1 to go on.
-int parse_or_exit(CLI::App& app, int argc, char** argv, const char* name) {
-  std::vector<const char*> args{name};
-  for (int k = 0; k < argc; ++k)
-    args.push_back(argv[k]);
-  try {
-    app.parse(static_cast<int>(args.size()), args.data());
-  } catch (const CLI::CallForHelp&) {
-    std::fputs(app.help().c_str(), stdout);
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "%s: %s (see --help)\n", name, e.what());
-    return 2;
-  }
-  return -1;
-}
 
 bool parse_box(const std::string& text, cf::SearchBox& box) {
   const auto eq = text.find('=');
@@ -57,63 +44,26 @@ bool parse_box(const std::string& text, cf::SearchBox& box) {
          box.log10_min <= box.log10_max;
 }
 
-}  // namespace
-
-int run_tune(int argc, char** argv) {
-  CLI::App app{
-      "fuzzypid tune: tune a controller family on a training set of conditions (pagmo2 "
-      "self-adaptive differential evolution, log10 search boxes, hard evaluation budget) and "
-      "write the result as a controller file. Progress goes to stderr.",
-      "fuzzypid tune"};
-  app.get_formatter()->column_width(36);
+struct TuneOptions {
   std::string family_name, conditions, set = "training", out, base_file;
   std::uint64_t budget = 16000, seed = 1, population = 0;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   cf::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
-  std::vector<std::string> family_names;
-  for (const auto& e : cf::kFamilyNames)
-    family_names.emplace_back(e.name);
-  app.add_option("--family", family_name,
-                 "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
-      ->required()
-      ->check(CLI::IsMember(family_names));
-  app.add_option("--conditions", conditions, "condition-set file (TOML)")->required();
-  app.add_option("--set", set, "the training set's name (default training)");
-  app.add_option("--budget", budget, "objective evaluations, never exceeded (default 16000)")
-      ->check(CLI::Range(std::uint64_t{14}, std::uint64_t{100000000}));
-  app.add_option("--seed", seed, "random seed (default 1)")
-      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{4294967295u}));
-  app.add_option("--threads", threads,
-                 "threads evaluating the conditions (default: all cores; the result does not "
-                 "depend on it)")
-      ->check(CLI::Range(1u, 256u));
-  app.add_option("--population", population,
-                 "population size (default 5 x parameters, at least 20)")
-      ->check(CLI::Range(std::uint64_t{7}, std::uint64_t{100000}));
-  app.add_option("--out", out, "controller file to write")->required();
-  app.add_option("--base", base_file,
-                 "controller file whose units, PID options, bounds and rule base the result "
-                 "keeps (default: the paper's, acceleration units per tick at 0.05 s)");
-  app.add_option("--overshoot-bound", objective.overshoot_bound_pct,
-                 "overshoot allowed without penalty, % (default 20)")
-      ->check(CLI::Range(0.0, 1e6));
-  app.add_option("--overshoot-weight", objective.overshoot_weight,
-                 "cost per percentage point above the bound, per joint (default 0.1)")
-      ->check(CLI::Range(0.0, 1e9));
-  app.add_option("--fault-cost", objective.fault_cost,
-                 "cost of a run that faults, diverges or gives non-finite ITAE (default 1000)")
-      ->check(CLI::Range(0.0, 1e12));
-  app.add_option("--divergence", objective.divergence_rad,
-                 "a run diverged once any |e| exceeds this, rad (default 1)")
-      ->check(CLI::Range(1e-9, 1e3));
-  app.add_option("--box", boxes,
-                 "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
-                 "docs/tuning.md)");
-  app.add_flag("--quiet", quiet, "no progress on stderr");
-  if (const int rc = parse_or_exit(app, argc, argv, "fuzzypid tune"); rc >= 0) return rc;
+};
 
+int run_tune(const TuneOptions& t) {
+  const std::string& family_name = t.family_name;
+  const std::string& conditions = t.conditions;
+  const std::string& set = t.set;
+  const std::string& out = t.out;
+  const std::string& base_file = t.base_file;
+  const std::uint64_t budget = t.budget, seed = t.seed, population = t.population;
+  const unsigned threads = t.threads;
+  const cf::Objective& objective = t.objective;
+  const std::vector<std::string>& boxes = t.boxes;
+  const bool quiet = t.quiet;
   const cf::Family family = *cf::parse_enum(cf::kFamilyNames, family_name);
   tune::Options opt;
   opt.family = family;
@@ -225,24 +175,14 @@ int run_tune(int argc, char** argv) {
   return 0;
 }
 
-int run_export_header(int argc, char** argv) {
-  CLI::App app{
-      "fuzzypid export-header: write a controller file as a self-contained C++ header of "
-      "constexpr configuration (no parser needed on the target).",
-      "fuzzypid export-header"};
+struct ExportOptions {
   std::string in, out, ns = "fuzzypid_controller";
-  app.add_option("file", in, "controller file (TOML)")->required();
-  app.add_option("--out", out, "header to write (default: stdout)");
-  app.add_option("--namespace", ns, "namespace of the generated constants")
-      ->check([](const std::string& s) -> std::string {
-        if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
-          return "not a C++ identifier: " + s;
-        for (char c : s)
-          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
-            return "not a C++ identifier: " + s;
-        return {};
-      });
-  if (const int rc = parse_or_exit(app, argc, argv, "fuzzypid export-header"); rc >= 0) return rc;
+};
+
+int run_export_header(const ExportOptions& o) {
+  const std::string& in = o.in;
+  const std::string& out = o.out;
+  const std::string& ns = o.ns;
   cf::ControllerSpec spec;
   cf::Error err;
   if (!cf::load(in, spec, err)) {
@@ -260,6 +200,77 @@ int run_export_header(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+void add_tune_command(CLI::App& app, std::function<int()>& run) {
+  auto t = std::make_shared<TuneOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "tune",
+      "Tune a controller family on a training set of conditions (pagmo2 self-adaptive "
+      "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
+      "as a controller file (docs/tuning.md). Progress goes to stderr.");
+  std::vector<std::string> family_names;
+  for (const auto& e : cf::kFamilyNames)
+    family_names.emplace_back(e.name);
+  cmd->add_option("--family", t->family_name,
+                  "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
+      ->required()
+      ->check(CLI::IsMember(family_names));
+  cmd->add_option("--conditions", t->conditions, "condition-set file (TOML)")->required();
+  cmd->add_option("--set", t->set, "the training set's name (default training)");
+  cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
+      ->check(unsigned_in(14, 100000000));
+  cmd->add_option("--seed", t->seed, "random seed (default 1)")->check(unsigned_in(0, 4294967295u));
+  cmd->add_option("--threads", t->threads,
+                  "threads evaluating the conditions (default: all cores; the result does not "
+                  "depend on it)")
+      ->check(unsigned_in(1, 256));
+  cmd->add_option("--population", t->population,
+                  "population size (default 5 x parameters, at least 20)")
+      ->check(unsigned_in(7, 100000));
+  cmd->add_option("--out", t->out, "controller file to write")->required();
+  cmd->add_option("--base", t->base_file,
+                  "controller file whose units, PID options, bounds and rule base the result "
+                  "keeps (default: the paper's, acceleration units per tick at 0.05 s)");
+  cmd->add_option("--overshoot-bound", t->objective.overshoot_bound_pct,
+                  "overshoot allowed without penalty, % (default 20)")
+      ->check(finite_in(0.0, 1e6));
+  cmd->add_option("--overshoot-weight", t->objective.overshoot_weight,
+                  "cost per percentage point above the bound, per joint (default 0.1)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--fault-cost", t->objective.fault_cost,
+                  "cost of a run that faults, diverges or gives non-finite ITAE (default 1000)")
+      ->check(finite_in(0.0, 1e12));
+  cmd->add_option("--divergence", t->objective.divergence_rad,
+                  "a run diverged once any |e| exceeds this, rad (default 1)")
+      ->check(finite_in(1e-9, 1e3));
+  cmd->add_option("--box", t->boxes,
+                  "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
+                  "docs/tuning.md)");
+  cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
+  cmd->callback([&run, t] { run = [t] { return run_tune(*t); }; });
+}
+
+void add_export_header_command(CLI::App& app, std::function<int()>& run) {
+  auto o = std::make_shared<ExportOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "export-header",
+      "Write a controller file as a self-contained C++ header of constexpr configuration (no "
+      "parser needed on the target).");
+  cmd->add_option("file", o->in, "controller file (TOML)")->required();
+  cmd->add_option("--out", o->out, "header to write (default: stdout)");
+  cmd->add_option("--namespace", o->ns, "namespace of the generated code")
+      ->check([](const std::string& s) -> std::string {
+        if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
+          return "not a C++ identifier: " + s;
+        for (char c : s)
+          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+            return "not a C++ identifier: " + s;
+        return {};
+      });
+  cmd->callback([&run, o] { run = [o] { return run_export_header(*o); }; });
 }
 
 }  // namespace fuzzypid::cli

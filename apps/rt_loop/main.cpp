@@ -2,69 +2,79 @@
 // it would run on a robot controller, with its timing measured.
 //
 // Each tick: sleep until the absolute deadline (clock_nanosleep, CLOCK_MONOTONIC, TIMER_ABSTIME:
-// no drift), read the plant's joint state, run JointController::step against the section 6 path
-// sample, apply the torque to the plant for one period. Measured per tick:
+// no drift), then one tick of sim::ClosedLoop -- the same closed loop the A/B simulation runs:
+// path sample -> controller -> torque -> plant over one controller period. Measured per tick:
 //   wake-up latency  time between the deadline and the return of clock_nanosleep;
-//   compute time     time from that return to the end of the tick's work (controller + plant);
-//   controller time  the JointController::step call alone.
+//   period error     |time between successive wake-ups - period| (the loop's jitter);
+//   compute time     time from the wake-up to the end of the tick's work (controller + plant).
 // A tick whose work ends after the next deadline is an overrun; the loop then skips the missed
-// deadlines and keeps its phase (it never bursts to catch up).
+// deadlines and keeps its phase (it never bursts to catch up). Page faults taken during the loop
+// are counted with getrusage.
 //
-// Real-time rules: the model, path, plant, controllers, histograms and the optional CSV buffer are
-// all built before the first tick. Inside the loop nothing allocates, locks, prints or throws: the
-// global operator new is replaced in this binary by a counting one and the count over the loop is
-// printed as `allocations_in_loop`. Statistics are fixed-bucket histograms; the CSV is written
-// after the loop.
+// The controller's period dt follows the loop: dt = --period-ms unless --dt says otherwise (and
+// 50 ms when free-running). The path (section 6, A -> B in 5 s) is sampled at dt, and the paper's
+// per-tick gains are converted to continuous form once, at the paper's 50 ms tick, so that every
+// dt runs the same continuous-time controller (at 50 ms exactly the A/B simulation's).
 //
-// Path, plant and controllers are built by sim::Experiment exactly as the A/B simulation builds
-// them (sim::ExperimentOptions defaults, the "paper" scenario; see apps/sim_ab and
-// docs/reproduction.md): the paper's per-tick gains
-// (Kp 4, Ki 0.001, Kd 100) converted to continuous form, acting on an inertia-normalised loop
-// (torque = J^_i u_i, J^_i the nominal joint inertia at the path start), derivative from the
-// measured rates, output limited to the URDF effort limit, start 0.05 rad behind the path.
+// Real-time rules: the model, path, plant, controllers, histograms, the CSV buffer and the CSV
+// file itself are all made before the first tick. Inside the loop nothing allocates, locks, prints
+// or throws: the global operator new is replaced in this binary by a counting one and the count
+// over the loop is printed as `allocations_in_loop`. The CSV is written after the loop under a
+// temporary name and renamed when complete, so a cut-short file never looks valid.
+//
+// Exit codes: 0 success; 1 a run-time failure -- a controller or plant fault, an allocation in the
+// loop, more overruns than --max-overruns, a real-time setting refused under --require-rt, an
+// output that cannot be written; 2 bad usage.
 #include <sched.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <new>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
-#include "fuzzypid/paper.hpp"
-#include "fuzzypid/pid/pid.hpp"
+#include "cli.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/closed_loop.hpp"
+#include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/status.hpp"
+#include "histogram.hpp"
+#include "output_files.hpp"
 // Counts every allocation of this process (replaces the global operator new/delete).
 #include "fuzzypid_support/counting_new.hpp"
 
 namespace {
 
+namespace cli = fuzzypid::cli;
 namespace robot = fuzzypid::robot;
-namespace control = fuzzypid::control;
-namespace pid = fuzzypid::pid;
 namespace sim = fuzzypid::sim;
+namespace cf = fuzzypid::controller_file;
 
-constexpr std::size_t kJoints = robot::kNumJoints;
+constexpr const char* kTool = "rt_loop";
 // With --csv every tick is buffered; this caps the buffer at 24 bytes x 50M = 1.2 GB.
 constexpr std::uint64_t kMaxCsvTicks = 50'000'000;
+// The controller period's range, s: the path of 5 s is sampled at dt, so 0.1 ms is 50,001 samples.
+constexpr double kMinDtS = 1e-4;
+constexpr double kMaxDtS = 1.0;
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) {
@@ -72,186 +82,89 @@ extern "C" void on_sigint(int) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Fixed-bucket log-linear histogram of durations in ns: exact below 128 ns, then 64 buckets per
-// power of two (relative resolution 1/64, about 1.6 %), up to 2^40 ns (18 min). Recording is two
-// shifts and an increment; min and max are kept exactly.
-
-class Histogram {
- public:
-  static constexpr int kSubBits = 6;
-  static constexpr std::uint64_t kSub = 1u << kSubBits;  // 64
-  static constexpr int kMaxBits = 40;
-  static constexpr std::size_t kBuckets = (kMaxBits - kSubBits + 1) * kSub;
-
-  void record(std::int64_t ns) noexcept {
-    const std::uint64_t v = ns < 0 ? 0 : static_cast<std::uint64_t>(ns);
-    ++counts_[index(v)];
-    ++n_;
-    if (v < min_) min_ = v;
-    if (v > max_) max_ = v;
-  }
-
-  std::uint64_t count() const noexcept { return n_; }
-  std::uint64_t min() const noexcept { return n_ == 0 ? 0 : min_; }
-  std::uint64_t max() const noexcept { return max_; }
-
-  // The smallest recorded value v such that at least q of the samples are <= v, to bucket
-  // resolution (the bucket's upper edge, clamped into [min, max]).
-  std::uint64_t quantile(double q) const noexcept {
-    if (n_ == 0) return 0;
-    const auto rank = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(n_)));
-    const std::uint64_t target = rank == 0 ? 1 : rank;
-    std::uint64_t seen = 0;
-    for (std::size_t i = 0; i < kBuckets; ++i) {
-      seen += counts_[i];
-      if (seen >= target) {
-        const std::uint64_t hi = upper_edge(i);
-        return hi < min_ ? min_ : (hi > max_ ? max_ : hi);
-      }
-    }
-    return max_;
-  }
-
- private:
-  static std::size_t index(std::uint64_t v) noexcept {
-    if (v < 2 * kSub) return static_cast<std::size_t>(v);
-    if (v >= (std::uint64_t{1} << kMaxBits)) return kBuckets - 1;
-    const int msb = 63 - __builtin_clzll(v);
-    const int shift = msb - kSubBits;
-    return static_cast<std::size_t>((shift + 1) * kSub + ((v >> shift) - kSub));
-  }
-  static std::uint64_t upper_edge(std::size_t i) noexcept {
-    if (i < 2 * kSub) return i;
-    const std::uint64_t shift = i / kSub - 1;
-    const std::uint64_t sub = i % kSub + kSub;
-    return ((sub + 1) << shift) - 1;
-  }
-
-  std::array<std::uint64_t, kBuckets> counts_{};
-  std::uint64_t n_ = 0;
-  std::uint64_t min_ = UINT64_MAX;
-  std::uint64_t max_ = 0;
-};
-
-// ---------------------------------------------------------------------------------------------
 // Options.
-
-enum class ControllerChoice { Pid, Fuzzy };
 
 struct Options {
   double period_ms = 50.0;
+  std::optional<double> dt_s;          // default: the period (50 ms when free-running)
   std::optional<std::uint64_t> ticks;  // default: one pass of the path
-  ControllerChoice controller = ControllerChoice::Fuzzy;
+  std::string controller = "fuzzy";    // pid, fuzzy or a controller file (*.toml)
   std::string csv;
   std::optional<int> fifo_priority;
   bool lock_memory = false;
   std::optional<int> cpu;
   bool loop_path = false;
+  bool require_rt = false;
+  std::optional<std::uint64_t> max_overruns;
+
+  double controller_dt_s() const {
+    if (dt_s) return *dt_s;
+    return period_ms > 0.0 ? period_ms / 1000.0 : 0.05;
+  }
 };
 
-void print_usage(std::FILE* f) {
-  std::fputs(
-      "usage: rt_loop [options]\n"
-      "  --period-ms P        tick period in ms (default 50; 0 = free-running)\n"
-      "  --ticks N            ticks to run, N >= 1 (default: one pass of the path)\n"
-      "  --controller pid|fuzzy  (default fuzzy)\n"
-      "  --loop               restart the path at its end (else hold its last point)\n"
-      "  --csv FILE           write tick,wakeup_latency_ns,compute_ns,controller_ns after the run\n"
-      "  --fifo PRIO          SCHED_FIFO at priority PRIO\n"
-      "  --lock-memory        mlockall(MCL_CURRENT | MCL_FUTURE)\n"
-      "  --cpu K              pin to CPU K\n"
-      "Ctrl-C stops at the next tick and prints the summary.\n",
-      f);
-}
-
-bool parse_double(const char* s, double& out) {
-  if (s == nullptr || *s == '\0') return false;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(s, &end);
-  if (errno != 0 || end == s || *end != '\0' || !std::isfinite(v)) return false;
-  out = v;
-  return true;
-}
-
-bool parse_int(const char* s, long long& out) {
-  if (s == nullptr || *s == '\0') return false;
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(s, &end, 10);
-  if (errno != 0 || end == s || *end != '\0') return false;
-  out = v;
-  return true;
-}
-
-// Returns an error message, or nullopt when the arguments are valid. Sets `help` for --help.
-std::optional<std::string> parse_options(int argc, char** argv, Options& o, bool& help) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    const auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    if (a == "--help" || a == "-h") {
-      help = true;
-      return std::nullopt;
-    } else if (a == "--period-ms") {
-      const char* v = value();
-      if (v == nullptr) return std::string("--period-ms needs a value");
-      if (!parse_double(v, o.period_ms))
-        return "--period-ms: '" + std::string(v) + "' is not a number";
-      if (o.period_ms < 0.0) return "--period-ms must be >= 0 (got " + std::string(v) + ")";
-      if (o.period_ms > 60'000.0) return std::string("--period-ms must be at most 60000");
-    } else if (a == "--ticks") {
-      const char* v = value();
-      long long n = 0;
-      if (v == nullptr) return std::string("--ticks needs a value");
-      if (!parse_int(v, n)) return "--ticks: '" + std::string(v) + "' is not an integer";
-      if (n < 1) return "--ticks must be at least 1 (got " + std::string(v) + ")";
-      o.ticks = static_cast<std::uint64_t>(n);
-    } else if (a == "--controller") {
-      const char* v = value();
-      if (v == nullptr) return std::string("--controller needs a value (pid or fuzzy)");
-      const std::string_view c = v;
-      if (c == "pid") {
-        o.controller = ControllerChoice::Pid;
-      } else if (c == "fuzzy") {
-        o.controller = ControllerChoice::Fuzzy;
-      } else {
-        return "--controller: unknown controller '" + std::string(v) + "' (pid or fuzzy)";
-      }
-    } else if (a == "--csv") {
-      const char* v = value();
-      if (v == nullptr || *v == '\0') return std::string("--csv needs a file name");
-      o.csv = v;
-    } else if (a == "--fifo") {
-      const char* v = value();
-      long long p = 0;
-      if (v == nullptr) return std::string("--fifo needs a priority");
-      if (!parse_int(v, p)) return "--fifo: '" + std::string(v) + "' is not an integer";
-      const int lo = sched_get_priority_min(SCHED_FIFO);
-      const int hi = sched_get_priority_max(SCHED_FIFO);
-      if (p < lo || p > hi)
-        return "--fifo: priority " + std::string(v) + " outside [" + std::to_string(lo) + ", " +
-               std::to_string(hi) + "]";
-      o.fifo_priority = static_cast<int>(p);
-    } else if (a == "--lock-memory") {
-      o.lock_memory = true;
-    } else if (a == "--cpu") {
-      const char* v = value();
-      long long k = 0;
-      if (v == nullptr) return std::string("--cpu needs a CPU index");
-      if (!parse_int(v, k)) return "--cpu: '" + std::string(v) + "' is not an integer";
-      const long configured = sysconf(_SC_NPROCESSORS_CONF);
-      if (k < 0 || k >= configured || k >= CPU_SETSIZE)
-        return "--cpu: CPU " + std::string(v) + " does not exist (this machine has " +
-               std::to_string(configured) + " CPUs, 0.." + std::to_string(configured - 1) + ")";
-      o.cpu = static_cast<int>(k);
-    } else if (a == "--loop") {
-      o.loop_path = true;
-    } else {
-      return "unknown argument '" + std::string(a) + "' (see --help)";
-    }
+// Parses the command line into `o`; nullopt to run, else the exit code (0 after --help).
+std::optional<int> parse_options(int argc, char** argv, Options& o) {
+  CLI::App app(
+      "The 6-joint controller against the simulated ER50-C20 in a fixed-period loop, with its "
+      "timing measured (docs/performance.md). Ctrl-C stops at the next tick and prints the "
+      "summary.\nExit codes: 0 success, 1 a run-time failure (controller or plant fault, "
+      "allocation in the loop, too many overruns, a refused setting under --require-rt, a write "
+      "error), 2 bad usage.",
+      kTool);
+  app.add_option("--period-ms", o.period_ms, "tick period, ms (default 50; 0 = free-running)")
+      ->check(cli::finite_in(0.0, 60'000.0))
+      ->option_text("MS");
+  app.add_option("--dt", o.dt_s,
+                 "controller period, s (default: the tick period; 0.05 when free-running)")
+      ->check(cli::finite_in(kMinDtS, kMaxDtS))
+      ->option_text("S");
+  app.add_option("--ticks", o.ticks, "ticks to run (default: one pass of the path)")
+      ->check(cli::unsigned_in(1, std::numeric_limits<std::uint64_t>::max()))
+      ->option_text("N");
+  app.add_option("--controller", o.controller,
+                 "the paper's fixed PID (pid) or fuzzy PID (fuzzy), or a controller file "
+                 "(*.toml, docs/tuning.md) (default fuzzy)")
+      ->check([](const std::string& s) -> std::string {
+        const bool file = s.size() > 5 && s.compare(s.size() - 5, 5, ".toml") == 0;
+        return s == "pid" || s == "fuzzy" || file ? ""
+                                                  : "'" + s + "' is not pid, fuzzy or a .toml file";
+      })
+      ->option_text("pid|fuzzy|FILE");
+  app.add_flag("--loop", o.loop_path, "restart the path at its end (else hold its last point)");
+  app.add_option("--csv", o.csv,
+                 "write tick,wakeup_latency_ns,period_error_ns,compute_ns after the run")
+      ->option_text("FILE");
+  const int lo = sched_get_priority_min(SCHED_FIFO);
+  const int hi = sched_get_priority_max(SCHED_FIFO);
+  app.add_option("--fifo", o.fifo_priority, "SCHED_FIFO at priority PRIO")
+      ->check(cli::unsigned_in(static_cast<std::uint64_t>(lo), static_cast<std::uint64_t>(hi)))
+      ->option_text("PRIO");
+  app.add_flag("--lock-memory", o.lock_memory, "mlockall(MCL_CURRENT | MCL_FUTURE)");
+  const long configured = sysconf(_SC_NPROCESSORS_CONF);
+  const long last_cpu = std::min<long>(configured, CPU_SETSIZE) - 1;
+  app.add_option("--cpu", o.cpu, "pin to CPU K")
+      ->check(cli::unsigned_in(0, static_cast<std::uint64_t>(last_cpu < 0 ? 0 : last_cpu)))
+      ->option_text("K");
+  app.add_flag("--require-rt", o.require_rt,
+               "a refused --fifo, --lock-memory or --cpu is an error (else a warning)");
+  app.add_option("--max-overruns", o.max_overruns,
+                 "exit 1 when more than N ticks overran (default: any number)")
+      ->check(cli::unsigned_integer())
+      ->option_text("N");
+  if (const auto code = cli::parse(app, argc, argv)) return code;
+  if (!o.dt_s && o.period_ms > 0.0 && o.period_ms / 1000.0 < kMinDtS) {
+    std::fprintf(stderr,
+                 "%s: --period-ms %g is below the shortest controller period (%g ms); "
+                 "give --dt\n",
+                 kTool, o.period_ms, kMinDtS * 1000.0);
+    return cli::kExitUsage;
   }
-  if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks)
-    return "--csv buffers every tick in memory: at most " + std::to_string(kMaxCsvTicks) + " ticks";
+  if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks) {
+    std::fprintf(stderr, "%s: --csv buffers every tick in memory: at most %llu ticks\n", kTool,
+                 static_cast<unsigned long long>(kMaxCsvTicks));
+    return cli::kExitUsage;
+  }
   return std::nullopt;
 }
 
@@ -278,38 +191,38 @@ std::int64_t now_ns() noexcept {
 
 struct TickRecord {
   std::int64_t latency_ns;
+  std::int64_t period_error_ns;
   std::int64_t compute_ns;
-  std::int64_t controller_ns;
 };
 
 struct LoopResult {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;
-  std::uint64_t controller_faults = 0;
-  std::uint64_t plant_faults = 0;
+  std::uint64_t controller_fault_ticks = 0;
+  std::uint64_t plant_fault_ticks = 0;
   std::uint64_t allocations = 0;
+  long minor_page_faults = 0;
+  long major_page_faults = 0;
   double max_abs_error_rad = 0.0;
 };
 
 // Histograms are large (2240 buckets each): static storage, zeroed before main.
-Histogram g_latency;
-Histogram g_compute;
-Histogram g_controller;
+cli::Histogram g_latency;
+cli::Histogram g_period_error;
+cli::Histogram g_compute;
 
-template <class Controller>
-LoopResult run_loop(control::JointController<double, kJoints, Controller>& controller,
-                    robot::JointPlant& plant, const sim::Experiment& experiment, const Options& o,
-                    std::uint64_t ticks, std::vector<TickRecord>* csv) {
+LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks,
+                    std::vector<TickRecord>* csv) {
   LoopResult r;
-  const robot::JointPathResult& path = experiment.path();
-  const std::size_t samples = path.time_s.size();
-  const double dt_s = experiment.options().tick_s;
-  const std::int64_t period_ns = static_cast<std::int64_t>(std::llround(o.period_ms * 1e6));
+  const std::size_t samples = loop.samples();
+  const auto period_ns = static_cast<std::int64_t>(std::llround(o.period_ms * 1e6));
   const bool free_running = period_ns == 0;
-  const robot::JointVector zero{};
 
+  rusage usage_before{};
+  getrusage(RUSAGE_SELF, &usage_before);
   const std::uint64_t allocations_before = fuzzypid::support::allocation_count();
   std::int64_t deadline = now_ns() + (free_running ? 0 : period_ns);
+  std::int64_t last_woke = 0;
   for (std::uint64_t k = 0; k < ticks && g_stop == 0; ++k) {
     std::int64_t latency = 0;
     if (!free_running) {
@@ -321,36 +234,29 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
     }
     const std::int64_t woke = now_ns();
     if (!free_running) latency = woke - deadline;
+    const std::int64_t period_error =
+        k == 0 || free_running ? 0 : std::llabs(woke - last_woke - period_ns);
+    last_woke = woke;
 
-    const std::size_t i = o.loop_path ? k % samples : (k < samples ? k : samples - 1);
-    const bool holding = !o.loop_path && k >= samples;
-    const robot::JointVector& qd = path.position_rad[i];
-    const robot::JointVector& vd = holding ? zero : path.velocity_rad_s[i];
-
-    control::JointInput<double, kJoints> in;
-    in.desired_position_rad = qd;
-    in.desired_velocity_rad_s = vd;
-    in.measured_position_rad = plant.position();
-    in.measured_velocity_rad_s = plant.velocity();
-    const std::int64_t c0 = now_ns();
-    const auto command = controller.step(in, dt_s);
-    const std::int64_t c1 = now_ns();
-    if (fuzzypid::is_fault(command.status)) ++r.controller_faults;
-
-    const robot::JointVector torque = experiment.torque_from_command(command.torque_nm);
-    for (std::size_t j = 0; j < kJoints; ++j) {
-      const double err = std::fabs(qd[j] - plant.position()[j]);
+    const std::size_t i = o.loop_path ? static_cast<std::size_t>(k % samples)
+                                      : (k < samples ? static_cast<std::size_t>(k) : samples - 1);
+    const sim::TickResult t = loop.tick(i);
+    if (fuzzypid::is_fault(t.command.status)) ++r.controller_fault_ticks;
+    if (t.plant == robot::PlantStatus::InvalidInput ||
+        t.plant == robot::PlantStatus::NumericalError)
+      ++r.plant_fault_ticks;
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
+      const double err = std::fabs(t.theta_d[j] - t.theta[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
-    const robot::PlantStatus ps = plant.step(torque, dt_s);
-    if (ps == robot::PlantStatus::InvalidInput || ps == robot::PlantStatus::NumericalError)
-      ++r.plant_faults;
     const std::int64_t done = now_ns();
 
-    g_controller.record(c1 - c0);
     g_compute.record(done - woke);
-    if (!free_running) g_latency.record(latency);
-    if (csv != nullptr) (*csv)[k] = {latency, done - woke, c1 - c0};
+    if (!free_running) {
+      g_latency.record(latency);
+      if (k > 0) g_period_error.record(period_error);
+    }
+    if (csv != nullptr) (*csv)[k] = {latency, period_error, done - woke};
     ++r.ticks;
 
     if (!free_running) {
@@ -364,17 +270,21 @@ LoopResult run_loop(control::JointController<double, kJoints, Controller>& contr
     }
   }
   r.allocations = fuzzypid::support::allocation_count() - allocations_before;
+  rusage usage_after{};
+  getrusage(RUSAGE_SELF, &usage_after);
+  r.minor_page_faults = usage_after.ru_minflt - usage_before.ru_minflt;
+  r.major_page_faults = usage_after.ru_majflt - usage_before.ru_majflt;
   return r;
 }
 
-void print_histogram(const char* name, const Histogram& h) {
+void print_histogram(const char* name, const cli::Histogram& h) {
   const auto us = [](std::uint64_t ns) { return static_cast<double>(ns) / 1000.0; };
   std::printf("%s_us: min %.3f  median %.3f  p99 %.3f  p99.9 %.3f  max %.3f  (n=%llu)\n", name,
               us(h.min()), us(h.quantile(0.5)), us(h.quantile(0.99)), us(h.quantile(0.999)),
               us(h.max()), static_cast<unsigned long long>(h.count()));
 }
 
-// Touches `bytes` of stack so the pages exist (and are locked with --lock-memory) before the loop.
+// Touches 256 KiB of stack so the pages exist (and are locked with --lock-memory) before the loop.
 void prefault_stack() {
   constexpr std::size_t kBytes = 256 * 1024;
   unsigned char buffer[kBytes];
@@ -382,57 +292,19 @@ void prefault_stack() {
   asm volatile("" : : "r"(buffer) : "memory");  // keeps the writes
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Options o;
-  bool help = false;
-  if (const auto error = parse_options(argc, argv, o, help)) {
-    std::fprintf(stderr, "rt_loop: %s\n", error->c_str());
-    return 2;
-  }
-  if (help) {
-    print_usage(stdout);
-    return 0;
-  }
-
-  // --- Model, path and plant (allocating; all before the loop).
-  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
-  if (!loaded.model) {
-    std::fprintf(stderr, "rt_loop: cannot load the robot model: %s\n", loaded.error.c_str());
-    return 1;
-  }
-  const robot::RobotModel& model = *loaded.model;
-  // The A/B simulation's experiment (scenario "paper"): same path, plant and controllers.
-  std::string error;
-  const auto experiment =
-      sim::Experiment::create(model, robot::paper_path_spec(), sim::ExperimentOptions{}, error);
-  if (!experiment) {
-    std::fprintf(stderr, "rt_loop: %s\n", error.c_str());
-    return 1;
-  }
-  const sim::Scenario& scenario = *sim::find_scenario("paper");
-  const robot::JointVector torque_limit = experiment->torque_limit(scenario);
-
-  robot::JointPlant plant(model, experiment->plant_config(scenario));
-  if (!plant.valid()) {
-    std::fprintf(stderr, "rt_loop: invalid plant configuration\n");
-    return 1;
-  }
-  plant.reset(experiment->initial_position(), robot::JointVector{});
-
-  using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
-  control::JointController<double, kJoints, Fuzzy> fuzzy_controller(
-      experiment->make_fuzzy_pid(torque_limit));
-  control::JointController<double, kJoints, pid::Pid<double>> pid_controller(
-      experiment->make_pid(torque_limit));
-
-  const std::uint64_t ticks = o.ticks.value_or(experiment->path().time_s.size());
-  std::vector<TickRecord> csv;
-  if (!o.csv.empty()) csv.assign(ticks, TickRecord{0, 0, 0});
-
-  // --- Operating-system settings, each reported; a refusal is a warning, not an error.
-  std::string cpu_state = "not requested";
+// Applies the requested operating-system settings. Each outcome is described in the returned
+// lines; a refusal is a warning, or with --require-rt an error (false).
+bool apply_rt_settings(const Options& o, std::string& cpu_state, std::string& lock_state,
+                       std::string& fifo_state) {
+  bool ok = true;
+  const auto refused = [&](std::string& state, const std::string& what, const char* hint) {
+    const int err = errno;
+    state = "REFUSED (" + std::string(std::strerror(err)) + ")";
+    std::fprintf(stderr, "%s: %s: %s refused: %s%s\n", kTool, o.require_rt ? "error" : "warning",
+                 what.c_str(), std::strerror(err), hint);
+    ok = ok && !o.require_rt;
+  };
+  cpu_state = "not requested";
   if (o.cpu) {
     cpu_set_t set;
     CPU_ZERO(&set);
@@ -440,37 +312,91 @@ int main(int argc, char** argv) {
     if (sched_setaffinity(0, sizeof(set), &set) == 0) {
       cpu_state = "pinned to CPU " + std::to_string(*o.cpu);
     } else {
-      cpu_state = "REFUSED (" + std::string(std::strerror(errno)) + ")";
-      std::fprintf(stderr, "rt_loop: warning: pinning to CPU %d refused: %s; running unpinned\n",
-                   *o.cpu, std::strerror(errno));
+      refused(cpu_state, "pinning to CPU " + std::to_string(*o.cpu), "");
     }
   }
-  std::string lock_state = "not requested";
+  lock_state = "not requested";
   if (o.lock_memory) {
     if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
       lock_state = "locked";
     } else {
-      lock_state = "REFUSED (" + std::string(std::strerror(errno)) + ")";
-      std::fprintf(stderr,
-                   "rt_loop: warning: mlockall refused: %s (needs CAP_IPC_LOCK or a larger "
-                   "RLIMIT_MEMLOCK); memory not locked\n",
-                   std::strerror(errno));
+      refused(lock_state, "mlockall", " (needs CAP_IPC_LOCK or a larger RLIMIT_MEMLOCK)");
     }
   }
-  std::string fifo_state = "not requested (SCHED_OTHER)";
+  fifo_state = "not requested (SCHED_OTHER)";
   if (o.fifo_priority) {
     sched_param p{};
     p.sched_priority = *o.fifo_priority;
     if (sched_setscheduler(0, SCHED_FIFO, &p) == 0) {
       fifo_state = "SCHED_FIFO priority " + std::to_string(*o.fifo_priority);
     } else {
-      fifo_state = "REFUSED (" + std::string(std::strerror(errno)) + ")";
-      std::fprintf(stderr,
-                   "rt_loop: warning: SCHED_FIFO refused: %s (needs CAP_SYS_NICE or an rtprio "
-                   "limit); running at normal priority\n",
-                   std::strerror(errno));
+      refused(fifo_state, "SCHED_FIFO", " (needs CAP_SYS_NICE or an rtprio limit)");
     }
   }
+  return ok;
+}
+
+// The section 6 path sampled at the controller period: ~5 s, duration an exact multiple of dt.
+robot::CartesianPathSpec path_spec(double dt_s) {
+  robot::CartesianPathSpec spec = robot::paper_path_spec();
+  const double duration = spec.duration_s;
+  spec.samples = static_cast<std::size_t>(std::llround(duration / dt_s)) + 1;
+  spec.duration_s = static_cast<double>(spec.samples - 1) * dt_s;
+  return spec;
+}
+
+int run(int argc, char** argv) {
+  Options o;
+  if (const auto code = parse_options(argc, argv, o)) return *code;
+
+  // --- Model, path, closed loop and outputs (allocating; all before the loop).
+  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
+  if (!loaded.model) {
+    std::fprintf(stderr, "%s: cannot load the robot model: %s\n", kTool, loaded.error.c_str());
+    return cli::kExitFailure;
+  }
+  const double dt_s = o.controller_dt_s();
+  // The A/B simulation's settings ("paper" scenario) with the controller period dt; the paper's
+  // per-tick gains keep referring to its 50 ms tick (see the file comment).
+  sim::ExperimentOptions options;
+  const double paper_tick_s = options.tick_s;
+  options.tick_s = dt_s;
+  std::string error;
+  const auto experiment = sim::Experiment::create(*loaded.model, path_spec(dt_s), options, error);
+  if (!experiment) {
+    std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
+    return cli::kExitFailure;
+  }
+  cf::ControllerSpec spec = sim::default_controller(
+      options, o.controller == "fuzzy" ? cf::Family::Fuzzy : cf::Family::Pid);
+  spec.units.tick_s = paper_tick_s;
+  if (o.controller != "pid" && o.controller != "fuzzy") {
+    cf::Error file_error;
+    if (!cf::load(o.controller, spec, file_error)) {
+      std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
+      return cli::kExitFailure;
+    }
+  }
+  auto loop = sim::ClosedLoop::create(*experiment, *sim::find_scenario("paper"), spec, error);
+  if (!loop) {
+    std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
+    return cli::kExitFailure;
+  }
+
+  const std::uint64_t ticks = o.ticks.value_or(loop->samples());
+  std::unique_ptr<cli::OutputFile> csv_file;
+  std::vector<TickRecord> csv;
+  if (!o.csv.empty()) {
+    csv_file = cli::OutputFile::open(o.csv, error);
+    if (!csv_file) {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, error.c_str());
+      return cli::kExitFailure;
+    }
+    csv.assign(ticks, TickRecord{0, 0, 0});
+  }
+
+  std::string cpu_state, lock_state, fifo_state;
+  if (!apply_rt_settings(o, cpu_state, lock_state, fifo_state)) return cli::kExitFailure;
   prefault_stack();
 
   struct sigaction sa {};
@@ -478,54 +404,68 @@ int main(int argc, char** argv) {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
 
-  const char* controller_name = o.controller == ControllerChoice::Fuzzy ? "fuzzy" : "pid";
-  std::printf("rt_loop: controller %s, period %.3f ms%s, ticks %llu, path %zu samples%s\n",
-              controller_name, o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "",
-              static_cast<unsigned long long>(ticks), experiment->path().time_s.size(),
-              o.loop_path ? " (looped)" : " (held at its end)");
+  std::printf(
+      "rt_loop: controller %s, period %.3f ms%s, controller dt %.3f ms, ticks %llu, path %zu "
+      "samples over %.3f s%s\n",
+      o.controller.c_str(), o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "", dt_s * 1000.0,
+      static_cast<unsigned long long>(ticks), loop->samples(), loop->path().time_s.back(),
+      o.loop_path ? " (looped)" : " (held at its end)");
   std::printf("cpu: %s\nmemory: %s\nscheduler: %s\n", cpu_state.c_str(), lock_state.c_str(),
               fifo_state.c_str());
   std::fflush(stdout);
 
-  std::vector<TickRecord>* csv_buffer = o.csv.empty() ? nullptr : &csv;
-  const LoopResult r = o.controller == ControllerChoice::Fuzzy
-                           ? run_loop(fuzzy_controller, plant, *experiment, o, ticks, csv_buffer)
-                           : run_loop(pid_controller, plant, *experiment, o, ticks, csv_buffer);
+  const LoopResult r = run_loop(*loop, o, ticks, csv_file ? &csv : nullptr);
 
   // --- After the loop: summary and CSV.
   if (g_stop != 0) std::printf("interrupted: stopped at the next tick\n");
-  std::printf("ticks_run: %llu\n", static_cast<unsigned long long>(r.ticks));
-  std::printf("overruns: %llu\n", static_cast<unsigned long long>(r.overruns));
+  std::printf("ticks_run: %llu ticks\n", static_cast<unsigned long long>(r.ticks));
+  std::printf("overruns: %llu ticks\n", static_cast<unsigned long long>(r.overruns));
   if (o.period_ms == 0.0) {
-    std::printf("wakeup_latency_us: n/a (free-running)\n");
+    std::printf("wakeup_latency_us: n/a (free-running)\nperiod_error_us: n/a (free-running)\n");
   } else {
     print_histogram("wakeup_latency", g_latency);
+    print_histogram("period_error", g_period_error);
   }
   print_histogram("compute", g_compute);
-  print_histogram("controller", g_controller);
-  std::printf("controller_faults: %llu\nplant_faults: %llu\nmax_abs_error_rad: %.6g\n",
-              static_cast<unsigned long long>(r.controller_faults),
-              static_cast<unsigned long long>(r.plant_faults), r.max_abs_error_rad);
+  std::printf(
+      "controller_fault_ticks: %llu ticks\nplant_fault_ticks: %llu ticks\n"
+      "max_abs_error_rad: %.6g rad\n",
+      static_cast<unsigned long long>(r.controller_fault_ticks),
+      static_cast<unsigned long long>(r.plant_fault_ticks), r.max_abs_error_rad);
+  std::printf("page_faults_in_loop: minor %ld, major %ld\n", r.minor_page_faults,
+              r.major_page_faults);
   std::printf("allocations_in_loop: %llu\n", static_cast<unsigned long long>(r.allocations));
 
-  if (csv_buffer != nullptr) {
-    std::FILE* f = std::fopen(o.csv.c_str(), "w");
-    if (f == nullptr) {
-      std::fprintf(stderr, "rt_loop: cannot write %s: %s\n", o.csv.c_str(), std::strerror(errno));
-      return 1;
-    }
-    std::fputs("tick,wakeup_latency_ns,compute_ns,controller_ns\n", f);
+  int code = cli::kExitOk;
+  if (csv_file) {
+    std::FILE* f = csv_file->file();
+    std::fputs("tick,wakeup_latency_ns,period_error_ns,compute_ns\n", f);
     for (std::uint64_t k = 0; k < r.ticks; ++k)
       std::fprintf(f, "%llu,%lld,%lld,%lld\n", static_cast<unsigned long long>(k),
                    static_cast<long long>(csv[k].latency_ns),
-                   static_cast<long long>(csv[k].compute_ns),
-                   static_cast<long long>(csv[k].controller_ns));
-    if (std::fclose(f) != 0) {
-      std::fprintf(stderr, "rt_loop: error writing %s\n", o.csv.c_str());
-      return 1;
+                   static_cast<long long>(csv[k].period_error_ns),
+                   static_cast<long long>(csv[k].compute_ns));
+    if (csv_file->commit(error)) {
+      std::printf("csv: %s (%llu rows)\n", o.csv.c_str(), static_cast<unsigned long long>(r.ticks));
+    } else {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, error.c_str());
+      code = cli::kExitFailure;
     }
-    std::printf("csv: %s (%llu rows)\n", o.csv.c_str(), static_cast<unsigned long long>(r.ticks));
   }
-  if (r.allocations != 0 || r.controller_faults != 0 || r.plant_faults != 0) return 3;
-  return 0;
+  const auto failure = [&](const char* what) {
+    std::fprintf(stderr, "%s: %s\n", kTool, what);
+    code = cli::kExitFailure;
+  };
+  if (r.allocations != 0) failure("the loop allocated");
+  if (r.controller_fault_ticks != 0) failure("the controller reported faults");
+  if (r.plant_fault_ticks != 0) failure("the plant reported faults");
+  if (o.max_overruns && r.overruns > *o.max_overruns) failure("more overruns than --max-overruns");
+  const int written = cli::finish_stdout(kTool);
+  return code != cli::kExitOk ? code : written;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::run_main(kTool, [&] { return run(argc, argv); });
 }

@@ -3,9 +3,9 @@
 // scenarios, single conditions or condition sets (--conditions), or a robustness sweep (--sweep).
 //
 // Writes, into --out (default out/): trajectory.csv, metrics.csv, endeffector.csv,
-// conditions.csv and settings.txt (a sweep: sweep.csv and settings.txt). Files are written under
-// temporary names and renamed only when the whole run has succeeded, so a failed run never leaves
-// a half-written CSV that looks complete. Exit status: 0 success, 1 run-time failure (including
+// conditions.csv and settings.txt (a sweep: sweep.csv and settings.txt). The set replaces --out as
+// a whole only when the whole run has succeeded (cli::OutputSet), so a failed run never leaves a
+// half-written CSV that looks complete. Exit status: 0 success, 1 run-time failure (including
 // a run in which a controller reported a fault), 2 usage error.
 #include <algorithm>
 #include <cerrno>
@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 #include "options.hpp"
+#include "output_files.hpp"
 
 namespace {
 
@@ -31,72 +33,36 @@ using namespace fuzzypid;
 namespace fs = std::filesystem;
 namespace cf = controller_file;
 
+// The output files of a run, written and committed as a whole by cli::OutputSet: a unique
+// temporary directory that replaces --out in one rename, with --out locked meanwhile, so that a
+// failed, interrupted or concurrent run never leaves a mixed set or a temporary behind.
 struct Output {
-  fs::path final_path;
-  fs::path temp_path;
   std::FILE* file = nullptr;
 };
+struct Outputs {
+  std::unique_ptr<cli::OutputSet> set;
+  std::vector<Output> files;
+  Output& operator[](std::size_t k) { return files[k]; }
+};
 
-bool open_output(const fs::path& dir, const char* name, Output& out, std::string& error) {
-  out.final_path = dir / name;
-  out.temp_path = dir / (std::string(".") + name + ".partial");
-  out.file = std::fopen(out.temp_path.c_str(), "w");
-  if (!out.file) {
-    error = "cannot write " + out.temp_path.string() + ": " + std::strerror(errno);
-    return false;
-  }
-  return true;
+void discard(Outputs& outs) {
+  if (outs.set) outs.set->discard();
 }
 
-void discard(std::vector<Output>& outs) {
-  for (auto& o : outs) {
-    if (o.file) std::fclose(o.file);
-    o.file = nullptr;
-    std::error_code ec;
-    fs::remove(o.temp_path, ec);
-  }
+bool commit(Outputs& outs, std::string& error) {
+  return outs.set->commit(error);
 }
 
-bool commit(std::vector<Output>& outs, std::string& error) {
-  for (auto& o : outs) {
-    const bool write_ok = std::ferror(o.file) == 0;
-    const bool close_ok = std::fclose(o.file) == 0;
-    o.file = nullptr;
-    if (!write_ok || !close_ok) {
-      error = "write error on " + o.temp_path.string();
-      return false;
-    }
-  }
-  for (auto& o : outs) {
-    std::error_code ec;
-    fs::rename(o.temp_path, o.final_path, ec);
-    if (ec) {
-      error = "cannot rename " + o.temp_path.string() + ": " + ec.message();
-      return false;
-    }
-  }
-  return true;
-}
-
-// Opens every named output in `dir` (created if needed); on failure discards what it opened.
-bool open_outputs(const fs::path& dir, const std::vector<const char*>& names,
-                  std::vector<Output>& outs) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    std::fprintf(stderr, "sim_ab: cannot create output directory %s: %s\n", dir.c_str(),
-                 ec ? ec.message().c_str() : "not a directory");
-    return false;
-  }
-  outs.resize(names.size());
+// Opens every named output for `dir`; prints the reason on failure.
+bool open_outputs(const fs::path& dir, const std::vector<const char*>& names, Outputs& outs) {
   std::string error;
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    if (!open_output(dir, names[k], outs[k], error)) {
-      std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
-      discard(outs);
-      return false;
-    }
+  outs.set = cli::OutputSet::open(dir.string(), {names.begin(), names.end()}, error);
+  if (!outs.set) {
+    std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
+    return false;
   }
+  for (std::size_t k = 0; k < names.size(); ++k)
+    outs.files.push_back({outs.set->file(k)});
   return true;
 }
 
@@ -174,7 +140,7 @@ int run_sweep(const sim_ab::Options& o, const sim::Experiment& ex,
               const std::vector<NamedController>& controllers, const std::string& urdf,
               const robot::CartesianPathSpec& spec) {
   const sim_ab::Sweep& sw = *o.sweep;
-  std::vector<Output> outs;
+  Outputs outs;
   if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
   std::FILE* csv = outs[0].file;
   write_settings(outs[1].file, o, urdf, spec, ex, controllers);
@@ -356,7 +322,7 @@ int main(int argc, char** argv) {
   }
   if (o.sweep) return run_sweep(o, *experiment, controllers, urdf, spec);
 
-  std::vector<Output> outs;
+  Outputs outs;
   if (!open_outputs(
           o.out_dir,
           {"trajectory.csv", "metrics.csv", "endeffector.csv", "conditions.csv", "settings.txt"},

@@ -45,7 +45,7 @@ bool parse_list(const std::string& text, std::array<double, N>& out) {
 template <std::size_t N>
 CLI::Option* add_list(CLI::App& app, const std::string& name, std::array<double, N>& target,
                       const std::string& help, bool non_negative = false,
-                      std::function<void()> then = {}) {
+                      const std::function<void()>& then = {}) {
   return app.add_option_function<std::string>(
       name,
       [&target, name, non_negative, then](const std::string& s) {
@@ -66,6 +66,7 @@ template <class Enum, std::size_t N>
 CLI::Option* add_enum(CLI::App& app, const std::string& name, Enum& target,
                       const std::array<cf::EnumName<Enum>, N>& table, const std::string& help) {
   std::vector<std::string> names;
+  names.reserve(N);
   for (const auto& e : table)
     names.emplace_back(e.name);
   return app

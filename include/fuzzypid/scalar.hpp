@@ -33,11 +33,8 @@ constexpr bool is_finite(Scalar x) noexcept {
 #endif
 }
 
-template <class Scalar>
-constexpr Scalar clamp(Scalar x, Scalar lo, Scalar hi) noexcept {
-  return x < lo ? lo : (x > hi ? hi : x);
-}
-
+// min and max are written so that they compile to one minsd/maxsd (vminss/vmaxss on a Cortex-M4F
+// FPU: vcmp + vsel-free moves), without branches; a NaN in `a` is passed through.
 template <class Scalar>
 constexpr Scalar min(Scalar a, Scalar b) noexcept {
   return b < a ? b : a;
@@ -46,6 +43,13 @@ constexpr Scalar min(Scalar a, Scalar b) noexcept {
 template <class Scalar>
 constexpr Scalar max(Scalar a, Scalar b) noexcept {
   return a < b ? b : a;
+}
+
+// x clamped into [lo, hi] (requires lo <= hi); a NaN x stays NaN. Written as min(max()) so it is
+// two branch-free instructions where the target has them.
+template <class Scalar>
+constexpr Scalar clamp(Scalar x, Scalar lo, Scalar hi) noexcept {
+  return min(max(x, lo), hi);
 }
 
 template <class Scalar>

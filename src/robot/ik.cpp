@@ -10,9 +10,8 @@
 namespace fuzzypid::robot {
 
 std::optional<IkSolver> ik_solver_from_string(std::string_view name) noexcept {
-  if (name == "analytic") return IkSolver::Analytic;
-  if (name == "kdl-nr") return IkSolver::KdlNr;
-  if (name == "kdl-lma") return IkSolver::KdlLma;
+  for (const auto& [text, value] : kIkSolverNames)
+    if (text == name) return value;
   return std::nullopt;
 }
 

@@ -9,15 +9,16 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
 #include <limits>
 #include <mutex>
-#include <sstream>
 #include <utility>
 
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
+#include <Eigen/Eigenvalues>
 #include <kdl/tree.hpp>
+
+#include "fuzzypid_support/bounded_read.hpp"
 
 #ifndef FUZZYPID_URDF_SOURCE_DIR
 #define FUZZYPID_URDF_SOURCE_DIR ""
@@ -31,6 +32,8 @@ namespace {
 
 constexpr const char* kDefaultUrdfName = "er50_c20.urdf";
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Largest URDF read (the bundled one is 9 kB; meshes are separate files).
+constexpr std::size_t kMaxUrdfBytes = 16u << 20;
 
 bool file_exists(const std::string& path) {
   struct stat st {};
@@ -44,10 +47,12 @@ class CapturingHandler : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
     if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors = true;
     if (!messages.empty()) messages += "; ";
     messages += text;
   }
   std::string messages;
+  bool errors = false;
 };
 
 std::mutex& parse_mutex() {
@@ -55,6 +60,8 @@ std::mutex& parse_mutex() {
   return m;
 }
 
+// urdfdom reports some malformed elements (e.g. an unparsable <mass>) as errors yet returns a model
+// without them: any error-level message therefore fails the parse here.
 urdf::ModelInterfaceSharedPtr parse_captured(const std::string& xml, std::string& messages) {
   std::lock_guard<std::mutex> lock(parse_mutex());
   CapturingHandler handler;
@@ -71,6 +78,7 @@ urdf::ModelInterfaceSharedPtr parse_captured(const std::string& xml, std::string
   }
   console_bridge::restorePreviousOutputHandler();
   messages = handler.messages;
+  if (handler.errors) model.reset();
   return model;
 }
 
@@ -134,6 +142,84 @@ bool add_children(const urdf::LinkConstSharedPtr& link, KDL::Tree& tree, std::st
   return true;
 }
 
+bool finite(const urdf::Vector3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool finite(const urdf::Pose& p) {
+  return finite(p.position) && std::isfinite(p.rotation.x) && std::isfinite(p.rotation.y) &&
+         std::isfinite(p.rotation.z) && std::isfinite(p.rotation.w);
+}
+
+// The physical sense of a link's <inertial>: a finite, non-negative mass and a finite inertia
+// tensor that is zero (a point mass) or positive definite with principal moments satisfying the
+// triangle inequality (each at most the sum of the other two). Empty when sane, else the reason.
+std::string check_inertial(const urdf::Link& link) {
+  const urdf::InertialSharedPtr& in = link.inertial;
+  if (!in) return {};
+  const std::string where = "link '" + link.name + "': <inertial>";
+  if (!std::isfinite(in->mass) || in->mass < 0.0)
+    return where + " <mass> must be finite and non-negative, got " + std::to_string(in->mass);
+  if (!finite(in->origin)) return where + " <origin> is not finite";
+  Eigen::Matrix3d tensor;
+  tensor << in->ixx, in->ixy, in->ixz, in->ixy, in->iyy, in->iyz, in->ixz, in->iyz, in->izz;
+  if (!tensor.allFinite()) return where + " <inertia> is not finite";
+  if (tensor.isZero(0.0)) return {};
+  const Eigen::Vector3d moments =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(tensor, Eigen::EigenvaluesOnly)
+          .eigenvalues();  // ascending
+  const double tolerance = 1e-12 * moments.cwiseAbs().maxCoeff();
+  if (!(moments[0] > tolerance))
+    return where + " <inertia> is not positive definite (smallest principal moment " +
+           std::to_string(moments[0]) + " kg m^2)";
+  if (moments[2] > moments[0] + moments[1] + tolerance)
+    return where + " <inertia> violates the triangle inequality: principal moments " +
+           std::to_string(moments[0]) + ", " + std::to_string(moments[1]) + ", " +
+           std::to_string(moments[2]) + " kg m^2";
+  return {};
+}
+
+// A joint the model can use: a finite origin, a non-zero finite axis on a moving joint, limits
+// that are numbers with non-negative velocity and effort, and no <mimic> (a coupled joint would be
+// silently treated as independent).
+std::string check_joint(const urdf::Joint& joint) {
+  const std::string where = "joint '" + joint.name + "'";
+  if (!finite(joint.parent_to_joint_origin_transform)) return where + ": <origin> is not finite";
+  if (joint.type != urdf::Joint::FIXED && joint.type != urdf::Joint::FLOATING) {
+    const urdf::Vector3& a = joint.axis;
+    const double norm = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    if (!finite(a) || !(norm > 1e-9))
+      return where + ": <axis> must be a finite non-zero vector, got (" + std::to_string(a.x) +
+             ", " + std::to_string(a.y) + ", " + std::to_string(a.z) + ")";
+  }
+  if (joint.limits) {
+    const urdf::JointLimits& l = *joint.limits;
+    if (std::isnan(l.lower) || std::isnan(l.upper))
+      return where + ": <limit> lower/upper is not a number";
+    if (std::isnan(l.velocity) || l.velocity < 0.0)
+      return where + ": <limit> velocity must be non-negative, got " + std::to_string(l.velocity);
+    if (std::isnan(l.effort) || l.effort < 0.0)
+      return where + ": <limit> effort must be non-negative, got " + std::to_string(l.effort);
+  }
+  if (joint.mimic)
+    return where + ": <mimic> (joint '" + joint.mimic->joint_name +
+           "') is not supported: coupled joints cannot be modelled";
+  return {};
+}
+
+// Every link and joint of the document, in name order: the first problem found, or empty.
+std::string check_model(const urdf::ModelInterface& model) {
+  for (const auto& [name, link] : model.links_) {
+    if (!link) continue;
+    if (std::string e = check_inertial(*link); !e.empty()) return e;
+  }
+  for (const auto& [name, joint] : model.joints_) {
+    if (!joint) continue;
+    if (std::string e = check_joint(*joint); !e.empty()) return e;
+  }
+  return {};
+}
+
 LoadResult fail(std::string message) {
   LoadResult r;
   r.error = std::move(message);
@@ -175,18 +261,19 @@ RobotModel::~RobotModel() = default;
 LoadResult RobotModel::load(const std::string& urdf_path, const std::string& root_link,
                             const std::string& tip_link) {
   try {
-    std::ifstream in(urdf_path, std::ios::binary);
-    if (!in) return fail("cannot open URDF file '" + urdf_path + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) return fail("cannot read URDF file '" + urdf_path + "'");
+    std::string text;
+    std::string read_error;
+    if (!support::read_file_bounded(urdf_path, kMaxUrdfBytes, text, read_error))
+      return fail("URDF: " + read_error);
 
     std::string messages;
-    const urdf::ModelInterfaceSharedPtr urdf_model = parse_captured(text.str(), messages);
+    const urdf::ModelInterfaceSharedPtr urdf_model = parse_captured(text, messages);
     if (!urdf_model) {
       return fail("'" + urdf_path + "' is not a valid URDF" +
                   (messages.empty() ? std::string() : ": " + messages));
     }
+    if (std::string invalid = check_model(*urdf_model); !invalid.empty())
+      return fail("'" + urdf_path + "': " + invalid);
     const urdf::LinkConstSharedPtr urdf_root = urdf_model->getRoot();
     if (!urdf_root) return fail("'" + urdf_path + "' has no root link");
 

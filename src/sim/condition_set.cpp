@@ -87,7 +87,7 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, ConditionSet&
     Condition c = base;
     char name[64];
     std::snprintf(name, sizeof name, "%s-mc%03llu", set_name.c_str(),
-                  static_cast<unsigned long long>(k + 1));
+                  static_cast<unsigned long long>(k) + 1);
     c.name = name;
     // Three draws per condition, always in this order, whatever the ranges.
     const double u_payload = rng.uniform();

@@ -4,6 +4,7 @@
 set -u
 tool=$1
 case_name=$2
+data=${3:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -106,6 +107,83 @@ ROWS
     run '0,0
 ' --and
     [ "$code" -eq 2 ] || fail "--and without a value: exit code $code, expected 2"
+    ;;
+  header_must_be_text)
+    # A first row of NaN, inf or overflowing numbers is data (and an error), never a header.
+    for first in 'nan,nan' 'inf,-inf' '1e999,-1e999' 'nan,e'; do
+      run "$first
+0.1,0.2
+"
+      [ "$code" -eq 1 ] || fail "first row '$first': exit code $code, expected 1"
+      grep -q 'line 1: column 1' "$work/err" || fail "first row '$first': $(cat "$work/err")"
+    done
+    # A text header is skipped and the next row evaluated.
+    run 'error , rate
+0,0
+'
+    [ "$code" -eq 0 ] || fail "text header: exit code $code: $(cat "$work/err")"
+    [ "$(wc -l <"$work/out")" -eq 2 ] || fail "text header: $(cat "$work/out")"
+    ;;
+  huge_line_is_an_error)
+    # 200 MB of digits on one line: refused at the line bound, neither a header nor a number.
+    (yes 1111111111111111111111111111111111111111111111111111111111111111111111111111111111111111111 |
+      tr -d '\n' | head -c 200000000) | "$tool" eval >"$work/out" 2>"$work/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1"
+    grep -q 'line 1: longer than' "$work/err" || fail "stderr: $(cat "$work/err")"
+    ;;
+  full_stdout_fails)
+    printf '0,0\n' | "$tool" eval >/dev/full 2>"$work/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "> /dev/full: exit code $code, expected 1"
+    grep -q 'cannot write standard output' "$work/err" || fail "stderr: $(cat "$work/err")"
+    ;;
+  unreadable_stdin_fails)
+    "$tool" eval <"$work" >"$work/out" 2>"$work/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "stdin a directory: exit code $code, expected 1"
+    grep -q 'standard input is a directory' "$work/err" || fail "stderr: $(cat "$work/err")"
+    : >"$work/w"
+    "$tool" eval 0>"$work/w" >"$work/out" 2>"$work/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "stdin write-only: exit code $code, expected 1"
+    grep -q 'cannot read standard input' "$work/err" || fail "stderr: $(cat "$work/err")"
+    ;;
+  no_rule_fired_is_reported)
+    # gap.fll has no term covering 0.4 < x < 0.6: the row is written (default 0) and named.
+    run 'x
+0.2
+0.5
+0.8
+' --fll "$data/gap.fll"
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1"
+    grep -q 'line 3: no rule fired' "$work/err" || fail "stderr: $(cat "$work/err")"
+    [ "$(sed -n 3p "$work/out")" = "0.5,0" ] || fail "row 2: $(cat "$work/out")"
+    run '0.2
+0.8
+' --fll "$data/gap.fll"
+    [ "$code" -eq 0 ] || fail "rows that fire: exit code $code: $(cat "$work/err")"
+    ;;
+  fcl_option_reads_fcl)
+    # --fcl reads IEC 61131-7 text whatever the file is called, and only that.
+    cp tests/rulefiles/corpus/fcl_motor_speed_pi.fcl "$work/motor.txt"
+    run 'e,de
+0.1,-0.2
+' --fcl "$work/motor.txt"
+    [ "$code" -eq 0 ] || fail "--fcl: exit code $code: $(cat "$work/err")"
+    [ "$(head -n 1 "$work/out")" = "e,de,du" ] || fail "--fcl header: $(cat "$work/out")"
+    [ "$(wc -l <"$work/out")" -eq 2 ] || fail "--fcl rows: $(cat "$work/out")"
+    run '0,0
+' --fcl rulebases/paper.fis
+    [ "$code" -eq 1 ] || fail "--fcl on a .fis file: exit code $code, expected 1"
+    ;;
+  rule_file_options_exclude_each_other)
+    run '0,0
+' --fis rulebases/paper.fis --fll rulebases/paper.fll
+    [ "$code" -eq 2 ] || fail "--fis with --fll: exit code $code, expected 2"
+    run '0,0
+' --fll "$data/gap.fll" --and prod
+    [ "$code" -eq 2 ] || fail "--fll with --and: exit code $code, expected 2"
     ;;
   *)
     fail "unknown case"

@@ -78,13 +78,31 @@ expect_exit 1 "line 2" "$bin" ik
 printf '1.28,0,-0.451,1,0,0,0,-1,0,0,0,-1,inf,0,0,0,0,0\n' >"$tmp/in"
 expect_exit 1 "line 1" "$bin" ik
 
-# 6. Bad usage and URDFs that do not load exit 2.
+# 6. URDFs that do not load exit 1 with the reason; bad usage exits 2.
 printf '0,0,0,0,0,0\n' >"$tmp/in"
-expect_exit 2 "cannot open" "$bin" fk --urdf "$tmp/missing.urdf"
-expect_exit 2 "not a valid URDF" "$bin" fk --urdf "$data/malformed.urdf"
-expect_exit 2 "has 5 movable joints" "$bin" ik --urdf "$data/five_joints.urdf"
-expect_exit 2 "unknown solver" "$bin" ik --solver newton
-expect_exit 2 "unexpected argument" "$bin" fk --frobnicate
+expect_exit 1 "cannot open" "$bin" fk --urdf "$tmp/missing.urdf"
+expect_exit 1 "not a valid URDF" "$bin" fk --urdf "$data/malformed.urdf"
+expect_exit 1 "has 5 movable joints" "$bin" ik --urdf "$data/five_joints.urdf"
+expect_exit 2 "is not analytic, kdl-nr or kdl-lma" "$bin" ik --solver newton
+expect_exit 2 "was not expected" "$bin" fk --frobnicate
+expect_exit 2 "" "$bin" fk --urdf
+
+# 7. Unbounded or physically meaningless URDFs are refused with the element named (before, a
+# zero-length axis loaded and fk printed -nan with exit 0).
+expect_exit 1 "is larger than" "$bin" fk --urdf /dev/zero
+expect_exit 1 "is a directory" "$bin" fk --urdf "$tmp"
+sed '0,/<axis xyz="0 0 1"\/>/s//<axis xyz="0 0 0"\/>/' "$data/../../../urdf/er50_c20.urdf" >"$tmp/zero_axis.urdf"
+expect_exit 1 "joint 'joint1': <axis> must be a finite non-zero vector" "$bin" fk --urdf "$tmp/zero_axis.urdf"
+[ -s "$tmp/out" ] && fail "fk with a zero axis printed: $(cat "$tmp/out")"
+
+# 8. Output that cannot be written and input that cannot be read are errors.
+expect_exit 0 "" "$bin" fk
+"$bin" fk <"$tmp/in" >/dev/full 2>"$tmp/err"
+[ $? -eq 1 ] || fail "fk > /dev/full did not exit 1"
+grep -q "cannot write standard output" "$tmp/err" || fail "fk > /dev/full: $(cat "$tmp/err")"
+"$bin" ik <"$tmp" >"$tmp/out" 2>"$tmp/err"
+[ $? -eq 1 ] || fail "ik < directory did not exit 1"
+grep -q "standard input is a directory" "$tmp/err" || fail "ik < directory: $(cat "$tmp/err")"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed" >&2

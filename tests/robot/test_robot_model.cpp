@@ -1,6 +1,11 @@
 // The bundled ER50-C20 URDF and the URDF -> KDL loader.
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -199,6 +204,79 @@ INSTANTIATE_TEST_SUITE_P(
                       BadUrdfCase{"@", "", "no_such_link", "tip link 'no_such_link'"},
                       BadUrdfCase{"@", "link6", "link2", "not below root link"},
                       BadUrdfCase{"@", "base_link", "link4", "has 4 movable joints"}));
+
+// Physically meaningless URDF content is refused with the element named: each case edits one
+// element of the bundled URDF (first occurrence of `from`) and expects the loader to name it.
+struct InvalidElementCase {
+  const char* name;
+  const char* from;
+  const char* to;
+  const char* expected_fragment;
+};
+
+std::string bundled_urdf_text() {
+  std::ifstream in(default_urdf_path());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class RobotModelRefusesInvalidElements : public ::testing::TestWithParam<InvalidElementCase> {};
+
+TEST_P(RobotModelRefusesInvalidElements, NamingTheElement) {
+  const InvalidElementCase& c = GetParam();
+  std::string text = bundled_urdf_text();
+  const std::size_t at = text.find(c.from);
+  ASSERT_NE(at, std::string::npos) << "the bundled URDF has no " << c.from;
+  text.replace(at, std::string(c.from).size(), c.to);
+  const std::string path =
+      ::testing::TempDir() + "fuzzypid_" + c.name + "_" + std::to_string(::getpid()) + ".urdf";
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const LoadResult r = RobotModel::load(path);
+  std::remove(path.c_str());
+  EXPECT_FALSE(r.model.has_value());
+  EXPECT_NE(r.error.find(c.expected_fragment), std::string::npos) << "error was: " << r.error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, RobotModelRefusesInvalidElements,
+    ::testing::Values(
+        InvalidElementCase{"zero_axis", R"(<axis xyz="0 0 1"/>)", R"(<axis xyz="0 0 0"/>)",
+                           "joint 'joint1': <axis> must be a finite non-zero vector"},
+        InvalidElementCase{"negative_mass", R"(<mass value="180"/>)", R"(<mass value="-1"/>)",
+                           "link 'link1': <inertial> <mass> must be finite and non-negative"},
+        InvalidElementCase{
+            "nan_mass", R"(<mass value="180"/>)", R"(<mass value="nan"/>)",
+            "mass [nan] is not a float; Could not parse inertial element for Link [link1]"},
+        InvalidElementCase{"indefinite_inertia", R"(ixx="12" ixy="0")", R"(ixx="-12" ixy="0")",
+                           "link 'link1': <inertial> <inertia> is not positive definite"},
+        InvalidElementCase{"singular_inertia", R"(ixx="12" ixy="0")", R"(ixx="0" ixy="0")",
+                           "link 'link1': <inertial> <inertia> is not positive definite"},
+        InvalidElementCase{"triangle_inequality", R"(ixx="12" ixy="0")", R"(ixx="30" ixy="0")",
+                           "link 'link1': <inertial> <inertia> violates the triangle inequality"},
+        InvalidElementCase{"negative_effort", R"(effort="3500")", R"(effort="-3500")",
+                           "joint 'joint1': <limit> effort must be non-negative"},
+        InvalidElementCase{"negative_velocity", R"(velocity="3.141592653589793" effort="3500")",
+                           R"(velocity="-1" effort="3500")",
+                           "joint 'joint1': <limit> velocity must be non-negative"},
+        InvalidElementCase{"mimic", R"(<axis xyz="0 0 1"/>)",
+                           R"(<axis xyz="0 0 1"/><mimic joint="joint2" multiplier="1"/>)",
+                           "joint 'joint1': <mimic> (joint 'joint2') is not supported"}),
+    [](const ::testing::TestParamInfo<InvalidElementCase>& info) { return info.param.name; });
+
+// A device that never ends or a huge file is refused after a bounded read, not read until the
+// allocation fails; a directory is refused by name.
+TEST(RobotModel, LoadReadsAtMostABoundedSize) {
+  const LoadResult zero = RobotModel::load("/dev/zero");
+  EXPECT_FALSE(zero.model.has_value());
+  EXPECT_NE(zero.error.find("is larger than"), std::string::npos) << zero.error;
+  const LoadResult dir = RobotModel::load(::testing::TempDir());
+  EXPECT_FALSE(dir.model.has_value());
+  EXPECT_NE(dir.error.find("is a directory"), std::string::npos) << dir.error;
+}
 
 }  // namespace
 }  // namespace fuzzypid::robot

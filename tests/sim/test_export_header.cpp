@@ -3,6 +3,7 @@
 // for float as well.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -20,7 +21,13 @@ using namespace fuzzypid;
 namespace cf = controller_file;
 constexpr std::size_t kJ = 6;
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+// Equal bit patterns (NaN payloads and the sign of zero included).
+bool same_bits(double a, double b) {
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  return x == y;
+}
 
 // Steps the file's controller and the header's side by side on seeded random inputs (errors up to
 // 0.2 rad, rates up to 1 rad/s) with output limit 3 rad/s²; every output must match bit for bit.

@@ -401,8 +401,9 @@ TEST(LinguisticVariable, InfinitySaturatesAtTheOuterTerm) {
 }
 
 // Compares the O(1) uniform path with a custom variable holding the same terms (which evaluates
-// every term): the [first, last] range must be identical and the degrees equal up to the rounding
-// of the uniform path's precomputed reciprocal width (a multiplication instead of a division).
+// every term): the degrees are equal up to rounding -- the uniform path reads them off the
+// position t = (x - min) / h, computed with the precomputed 1/h, so they may differ by a few ulp
+// of t -- and a term that holds x on one side only holds it with such a rounding-sized degree.
 template <class Scalar, std::size_t N>
 void expect_uniform_fast_path_equals_every_term(Scalar min, Scalar max, std::uint64_t seed) {
   SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
@@ -423,11 +424,15 @@ void expect_uniform_fast_path_equals_every_term(Scalar min, Scalar max, std::uin
   for (Scalar x : xs) {
     const auto fast = uniform.fuzzify(x);
     const auto slow = every.fuzzify(x);
-    for (std::size_t k = 0; k < N; ++k)
-      ASSERT_NEAR(fast.degree[k], slow.degree[k], 2 * std::numeric_limits<Scalar>::epsilon())
-          << "term " << k << " at x = " << x;
-    ASSERT_EQ(fast.first, slow.first) << "x = " << x;
-    ASSERT_EQ(fast.last, slow.last) << "x = " << x;
+    const Scalar rounding = Scalar(4 * N) * std::numeric_limits<Scalar>::epsilon();
+    for (std::size_t k = 0; k < N; ++k) {
+      ASSERT_NEAR(fast.degree[k], slow.degree[k], rounding) << "term " << k << " at x = " << x;
+      const bool in_fast = k >= fast.first && k <= fast.last;
+      const bool in_slow = k >= slow.first && k <= slow.last;
+      if (in_fast != in_slow) {
+        ASSERT_LE(fast.degree[k] + slow.degree[k], rounding) << "term " << k << " at x = " << x;
+      }
+    }
   }
 }
 

@@ -170,14 +170,15 @@ TEST(TskSystem, FiringStrengthReadoutEqualsTheConjunctionOfDegrees) {
       double total = 0.0;
       int fired = 0;
       for (std::size_t i = 0; i < 7; ++i) {
-        // Degrees by the precomputed reciprocal width, against the triangle formula's division.
-        ASSERT_NEAR(r.e.degree[i], s.e.term(i)(e), 1e-15);
+        // Degrees from the position t = (e - min) / h by the precomputed 1/h, against the triangle
+        // formulas: equal up to a few ulp of t (< 1e-14).
+        ASSERT_NEAR(r.e.degree[i], s.e.term(i)(e), 1e-14);
         for (std::size_t j = 0; j < 7; ++j) {
           const double mu_e = s.e.term(i)(e);
           const double mu_ec = s.ec.term(j)(ec);
           const double expected =
               conjunction == Conjunction::Minimum ? std::min(mu_e, mu_ec) : mu_e * mu_ec;
-          ASSERT_NEAR(r.firing_strength(i, j), expected, 1e-15) << "rule " << i << "," << j;
+          ASSERT_NEAR(r.firing_strength(i, j), expected, 1e-14) << "rule " << i << "," << j;
           total += r.firing_strength(i, j);
           fired += r.firing_strength(i, j) > 0.0;
         }
@@ -289,6 +290,77 @@ TEST(TskSystem, FloatInstantiationAgreesWithDouble) {
         std::string("float_vs_double_max_difference_") + fuzzypid::fuzzy::to_string(conjunction),
         std::to_string(max_difference));
   }
+}
+
+// locate() on random uniform partitions: the two degrees lie in [0, 1] and sum to 1, the interval
+// index is in range, the edges and everything beyond them give exactly (1, 0) / (0, 1), and the
+// degrees equal the triangle formulas of the variable's own terms up to rounding.
+template <class Scalar, std::size_t N>
+void expect_partition_of_unity(std::uint64_t seed) {
+  SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> centre(-100.0, 100.0);
+  std::uniform_real_distribution<double> log_width(-3.0, 3.0);
+  const Scalar rounding = Scalar(8 * N) * std::numeric_limits<Scalar>::epsilon();
+  for (int v = 0; v < 200; ++v) {
+    const double c = centre(rng);
+    const double w = std::pow(10.0, log_width(rng));
+    const auto lv = LinguisticVariable<Scalar, N>::uniform(Scalar(c - w), Scalar(c + w));
+    ASSERT_TRUE(lv.valid());
+    const Scalar lo = lv.min();
+    const Scalar hi = lv.max();
+    std::uniform_real_distribution<Scalar> x_of(lo - (hi - lo) / 4, hi + (hi - lo) / 4);
+    for (int k = 0; k < 200; ++k) {
+      const Scalar x = k == 0 ? lo : k == 1 ? hi : x_of(rng);
+      const auto a = lv.locate(x);
+      ASSERT_LE(a.k, N - 2);
+      ASSERT_GE(a.lower, Scalar(0));
+      ASSERT_GE(a.upper, Scalar(0));
+      ASSERT_LE(a.lower, Scalar(1));
+      ASSERT_LE(a.upper, Scalar(1));
+      ASSERT_EQ(a.lower + a.upper, Scalar(1)) << "x = " << x;
+      if (x <= lo) {
+        ASSERT_EQ(a.k, 0u);
+        ASSERT_EQ(a.lower, Scalar(1));
+      }
+      if (x >= hi && a.upper != Scalar(1)) {
+        // t stopped a rounding short of the last peak: the next-to-last term keeps that much.
+        ASSERT_EQ(a.k, N - 2);
+        ASSERT_LE(a.lower, rounding);
+      }
+      const Scalar width = lv.centers()[a.k + 1] - lv.centers()[a.k];
+      ASSERT_NEAR(a.lower, lv.term(a.k)(x), rounding * (Scalar(1) + std::fabs(lo) / width))
+          << "x = " << x;
+      ASSERT_NEAR(a.upper, lv.term(a.k + 1)(x), rounding * (Scalar(1) + std::fabs(lo) / width))
+          << "x = " << x;
+    }
+  }
+}
+
+TEST(LinguisticVariable, UniformLocateIsAPartitionOfUnityEqualToTheTriangles) {
+  expect_partition_of_unity<double, 2>(71);
+  expect_partition_of_unity<double, 3>(72);
+  expect_partition_of_unity<double, 7>(73);
+  expect_partition_of_unity<double, 11>(74);
+  expect_partition_of_unity<float, 7>(75);
+  expect_partition_of_unity<float, 5>(76);
+}
+
+TEST(TskSystem, ValidAcceptsOnlyMinimumOrProductWithEitherTskDefuzzifier) {
+  auto s = paper::make_system<double>(Conjunction::Product);
+  EXPECT_TRUE(s.valid());
+  s.defuzzifier = TskDefuzzifier::WeightedSum;
+  EXPECT_TRUE(s.valid());
+  for (const auto other :
+       {Conjunction::BoundedDifference, Conjunction::DrasticProduct, Conjunction::EinsteinProduct,
+        Conjunction::HamacherProduct, Conjunction::NilpotentMinimum}) {
+    auto t = paper::make_system<double>();
+    t.conjunction = other;
+    EXPECT_FALSE(t.valid()) << fuzzypid::fuzzy::to_string(other);
+  }
+  auto u = paper::make_system<double>();
+  u.defuzzifier = fuzzypid::fuzzy::Defuzzifier::Centroid;
+  EXPECT_FALSE(u.valid());
 }
 
 }  // namespace

@@ -182,7 +182,7 @@ class FuzzyPid {
  private:
   // The fault behind a failed inference or a PID fault of NonFiniteInput: the input's own fault
   // when it has one, else an overflow of finite inputs (scaled inputs or retuned gains).
-  Status input_fault(const Input& in, Scalar dt_s) const noexcept {
+  [[gnu::cold]] [[gnu::noinline]] Status input_fault(Input in, Scalar dt_s) const noexcept {
     const Status s = pid_.check(in, dt_s);
     return s != Status::Ok ? s : Status::NumericOverflow;
   }

@@ -58,8 +58,11 @@ class JointController {
   explicit JointController(const std::array<Controller, N>& joints) : joints_(joints) {}
 
   // One tick for all joints over dt_s seconds.
-  [[nodiscard]] Output step(const Input& in, Scalar dt_s) noexcept {
-    Output out;
+  [[gnu::flatten]] [[nodiscard]] Output step(const Input& in, Scalar dt_s) noexcept {
+    // Filled joint by joint and assembled at the end (no zero-fill of the result first).
+    JointVector<Scalar, N> torque;
+    std::array<Status, N> joint_status;
+    Status status = Status::Ok;
     for (std::size_t i = 0; i < N; ++i) {
       pid::Input<Scalar> joint;
       joint.setpoint = in.desired_position_rad[i];
@@ -68,11 +71,11 @@ class JointController {
       joint.measurement_rate = in.measured_velocity_rad_s[i];
       joint.feed_forward = in.feed_forward_nm[i];
       const Status s = joints_[i].update(joint, dt_s);
-      out.joint_status[i] = s;
-      out.status = worst(out.status, s);
-      out.torque_nm[i] = joints_[i].output();
+      joint_status[i] = s;
+      status = worst(status, s);
+      torque[i] = joints_[i].output();
     }
-    return out;
+    return {torque, joint_status, status};
   }
 
   void reset() noexcept {

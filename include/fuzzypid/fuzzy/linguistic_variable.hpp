@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/scalar.hpp"
@@ -44,9 +45,12 @@ class LinguisticVariable {
     v.terms_[N - 1] = Term<Scalar>::right_shoulder(v.peak_[N - 2], v.peak_[N - 1]);
     for (std::size_t k = 1; k + 1 < N; ++k)
       v.terms_[k] = Term<Scalar>::triangle(v.peak_[k - 1], v.peak_[k], v.peak_[k + 1]);
-    v.inverse_step_ = Scalar(1) / h;
-    for (std::size_t k = 0; k + 1 < N; ++k)
-      v.inverse_width_[k] = Scalar(1) / (v.peak_[k + 1] - v.peak_[k]);
+    // 1/h, rounded down until (max - min) / h <= N - 1 in floating point, so that locate()'s
+    // position t never passes the last peak (and equals N - 1 there when the rounding allows).
+    Scalar r = Scalar(N - 1) / (max - min);
+    for (int k = 0; k < 4 && (max - min) * r > Scalar(N - 1); ++k)
+      r -= r * std::numeric_limits<Scalar>::epsilon();
+    v.inverse_step_ = r;
     return v;
   }
 
@@ -99,22 +103,19 @@ class LinguisticVariable {
     Scalar upper;  // degree of term k + 1
   };
 
-  // Requires a uniform partition and x not NaN (an infinity saturates). O(1), no division: the
-  // reciprocals of the step and of each interval's width are taken once, by uniform().
+  // Requires a uniform partition and x not NaN (an infinity saturates). O(1), no division, no
+  // table look-up and no data-dependent branch: with x clamped into the universe (where the edge
+  // term holds it with degree 1), t = (x - min) / h is x's position in steps, k = floor(t) the
+  // interval, and the triangle formulas on [peak_k, peak_k+1] reduce to upper = t - k and
+  // lower = 1 - upper (uniform peaks; equal to evaluating the terms up to rounding, about
+  // N ulp). The step's reciprocal is precomputed by uniform().
   constexpr Adjacent locate(Scalar x) const noexcept {
-    if (x <= min_) return {0, Scalar(1), Scalar(0)};
-    if (x >= max_) return {N - 2, Scalar(0), Scalar(1)};
-    // Index of the left peak of the interval holding x, corrected for rounding so that
-    // peak_[k] <= x <= peak_[k + 1]: the estimate can be off by one next to a peak, which the
-    // two corrections absorb. On a peak both neighbouring intervals give the same degrees (1 for
-    // that peak's term, 0 elsewhere).
-    std::size_t k = static_cast<std::size_t>((x - min_) * inverse_step_);
-    if (k > N - 2) k = N - 2;
-    if (x < peak_[k] && k > 0) --k;
-    if (x > peak_[k + 1] && k < N - 2) ++k;
-    // The triangle formulas of terms k and k + 1 on [peak_k, peak_k+1].
-    const Scalar r = inverse_width_[k];
-    return {k, (peak_[k + 1] - x) * r, (x - peak_[k]) * r};
+    const Scalar t = (detail::clamp(x, min_, max_) - min_) * inverse_step_;  // in [0, N - 1]
+    // A signed conversion: t is small and non-negative, and int needs no range fix-up.
+    const int floor_t = static_cast<int>(t);
+    const std::size_t k = floor_t < int(N - 2) ? static_cast<std::size_t>(floor_t) : N - 2;
+    const Scalar upper = t - static_cast<Scalar>(static_cast<int>(k));
+    return {k, Scalar(1) - upper, upper};
   }
 
  private:
@@ -148,8 +149,7 @@ class LinguisticVariable {
   std::array<Scalar, N> peak_{};
   Scalar min_{};
   Scalar max_{};
-  Scalar inverse_step_{};                      // 1 / h, for the interval estimate of locate()
-  std::array<Scalar, N - 1> inverse_width_{};  // 1 / (peak_k+1 - peak_k), uniform partitions
+  Scalar inverse_step_{};  // 1 / h (rounded down, see uniform()), for locate()
   bool uniform_ = false;
 };
 

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
@@ -68,11 +69,14 @@ struct TskSystem {
   Conjunction conjunction = Conjunction::Minimum;              // Minimum or Product
   TskDefuzzifier defuzzifier = TskDefuzzifier::WeightedAverage;
 
-  // True when both variables are valid, the conjunction is Minimum or Product and every
-  // consequent is finite.
+  // True when both variables are valid, the conjunction is Minimum or Product, the defuzzifier
+  // WeightedAverage or WeightedSum and every consequent is finite.
   constexpr bool valid() const noexcept {
     if (!e.valid() || !ec.valid()) return false;
     if (conjunction != Conjunction::Minimum && conjunction != Conjunction::Product) return false;
+    if (defuzzifier != TskDefuzzifier::WeightedAverage &&
+        defuzzifier != TskDefuzzifier::WeightedSum)
+      return false;
     for (const auto& table : consequents)
       for (const auto& row : table)
         for (Scalar c : row)
@@ -105,25 +109,33 @@ struct TskSystem {
  private:
   template <bool kTrace>
   constexpr Status run(Scalar x, Scalar y, Output& output, Trace* trace) const noexcept {
-    output = {};
     if constexpr (kTrace) {
       *trace = Trace{};
       trace->conjunction = conjunction;
     }
-    if (!detail::is_finite(x) || !detail::is_finite(y)) return Status::NonFiniteInput;
+    if (!detail::is_finite(x) || !detail::is_finite(y)) {
+      output = {};
+      return Status::NonFiniteInput;
+    }
     if (e.is_uniform() && ec.is_uniform()) {
       const auto a = e.locate(x);
       const auto b = ec.locate(y);
-      const Scalar de[2] = {a.lower, a.upper};
-      const Scalar dec[2] = {b.lower, b.upper};
       if constexpr (kTrace) {
         trace->e = e.fuzzify(x);
         trace->ec = ec.fuzzify(y);
       }
       return conjunction == Conjunction::Minimum
-                 ? fire<kTrace, Conjunction::Minimum, 2, 2>(de, a.k, dec, b.k, output, trace)
-                 : fire<kTrace, Conjunction::Product, 2, 2>(de, a.k, dec, b.k, output, trace);
+                 ? fire_block<kTrace, Conjunction::Minimum>(a, b, output, trace)
+                 : fire_block<kTrace, Conjunction::Product>(a, b, output, trace);
     }
+    return run_custom<kTrace>(x, y, output, trace);
+  }
+
+  // Custom partitions: every term evaluated, every rule fired. Out of line, so the uniform path
+  // of a controller's tick stays small.
+  template <bool kTrace>
+  [[gnu::noinline]] constexpr Status run_custom(Scalar x, Scalar y, Output& output,
+                                                Trace* trace) const noexcept {
     const Fuzzified<Scalar, NE> fe = e.fuzzify(x);
     const Fuzzified<Scalar, NEC> fec = ec.fuzzify(y);
     if constexpr (kTrace) {
@@ -135,6 +147,55 @@ struct TskSystem {
                                                              0, output, trace)
                : fire<kTrace, Conjunction::Product, NE, NEC>(fe.degree.data(), 0, fec.degree.data(),
                                                              0, output, trace);
+  }
+
+  template <Conjunction Op>
+  static constexpr Scalar conjoin(Scalar a, Scalar b) noexcept {
+    return Op == Conjunction::Minimum ? detail::min(a, b) : a * b;
+  }
+
+  // Fires the 2 x 2 block of rules (k .. k + 1) x (m .. m + 1) of two uniform partitions, in rule
+  // order, and defuzzifies. Degrees of 0 fire rules of strength 0, which add exact zeros.
+  template <bool kTrace, Conjunction Op>
+  constexpr Status fire_block(const typename LinguisticVariable<Scalar, NE>::Adjacent& a,
+                              const typename LinguisticVariable<Scalar, NEC>::Adjacent& b,
+                              Output& output, Trace* trace) const noexcept {
+    Scalar w00, w01, w10, w11;
+    if constexpr (Op == Conjunction::Minimum) {
+      w00 = detail::min(a.lower, b.lower);
+      w01 = detail::min(a.lower, b.upper);
+      w10 = detail::min(a.upper, b.lower);
+      w11 = detail::min(a.upper, b.upper);
+    } else {
+      w00 = a.lower * b.lower;
+      w01 = a.lower * b.upper;
+      w10 = a.upper * b.lower;
+      w11 = a.upper * b.upper;
+    }
+    const Scalar total = w00 + w01 + w10 + w11;
+    if constexpr (kTrace) trace->total_strength = total;
+    if (!(total > Scalar(0))) {
+      output = {};
+      return Status::NoRuleFired;
+    }
+    const Scalar scale = defuzzifier == TskDefuzzifier::WeightedAverage
+                             ? Scalar(1) / total  // the inference's one division
+                             : Scalar(1);
+    const std::size_t i = a.k;
+    const std::size_t j = b.k;
+    const auto defuzzify = [&](std::size_t o) {
+      const Scalar* row = consequents[o][i].data() + j;
+      const Scalar* next = consequents[o][i + 1].data() + j;
+      output[o] = (w00 * row[0] + w01 * row[1] + w10 * next[0] + w11 * next[1]) * scale;
+    };
+    unrolled(defuzzify, std::make_index_sequence<NOut>{});
+    return Status::Ok;
+  }
+
+  // f(0), ..., f(NOut - 1), unrolled at compile time (three outputs in the paper's system).
+  template <class F, std::size_t... O>
+  static constexpr void unrolled(F& f, std::index_sequence<O...>) noexcept {
+    (f(O), ...);
   }
 
   // Fires rules (i0 .. i0 + Rows - 1) x (j0 .. j0 + Cols - 1) whose antecedent degrees are
@@ -153,7 +214,10 @@ struct TskSystem {
       }
     }
     if constexpr (kTrace) trace->total_strength = total;
-    if (!(total > Scalar(0))) return Status::NoRuleFired;
+    if (!(total > Scalar(0))) {
+      output = {};
+      return Status::NoRuleFired;
+    }
     if (defuzzifier == TskDefuzzifier::WeightedAverage) {
       const Scalar inverse = Scalar(1) / total;  // the inference's one division
       for (std::size_t o = 0; o < NOut; ++o)

@@ -229,10 +229,12 @@ class Pid {
       // of it would leave the output below the limit, unsaturated, with integral action stopped.
       const Scalar rest = p_term + d_term + in.feed_forward;
       const Scalar trial = rest + integral;
-      Scalar held = integral;
-      if (trial > hi && increment > Scalar(0)) held = detail::max(integral_, hi - rest);
-      if (trial < lo && increment < Scalar(0)) held = detail::min(integral_, lo - rest);
-      integral = detail::clamp(held, config_.integral_min, config_.integral_max);
+      if (trial > hi && increment > Scalar(0))
+        integral = detail::clamp(detail::max(integral_, hi - rest), config_.integral_min,
+                                 config_.integral_max);
+      if (trial < lo && increment < Scalar(0))
+        integral = detail::clamp(detail::min(integral_, lo - rest), config_.integral_min,
+                                 config_.integral_max);
     }
     // v sums every value the tick read (e through P, ec through D, the feed-forward) with a
     // finite or infinite coefficient: a NaN or infinite input or gain makes it non-finite.
@@ -279,7 +281,8 @@ class Pid {
   }
 
   // Names the fault behind a non-finite result; out of the tick's straight path.
-  constexpr Status fault(const Input& in, Scalar dt_s, const Gains& g) const noexcept {
+  [[gnu::cold]] [[gnu::noinline]] constexpr Status fault(Input in, Scalar dt_s,
+                                                         Gains g) const noexcept {
     if (!valid_time_step(dt_s)) return Status::InvalidTimeStep;
     if (!finite(in) || !g.finite()) return Status::NonFiniteInput;
     return Status::NumericOverflow;

@@ -2,9 +2,11 @@
 // the path planner and the benchmarks.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include "fuzzypid/robot/analytic_ik.hpp"
 #include "fuzzypid/robot/ik_status.hpp"
@@ -21,16 +23,16 @@ enum class IkSolver : std::uint8_t {
   KdlLma,    // KDL ChainIkSolverPos_LMA with orientation-weighted error
 };
 
-// "analytic", "kdl-nr", "kdl-lma" (the command-line spelling).
+// The names of IkSolver (the command-line spelling); to_string and ik_solver_from_string use them.
+inline constexpr std::array<std::pair<std::string_view, IkSolver>, 3> kIkSolverNames = {{
+    {"analytic", IkSolver::Analytic},
+    {"kdl-nr", IkSolver::KdlNr},
+    {"kdl-lma", IkSolver::KdlLma},
+}};
+
 [[nodiscard]] constexpr const char* to_string(IkSolver s) noexcept {
-  switch (s) {
-    case IkSolver::Analytic:
-      return "analytic";
-    case IkSolver::KdlNr:
-      return "kdl-nr";
-    case IkSolver::KdlLma:
-      return "kdl-lma";
-  }
+  for (const auto& [name, value] : kIkSolverNames)
+    if (value == s) return name.data();
   return "unknown";
 }
 

@@ -3,15 +3,20 @@
 // must keep.
 //
 // The loop follows the section 6 path (A -> B -> A ..., 101 samples each way, closed-form IK)
-// with the controllers and the inertia-normalised loop of sim::Experiment (docs/reproduction.md):
-// the paper's per-tick gains, torque_i = J^_i u_i, and an actuator limit of 5 rad/s² x J^_i (so
-// that the paper's weak gains do saturate it; the integral is limited to the same range, and the
-// gains to [0, 3 K0]). Joints 1-3 use the paper's absolute gain update (K = K0 + dK, Eq. 6),
-// joints 4-6 the incremental one (K += dK every tick), which drifts until the gain bounds stop it:
-// both clamps are exercised.
+// with the pieces of the A/B simulation's closed loop (sim::Experiment, sim::ClosedLoop,
+// docs/reproduction.md): the paper's fuzzy PID as its controller file describes it (per-tick gains
+// converted once by controller_file::fuzzy_pid_config), torque_i = J^_i u_i from
+// Experiment::torque_from_command, and the plant of a condition whose actuator limit is
+// 5 rad/s² x J^_i (so that the paper's weak gains do saturate it). On top of that configuration
+// the integral is limited to the output range and the gains to [0, 3 K0]; joints 1-3 use the
+// paper's absolute gain update (K = K0 + dK, Eq. 6), joints 4-6 the incremental one (K += dK every
+// tick), which drifts until the gain bounds stop it: both clamps are exercised. The soak steps
+// controller and plant itself rather than calling ClosedLoop::tick, because the abuse below
+// reaches between them (corrupted measurements, another dt for the controller than for the plant,
+// setpoint jumps, disturbances, plant resets).
 //
-// Abuse, drawn from one std::mt19937_64 (uniforms built from its bits, so every standard library
-// gives the same run for a seed):
+// Abuse, drawn from sim::Random (the project's one seeded generator: the same run for a seed with
+// every standard library):
 //   - dt jitter of +/-20 % around 50 ms on every tick, and about one tick in 1,000 a bad dt
 //     (0, negative, NaN or +inf) given to the controller (the plant then advances 50 ms);
 //   - about one tick in 500 a NaN, +/-inf or huge (+/-1e300) measured position or velocity on
@@ -21,7 +26,7 @@
 //   - setpoint jumps of up to +/-0.5 rad held 1-20 s, and every ~3 h of simulated time
 //     (200,000 ticks) a 3 rad jump held 100-300 s: long saturation periods.
 //
-// Invariants (any breach prints the tick and exits 1):
+// Invariants (any breach prints the tick and exits 1; bad arguments exit 2):
 //   - every command is finite;
 //   - no allocation after start-up (global operator new is replaced by a counting one in this
 //     binary, fuzzypid_support/counting_new.hpp);
@@ -35,32 +40,34 @@
 // The last stdout line is `key=value` pairs: ticks nonfinite allocations faults max_abs_integral
 // max_abs_gain, then plant_resets, injected counts and saturated_ticks.
 #include <array>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <optional>
-#include <random>
 #include <string>
 
+#include "cli.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/controller_file/joint_controllers.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/random.hpp"
 #include "fuzzypid/status.hpp"
 #include "fuzzypid_support/counting_new.hpp"  // replaces global operator new: counts allocations
 
 namespace {
 
+namespace cf = fuzzypid::controller_file;
+namespace cli = fuzzypid::cli;
 namespace control = fuzzypid::control;
 namespace pid = fuzzypid::pid;
 namespace robot = fuzzypid::robot;
@@ -70,7 +77,7 @@ using fuzzypid::Status;
 constexpr std::size_t kJoints = robot::kNumJoints;
 constexpr double kTickS = 0.05;
 constexpr double kHuge = 1e300;
-constexpr double kAccelLimit = 5.0;  // rad/s², see build()
+constexpr double kAccelLimit = 5.0;  // rad/s², the condition's actuator limit (see build())
 // Beyond these the plant is considered lost to the abuse and put back on the path.
 constexpr double kMaxErrorRad = 20.0;
 constexpr double kMaxSpeedRadS = 50.0;
@@ -83,64 +90,37 @@ struct Options {
   std::uint64_t seed = 1;
 };
 
-bool parse_u64(const char* s, std::uint64_t& out) {
-  if (s == nullptr || *s == '\0' || *s == '-' || *s == '+') return false;
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(s, &end, 10);
-  if (errno == ERANGE || end == s || *end != '\0') return false;
-  out = v;
-  return true;
+// Parses the command line into `o`; nullopt to run, else the exit code (0 after --help).
+std::optional<int> parse_options(int argc, char** argv, Options& o) {
+  CLI::App app(
+      "Millions of abused ticks of the 6-joint fuzzy PID on the simulated ER50-C20, checking the "
+      "invariants after every tick (docs/robustness.md).\nExit codes: 0 every invariant held, "
+      "1 a breach (or the model does not load), 2 bad usage.",
+      "fuzzypid_soak");
+  app.add_option("--ticks", o.ticks,
+                 "controller ticks of 50 ms to run (default 10000000, about 5.8 days)")
+      ->check(cli::unsigned_in(1, std::numeric_limits<std::uint64_t>::max()))
+      ->option_text("N");
+  app.add_option("--seed", o.seed, "seed of the abuse schedule (default 1)")
+      ->check(cli::unsigned_integer())
+      ->option_text("S");
+  return cli::parse(app, argc, argv);
 }
 
-void usage(std::FILE* out) {
-  std::fputs(
-      "usage: fuzzypid_soak [--ticks N] [--seed S]\n"
-      "  --ticks N  controller ticks of 50 ms to run (default 10000000, about 5.8 days)\n"
-      "  --seed S   seed of the abuse schedule (default 1)\n"
-      "Exits 0 when every invariant held, 1 on the first breach, 2 on bad arguments.\n",
-      out);
-}
-
-// Returns 0 to run, 1 for --help, 2 on a bad argument (message printed).
-int parse_options(int argc, char** argv, Options& o) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (arg == "--help" || arg == "-h") {
-      usage(stdout);
-      return 1;
-    }
-    if (arg == "--ticks" || arg == "--seed") {
-      std::uint64_t v = 0;
-      if (!parse_u64(value, v) || (arg == "--ticks" && v == 0)) {
-        std::fprintf(stderr, "fuzzypid_soak: %s needs %s integer, got '%s'\n", arg.c_str(),
-                     arg == "--ticks" ? "a positive" : "a non-negative",
-                     value != nullptr ? value : "");
-        return 2;
-      }
-      (arg == "--ticks" ? o.ticks : o.seed) = v;
-      ++i;
-      continue;
-    }
-    std::fprintf(stderr, "fuzzypid_soak: unknown argument '%s'\n", arg.c_str());
-    usage(stderr);
-    return 2;
-  }
-  return 0;
-}
-
-// Uniform draws from the raw 64-bit engine (std:: distributions are implementation-defined).
+// The abuse's draws on top of the sim's generator.
 class Random {
  public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  double uniform() noexcept { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }  // [0,1)
-  double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
-  std::uint64_t below(std::uint64_t n) noexcept { return engine_() % n; }
-  bool chance(double p) noexcept { return uniform() < p; }
+  explicit Random(std::uint64_t seed) : random_(seed) {}
+  double uniform(double lo, double hi) noexcept { return random_.uniform(lo, hi); }
+  // An integer in [0, n).
+  std::uint64_t below(std::uint64_t n) noexcept {
+    const auto k = static_cast<std::uint64_t>(random_.uniform() * static_cast<double>(n));
+    return k < n ? k : n - 1;
+  }
+  bool chance(double p) noexcept { return random_.uniform() < p; }
 
  private:
-  std::mt19937_64 engine_;
+  fuzzypid::sim::Random random_;
 };
 
 // The gain bounds: [0, 3 K0] on every gain. The absolute update stays well inside; the incremental
@@ -153,10 +133,9 @@ struct Soak {
   sim::Experiment experiment;
   robot::JointPlant plant;
   Controller controller;
-  std::array<double, kJoints> u_max{};  // controller output limit, rad/s²
-  std::array<double, kJoints> t_max{};  // actuator torque limit, N·m
+  robot::JointVector u_max{};  // controller output limit, rad/s² (actuator limit / J^_i)
   pid::Gains<double> gain_min{};
-  pid::Gains<double> gain_max{};
+  pid::Gains<double> gain_max{};  // continuous SI form
 };
 
 std::optional<Soak> build(std::string& error) {
@@ -165,52 +144,45 @@ std::optional<Soak> build(std::string& error) {
     error = "cannot load the URDF: " + loaded.error;
     return std::nullopt;
   }
-  const robot::RobotModel& model = *loaded.model;
   sim::ExperimentOptions options;  // the A/B simulation's defaults: per-tick paper gains
   options.tick_s = kTickS;
-  auto experiment = sim::Experiment::create(model, robot::paper_path_spec(), options, error);
+  auto experiment =
+      sim::Experiment::create(*loaded.model, robot::paper_path_spec(), options, error);
   if (!experiment) return std::nullopt;
 
-  // As sim::Experiment::run builds its fuzzy controllers, plus explicit gain and integral bounds.
-  const double t = options.tick_s;
-  const pid::Gains<double> k0 = {options.gains.kp, options.gains.ki / t, options.gains.kd * t};
-  const robot::JointVector& inertia = experiment->nominal_inertia();
-  // Actuator limit kAccelLimit x J^_i, as the sim's "saturation" scenario limits it (there 0.1):
-  // the URDF effort limits allow ~100 rad/s², which the paper's Kp = 4 /s² never reaches.
-  robot::JointVector limit{};
-  for (std::size_t i = 0; i < kJoints; ++i)
-    limit[i] = kAccelLimit * inertia[i];
+  // The paper scenario with an actuator limit of kAccelLimit x J^_i (as the sim's "saturation"
+  // scenario limits it, there to 0.1): the URDF effort limits allow ~100 rad/s², which the
+  // paper's Kp = 4 /s² never reaches.
+  sim::Condition condition = *sim::find_scenario("paper");
+  condition.torque_limit_rad_s2 = kAccelLimit;
+  // The paper's fuzzy PID as sim_ab runs it, with gain bounds [0, 3 K0] (in the file's per-tick
+  // units, converted with the gains).
+  cf::ControllerSpec spec = sim::default_controller(options, cf::Family::Fuzzy);
+  spec.gain_min = {0.0, 0.0, 0.0};
+  spec.gain_max = gain_max_of(spec.gains);
+  const robot::JointVector u_max = experiment->output_limit(condition, spec.units.gains);
   std::array<Fuzzy, kJoints> joints;
-  std::array<double, kJoints> u_max{};
+  pid::Gains<double> gain_max{};
   for (std::size_t i = 0; i < kJoints; ++i) {
-    u_max[i] = limit[i] / inertia[i];
-    control::FuzzyPidConfig<double> c;
-    c.pid.gains = k0;
-    c.pid.derivative_source = pid::DerivativeSource::Rates;
-    c.pid.anti_windup = pid::AntiWindup::Clamping;
-    c.pid.output_min = -u_max[i];
-    c.pid.output_max = u_max[i];
+    control::FuzzyPidConfig<double> c = cf::fuzzy_pid_config(spec, u_max[i]);
     c.pid.integral_min = -u_max[i];
     c.pid.integral_max = u_max[i];
-    c.output_scale = {1.0, 1.0 / t, t};  // dK in per-tick units, like the gains
     c.gain_update = i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
-    c.gain_min = {0.0, 0.0, 0.0};
-    c.gain_max = gain_max_of(k0);
+    gain_max = c.gain_max;
+    // The default options' supervisor (min conjunction, printed tables) is paper::kSystem.
     joints[i] = Fuzzy(&fuzzypid::paper::kSystem<double>, fuzzypid::paper::paper_config<double>());
     if (joints[i].configure(c) != Status::Ok) {
       error = "invalid controller configuration";
       return std::nullopt;
     }
   }
-  robot::PlantConfig plant_config = options.plant;
-  plant_config.torque_limit_nm = limit;
-  robot::JointPlant plant(model, plant_config);
+  robot::JointPlant plant(experiment->model(), experiment->plant_config(condition));
   if (!plant.valid()) {
     error = "invalid plant configuration";
     return std::nullopt;
   }
-  Soak soak{std::move(*experiment), std::move(plant), Controller(joints), u_max, limit,
-            {0.0, 0.0, 0.0},        gain_max_of(k0)};
+  Soak soak{std::move(*experiment), std::move(plant), Controller(joints), u_max,
+            {0.0, 0.0, 0.0},        gain_max};
   return soak;
 }
 
@@ -299,7 +271,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
       const bool beyond = rng.chance(0.1);
       for (std::size_t i = 0; i < kJoints; ++i) {
         const double amplitude =
-            beyond ? 1.5 * s.t_max[i] : 2.0 * s.experiment.nominal_inertia()[i];
+            (beyond ? 1.5 * s.u_max[i] : 2.0) * s.experiment.nominal_inertia()[i];
         pulse[i] = rng.uniform(-amplitude, amplitude);
       }
     } else {
@@ -344,7 +316,6 @@ const char* run(Soak& s, const Options& o, Counters& c) {
     in.measured_velocity_rad_s = qd;
     const auto command = s.controller.step(in, dt_controller);
 
-    robot::JointVector torque{};
     for (std::size_t i = 0; i < kJoints; ++i) {
       const Status st = command.joint_status[i];
       if (fuzzypid::is_fault(st)) ++c.faults;
@@ -368,8 +339,8 @@ const char* run(Soak& s, const Options& o, Counters& c) {
         return "integral outside its limits";
       c.max_abs_integral = std::fmax(c.max_abs_integral, std::fabs(integral));
       c.max_abs_gain = std::fmax(c.max_abs_gain, std::fmax(g.kp, std::fmax(g.ki, g.kd)));
-      torque[i] = s.experiment.nominal_inertia()[i] * u;
     }
+    const robot::JointVector torque = s.experiment.torque_from_command(command.torque_nm);
 
     bool saturated = false;
     for (std::size_t i = 0; i < kJoints; ++i)
@@ -397,17 +368,15 @@ const char* run(Soak& s, const Options& o, Counters& c) {
   return nullptr;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_soak(int argc, char** argv) {
   Options o;
-  if (const int rc = parse_options(argc, argv, o); rc != 0) return rc == 1 ? 0 : 2;
+  if (const auto code = parse_options(argc, argv, o)) return *code;
 
   std::string error;
   std::optional<Soak> soak = build(error);
   if (!soak) {
     std::fprintf(stderr, "fuzzypid_soak: %s\n", error.c_str());
-    return 2;
+    return cli::kExitFailure;
   }
   std::printf("fuzzypid_soak: %llu ticks of 50 ms (%.2f days simulated), seed %llu\n",
               static_cast<unsigned long long>(o.ticks),
@@ -424,5 +393,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fuzzypid_soak: invariant broken at tick %llu: %s\n",
                  static_cast<unsigned long long>(c.ticks), breach);
   print(c, o.seed, seconds);
-  return breach != nullptr ? 1 : 0;
+  const int written = cli::finish_stdout("fuzzypid_soak");
+  return breach != nullptr ? cli::kExitFailure : written;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::run_main("fuzzypid_soak", [&] { return run_soak(argc, argv); });
 }

@@ -1,0 +1,79 @@
+#!/bin/sh
+# rt_loop's exit codes, its --csv file (opened before the run, complete or absent), --dt,
+# --require-rt and --max-overruns. Usage: check_rt_loop.sh <path to rt_loop>
+set -u
+rt_loop=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+# expect CODE ARGS...: runs rt_loop, stdout in $work/out, stderr in $work/err.
+expect() {
+  want=$1
+  shift
+  "$rt_loop" "$@" >"$work/out" 2>"$work/err"
+  got=$?
+  [ "$got" -eq "$want" ] || fail "rt_loop $*: exit $got, expected $want: $(cat "$work/err")"
+}
+
+# Bad usage exits 2 (not 1, not a run).
+for args in "--ticks -1" "--ticks 18446744073709551616" "--period-ms nan" "--period-ms inf" \
+            "--dt 0" "--dt 2" "--controller lqr" "--max-overruns -3" "--bogus" "--period-ms 0.01"; do
+  # shellcheck disable=SC2086
+  expect 2 $args
+  grep -q '^ticks_run' "$work/out" && fail "rt_loop $args ran"
+done
+
+# The controller period follows the tick period unless --dt is given; 50 ms when free-running.
+expect 0 --period-ms 5 --ticks 3
+grep -q 'controller dt 5.000 ms' "$work/out" || fail "dt with --period-ms 5: $(head -1 "$work/out")"
+expect 0 --period-ms 5 --dt 0.01 --ticks 3
+grep -q 'controller dt 10.000 ms' "$work/out" || fail "--dt 0.01: $(head -1 "$work/out")"
+expect 0 --period-ms 0 --ticks 3
+grep -q 'controller dt 50.000 ms' "$work/out" || fail "free-running: $(head -1 "$work/out")"
+for figure in 'ticks_run: 3 ticks' 'overruns: 0 ticks' 'compute_us: min' 'max_abs_error_rad: .* rad' \
+              'page_faults_in_loop: minor [0-9]*, major [0-9]*' 'allocations_in_loop: 0'; do
+  grep -q "^$figure" "$work/out" || fail "no '$figure' in: $(cat "$work/out")"
+done
+expect 0 --period-ms 1 --ticks 5
+grep -q '^period_error_us: min' "$work/out" || fail "no period error: $(cat "$work/out")"
+
+# --csv to an unwritable place fails before the run; a complete file appears only at the end.
+expect 1 --period-ms 0 --ticks 1000 --csv "$work/missing/ticks.csv"
+grep -q '^ticks_run' "$work/out" && fail "ran although the CSV cannot be written"
+expect 0 --period-ms 0 --ticks 50 --csv "$work/ticks.csv"
+[ "$(head -1 "$work/ticks.csv")" = "tick,wakeup_latency_ns,period_error_ns,compute_ns" ] ||
+  fail "CSV header: $(head -1 "$work/ticks.csv")"
+[ "$(wc -l <"$work/ticks.csv")" -eq 51 ] || fail "CSV rows: $(wc -l <"$work/ticks.csv")"
+[ "$(ls -A "$work")" = "err
+out
+ticks.csv" ] || fail "left beside the CSV: $(ls -A "$work")"
+
+# A 1 us period cannot be held: every tick overruns, so --max-overruns 0 fails the run.
+expect 1 --period-ms 0.001 --dt 0.05 --ticks 20 --max-overruns 0
+grep -q 'more overruns than --max-overruns' "$work/err" || fail "$(cat "$work/err")"
+expect 0 --period-ms 0.001 --dt 0.05 --ticks 20 --max-overruns 20
+
+# A refused SCHED_FIFO is a warning, and with --require-rt an error. Refusal is provoked by an
+# rtprio limit of 0 and, for root, by dropping CAP_SYS_NICE.
+drop=""
+if setpriv --bounding-set -sys_nice --inh-caps -sys_nice true 2>/dev/null; then
+  drop="setpriv --bounding-set -sys_nice --inh-caps -sys_nice"
+fi
+$drop prlimit --rtprio=0:0 "$rt_loop" --ticks 2 --period-ms 1 --fifo 10 >"$work/out" 2>"$work/err" ||
+  fail "refused FIFO without --require-rt: $(cat "$work/err")"
+if grep -q '^scheduler: SCHED_FIFO priority' "$work/out"; then
+  echo "note: SCHED_FIFO was granted despite rtprio 0 (capabilities kept): refusal not checked"
+else
+  grep -q 'warning: SCHED_FIFO refused' "$work/err" || fail "no warning: $(cat "$work/err")"
+  $drop prlimit --rtprio=0:0 "$rt_loop" --ticks 2 --period-ms 1 --fifo 10 --require-rt \
+    >"$work/out" 2>"$work/err" && fail "refused FIFO with --require-rt exited 0"
+  grep -q 'error: SCHED_FIFO refused' "$work/err" || fail "no error: $(cat "$work/err")"
+  grep -q '^ticks_run' "$work/out" && fail "ran although --require-rt was refused"
+fi
+
+# Output that cannot be written is an error.
+"$rt_loop" --period-ms 0 --ticks 3 >/dev/full 2>"$work/err" && fail "> /dev/full exited 0"
+echo ok

@@ -1,0 +1,109 @@
+// Condition-set files (fuzzypid/sim/condition_set.hpp): the shipped tuning/robust.toml, Monte-Carlo
+// draws, scenario shorthands, and file:line:column errors.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fuzzypid/sim/condition_set.hpp"
+
+namespace {
+
+using fuzzypid::sim::ConditionFile;
+using fuzzypid::sim::load_conditions;
+using fuzzypid::sim::parse_conditions;
+namespace cf = fuzzypid::controller_file;
+
+TEST(ConditionSets, TheShippedFileHasTrainingHeldOutAndStressSets) {
+  ConditionFile f;
+  cf::Error e;
+  ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/robust.toml", f, e)) << e.to_string();
+  ASSERT_NE(f.find("training"), nullptr);
+  ASSERT_NE(f.find("held-out"), nullptr);
+  ASSERT_NE(f.find("stress"), nullptr);
+  const auto& training = f.find("training")->conditions;
+  ASSERT_EQ(training.size(), 6u);
+  int ahead = 0, light = 0, heavy = 0;
+  for (const auto& c : training) {
+    ahead += c.initial_error_rad < 0 ? 1 : 0;
+    light += c.payload_scale < 1 ? 1 : 0;
+    heavy += c.payload_scale > 1 ? 1 : 0;
+    EXPECT_EQ(c.friction_per_s, 0.0);
+    EXPECT_FALSE(c.reverse);
+  }
+  EXPECT_EQ(ahead, 3);
+  EXPECT_EQ(light, 2);
+  EXPECT_EQ(heavy, 2);
+  EXPECT_EQ(f.find("held-out")->conditions.size(), 21u);
+}
+
+TEST(ConditionSets, MonteCarloDrawsAreSeededAndInsideTheirRanges) {
+  const char* text =
+      "[sets.mc.monte_carlo]\ncount = 50\nseed = 9\npayload_scale = [0.5, 2.0]\n"
+      "friction = [0.0, 2.0]\ninitial_error = [-0.08, 0.08]\n";
+  ConditionFile a, b, c;
+  cf::Error e;
+  ASSERT_TRUE(parse_conditions(text, "mc.toml", a, e)) << e.to_string();
+  ASSERT_TRUE(parse_conditions(text, "mc.toml", b, e)) << e.to_string();
+  const auto& da = a.find("mc")->conditions;
+  ASSERT_EQ(da.size(), 50u);
+  for (std::size_t k = 0; k < da.size(); ++k) {
+    EXPECT_EQ(da[k].payload_scale, b.find("mc")->conditions[k].payload_scale);
+    EXPECT_GE(da[k].payload_scale, 0.5);
+    EXPECT_LE(da[k].payload_scale, 2.0);
+    EXPECT_GE(da[k].friction_per_s, 0.0);
+    EXPECT_LE(da[k].friction_per_s, 2.0);
+    EXPECT_GE(da[k].initial_error_rad, -0.08);
+    EXPECT_LE(da[k].initial_error_rad, 0.08);
+  }
+  EXPECT_EQ(da[0].name, "mc-mc001");
+  std::string other = text;
+  other.replace(other.find("seed = 9"), 8, "seed = 8");
+  ASSERT_TRUE(parse_conditions(other, "mc.toml", c, e)) << e.to_string();
+  EXPECT_NE(da[0].payload_scale, c.find("mc")->conditions[0].payload_scale);
+}
+
+TEST(ConditionSets, AScenarioIsAShorthandTheOtherKeysOverride) {
+  ConditionFile f;
+  cf::Error e;
+  ASSERT_TRUE(parse_conditions(
+      "[sets.s]\nconditions = [ { name = \"c\", scenario = \"deburring\", initial_error = -0.02,"
+      " noise = [1e-4, 2e-3], reverse = true } ]\n",
+      "s.toml", f, e))
+      << e.to_string();
+  const auto& c = f.find("s")->conditions.at(0);
+  EXPECT_EQ(c.contact_rad_s2, 0.5);
+  EXPECT_EQ(c.initial_error_rad, -0.02);
+  EXPECT_EQ(c.noise_velocity_rad_s, 2e-3);
+  EXPECT_TRUE(c.reverse);
+}
+
+struct Bad {
+  const char* text;
+  int line;
+  int column;
+  const char* message;
+};
+
+TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
+  const Bad cases[] = {
+      {"[sets.s]\nconditions = [ { name = \"c\", mass = 2.0 } ]\n", 2, 30, "unknown key 'mass'"},
+      {"[sets.s]\nconditions = [ { name = \"c\", payload_scale = -1.0 } ]\n", 2, 16,
+       "payload scale must be > 0"},
+      {"[sets.s]\nconditions = [ { name = \"c\", friction = nan } ]\n", 2, 41, "NaN"},
+      {"[sets.s]\nconditions = [ { name = \"c\" }, { name = \"c\" } ]\n", 2, 32, "duplicate"},
+      {"[sets.s]\nconditions = [ { name = \"c\", scenario = \"moon\" } ]\n", 2, 41,
+       "unknown scenario 'moon'"},
+      {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nfriction = [2.0, 1.0]\n", 4, 12, "reversed"},
+      {"[sets.s]\ndescription = \"empty\"\n", 1, 1, "has no conditions"},
+  };
+  for (const Bad& b : cases) {
+    ConditionFile f;
+    cf::Error e;
+    EXPECT_FALSE(parse_conditions(b.text, "bad.toml", f, e)) << b.text;
+    EXPECT_EQ(e.line, b.line) << b.text << e.to_string();
+    EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
+    EXPECT_NE(e.message.find(b.message), std::string::npos) << e.to_string();
+  }
+}
+
+}  // namespace
