@@ -28,8 +28,12 @@ using namespace fuzzypid;
 namespace cf = controller_file;
 constexpr std::size_t kJ = robot::kNumJoints;
 
+// Equal bit patterns (NaN payloads and the sign of zero included).
 bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  return x == y;
 }
 
 class ClosedLoopTest : public ::testing::Test {
