@@ -5,7 +5,7 @@
 #   2. werror    covered by stage 1 (FUZZYPID_WERROR=ON in the same build).
 #   3. tidy      clang-tidy (.clang-tidy) over the project's .cpp files and, through the
 #                standalone-header test sources, every public core header.
-#   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/ and the headers.
+#   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/, tests/soak/ and the headers.
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
 #   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
 # Any error, finding or sanitizer report fails the run. Environment:
@@ -77,8 +77,8 @@ stage_cppcheck() {
   cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr \
     --std=c++17 --language=c++ --quiet -j "${jobs}" \
     --suppressions-list=scripts/cppcheck-suppressions.txt \
-    -I include -I apps/common -I src/rulefile -I src/robot \
-    src apps fuzz
+    -I include -I apps/common -I src/rulefile -I src/robot -I support \
+    src apps fuzz tests/soak
   echo "cppcheck: clean"
 }
 

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <optional>
 #include <string>
@@ -148,6 +149,20 @@ inline CLI::Validator finite_in(double lo, double hi) {
         return {};
       },
       "in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]");
+}
+
+// Runs a tool's main body, turning an exception that escapes it (an allocation failure, a bug) into
+// a message and kExitFailure instead of std::terminate.
+template <class Body>
+int run_main(const char* tool, Body&& body) noexcept {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", tool, e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown exception\n", tool);
+  }
+  return kExitFailure;
 }
 
 // Parses the command line. Returns nullopt when the tool should run, else the exit code: 0 after

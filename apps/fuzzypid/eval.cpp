@@ -28,6 +28,11 @@ constexpr const char* kTool = "fuzzypid eval";
 // Rows with no rule fired are each named on stderr up to this count, then only counted.
 constexpr std::size_t kMaxNamedRows = 10;
 
+// The conjunctions the paper's table system takes, named by the enum's own to_string.
+const NameTable<fuzzy::Conjunction, 2> kAndNames = {
+    {{to_string(fuzzy::Conjunction::Minimum), fuzzy::Conjunction::Minimum},
+     {to_string(fuzzy::Conjunction::Product), fuzzy::Conjunction::Product}}};
+
 struct EvalOptions {
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
   bool corrected = false;
@@ -150,7 +155,7 @@ void add_eval_command(CLI::App& app, std::function<int()>& run) {
       "2-4). With --fis, --fll or --fcl, rows of that rule base's inputs (file order) -> the "
       "inputs followed by its outputs (docs/rule_files.md). A row on which no rule fires is "
       "reported on stderr and the run exits 1.");
-  CLI::Option* conj = add_enum_option(*cmd, "--and", options->conjunction, fuzzy::kConjunctionNames,
+  CLI::Option* conj = add_enum_option(*cmd, "--and", options->conjunction, kAndNames,
                                       "fuzzy AND of the paper's system");
   CLI::Option* corrected = cmd->add_flag(
       "--corrected", options->corrected,

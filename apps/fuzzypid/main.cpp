@@ -4,7 +4,9 @@
 #include "cli.hpp"
 #include "commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app(
       "Command-line access to fuzzypid. Each command reads comma-separated rows on stdin (a "
       "header line and # comments are allowed) and writes rows with %.17g on stdout.\n"
@@ -23,4 +25,10 @@ int main(int argc, char** argv) {
   const int code = run();
   const int written = fuzzypid::cli::finish_stdout("fuzzypid");
   return code != fuzzypid::cli::kExitOk ? code : written;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return fuzzypid::cli::run_main("fuzzypid", [&] { return run(argc, argv); });
 }

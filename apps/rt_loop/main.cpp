@@ -345,9 +345,7 @@ robot::CartesianPathSpec path_spec(double dt_s) {
   return spec;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   Options o;
   if (const auto code = parse_options(argc, argv, o)) return *code;
 
@@ -464,4 +462,10 @@ int main(int argc, char** argv) {
   if (o.max_overruns && r.overruns > *o.max_overruns) failure("more overruns than --max-overruns");
   const int written = cli::finish_stdout(kTool);
   return code != cli::kExitOk ? code : written;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::run_main(kTool, [&] { return run(argc, argv); });
 }

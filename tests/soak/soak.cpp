@@ -368,9 +368,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
   return nullptr;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_soak(int argc, char** argv) {
   Options o;
   if (const auto code = parse_options(argc, argv, o)) return *code;
 
@@ -397,4 +395,10 @@ int main(int argc, char** argv) {
   print(c, o.seed, seconds);
   const int written = cli::finish_stdout("fuzzypid_soak");
   return breach != nullptr ? cli::kExitFailure : written;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::run_main("fuzzypid_soak", [&] { return run_soak(argc, argv); });
 }

@@ -2,10 +2,7 @@
 // and the named choices of defuzzification.
 #pragma once
 
-#include <array>
 #include <cstdint>
-#include <string_view>
-#include <utility>
 
 #include "fuzzypid/scalar.hpp"
 
@@ -28,13 +25,8 @@ constexpr Scalar conjoin(Conjunction op, Scalar a, Scalar b) noexcept {
   return op == Conjunction::Minimum ? detail::min(a, b) : a * b;
 }
 
-// The names of Conjunction (command line, settings files); to_string gives the same.
-inline constexpr std::array<std::pair<std::string_view, Conjunction>, 2> kConjunctionNames = {
-    {{"min", Conjunction::Minimum}, {"prod", Conjunction::Product}}};
-
 [[nodiscard]] constexpr const char* to_string(Conjunction c) noexcept {
-  return c == Conjunction::Minimum ? kConjunctionNames[0].first.data()
-                                   : kConjunctionNames[1].first.data();
+  return c == Conjunction::Minimum ? "min" : "prod";
 }
 
 }  // namespace fuzzypid::fuzzy
