@@ -2,5 +2,5 @@
 #include "fuzz_rule_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  return fuzzypid::fuzz::run(data, size, &fuzzypid::io::parse_fis);
+  return fuzzypid::fuzz::run(data, size, &fuzzypid::rulefile::parse_fis);
 }

@@ -11,14 +11,14 @@
 #include <string_view>
 
 #include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/io/rule_file.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 
 namespace fuzzypid::fuzz {
 
-using Parser = bool (*)(std::string_view, const std::string&, io::Model&, io::LoadError&,
-                        const io::LoadOptions&);
+using Parser = bool (*)(std::string_view, const std::string&, rulefile::Model&, rulefile::LoadError&,
+                        const rulefile::LoadOptions&);
 
-inline void check_engine(const io::Model& model) {
+inline void check_engine(const rulefile::Model& model) {
   auto a = std::make_unique<fuzzy::Engine<double>>(model);
   double in[fuzzy::kMaxInputs] = {};
   double out[fuzzy::kMaxOutputs] = {};
@@ -35,9 +35,9 @@ inline int run(const std::uint8_t* data, std::size_t size, Parser parse) {
   // Cap the resolution so a fuzzed "Centroid 100000000" cannot stall the run.
   if (size > 1 << 16) return 0;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  auto model = std::make_unique<io::Model>();
-  io::LoadError error;
-  io::LoadOptions options;
+  auto model = std::make_unique<rulefile::Model>();
+  rulefile::LoadError error;
+  rulefile::LoadOptions options;
   if (!parse(text, "fuzz", *model, error, options)) {
     if (error.message.empty()) std::abort();  // every failure must say why
     return 0;
@@ -46,11 +46,11 @@ inline int run(const std::uint8_t* data, std::size_t size, Parser parse) {
     if (model->outputs[o].resolution > 10000) return 0;
   check_engine(*model);
   std::string fll, why;
-  if (!io::to_fll(*model, fll, why)) std::abort();  // every loaded model is expressible in .fll
-  auto again = std::make_unique<io::Model>();
-  if (!io::parse_fll(fll, "export", *again, error, options)) std::abort();
+  if (!rulefile::to_fll(*model, fll, why)) std::abort();  // every loaded model is expressible in .fll
+  auto again = std::make_unique<rulefile::Model>();
+  if (!rulefile::parse_fll(fll, "export", *again, error, options)) std::abort();
   std::string fis;
-  if (io::to_fis(*model, fis, why) && !io::parse_fis(fis, "export", *again, error, options))
+  if (rulefile::to_fis(*model, fis, why) && !rulefile::parse_fis(fis, "export", *again, error, options))
     std::abort();
   return 0;
 }

@@ -8,6 +8,7 @@
 #   4. cppcheck  warning, performance, portability over src/, apps/, fuzz/, tests/soak/ and the headers.
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
 #   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
+#   7. main      the README's main command, scripts/run-main.sh, as a fresh user runs it.
 # Any error, finding or sanitizer report fails the run. Environment:
 #   CI_FUZZ_SECONDS  per fuzz target (default 60)
 #   CI_SOAK_TICKS    soak length (default 10000000)
@@ -16,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$(pwd)"
 jobs="$(nproc)"
-stages="${CI_STAGES:-asan werror tidy cppcheck fuzz soak}"
+stages="${CI_STAGES:-asan werror tidy cppcheck fuzz soak main}"
 
 bash scripts/install-deps.sh
 
@@ -98,6 +99,14 @@ stage_soak() {
   "${soak}" --ticks "${CI_SOAK_TICKS:-10000000}" --seed 2
 }
 
+stage_main() {
+  bash scripts/run-main.sh
+  local f
+  for f in out/ab/metrics.csv out/ab/trajectory.csv out/sweep-payload/sweep.csv; do
+    [ -s "${f}" ] || { echo "scripts/run-main.sh did not write ${f}" >&2; return 1; }
+  done
+}
+
 total_start=${SECONDS}
 run_stage asan stage_asan
 run_stage werror stage_werror
@@ -105,5 +114,6 @@ run_stage tidy stage_tidy
 run_stage cppcheck stage_cppcheck
 run_stage fuzz stage_fuzz
 run_stage soak stage_soak
+run_stage main stage_main
 echo
 echo "== ci-checks: all stages passed in $((SECONDS - total_start)) s"

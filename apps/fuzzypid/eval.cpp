@@ -16,7 +16,7 @@
 #include "csv.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/io/rule_file.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/status.hpp"
 
@@ -69,15 +69,15 @@ int input_failure(const CsvReader& reader) {
 
 // Evaluates a rule file on every row of stdin.
 int eval_rule_file(const EvalOptions& o) {
-  auto model = std::make_unique<io::Model>();
-  io::LoadError error;
+  auto model = std::make_unique<rulefile::Model>();
+  rulefile::LoadError error;
   bool loaded = false;
   if (!o.fis.empty()) {
-    loaded = io::load_fis(o.fis, *model, error);
+    loaded = rulefile::load_fis(o.fis, *model, error);
   } else if (!o.fll.empty()) {
-    loaded = io::load_fll(o.fll, *model, error);
+    loaded = rulefile::load_fll(o.fll, *model, error);
   } else {
-    loaded = io::load_rule_file(o.fcl, *model, error);
+    loaded = rulefile::load_rule_file(o.fcl, *model, error);
   }
   if (!loaded) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.to_string().c_str());

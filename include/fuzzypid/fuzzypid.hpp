@@ -9,7 +9,6 @@
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
-#include "fuzzypid/fuzzy/mamdani_system.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/fuzzy/rule_table.hpp"

@@ -1,26 +1,34 @@
 // MATLAB Fuzzy Logic Toolbox .fis reader and writer: [System], [InputN], [OutputN] sections of
 // Key=Value lines, then [Rules] with one "antecedents, consequents (weight) : connection" line
-// per rule. Lines starting with '%' or '#' are comments.
+// per rule. Lines starting with '%' or '#' are comments; spaces may surround every delimiter (as
+// Octave and MATLAB write them).
+//
+// MF lines are taken in line order, as MATLAB's readfis and fuzzylite do: the k of `MFk=` must be
+// a distinct number in 1..NumMFs but does not reorder the terms (a file listing MF2 before MF1
+// means what MATLAB reads).
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
-#include "fuzzypid/io/rule_file.hpp"
+#include "check.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
+#include "rules.hpp"
 #include "terms.hpp"
 #include "text.hpp"
 
-namespace fuzzypid::io {
+namespace fuzzypid::rulefile {
 
 namespace {
 
+using fuzzy::Conclusion;
 using fuzzy::Defuzzifier;
-using fuzzy::kMaxInputs;
-using fuzzy::kMaxOutputs;
-using fuzzy::kMaxRules;
-using fuzzy::kMaxTerms;
+using fuzzy::Hedge;
 using fuzzy::SNorm;
 using fuzzy::TNorm;
+using fuzzy::Token;
+using Cap = Model::Capacity;
 
 struct VariableText {
   int line = 0;  // the [InputN] / [OutputN] header
@@ -33,11 +41,64 @@ struct VariableText {
   bool has_num_mfs = false;
   struct Mf {
     int line = 0;
+    std::size_t k = 0;
     std::string name;
     std::string type;
     std::vector<double> params;
   };
-  std::map<std::size_t, Mf> mfs;  // by 1-based index
+  std::vector<Mf> mfs;  // in line order
+};
+
+// A small scanner over one value: quoted strings, punctuation, bracketed lists.
+class Scanner {
+ public:
+  explicit Scanner(std::string_view s) : s_(s) {}
+  void skip() {
+    while (k_ < s_.size() && (s_[k_] == ' ' || s_[k_] == '\t'))
+      ++k_;
+  }
+  bool quoted(std::string& out) {
+    skip();
+    if (k_ >= s_.size() || s_[k_] != '\'') return false;
+    const std::size_t end = s_.find('\'', k_ + 1);
+    if (end == std::string_view::npos) return false;
+    out = std::string(s_.substr(k_ + 1, end - k_ - 1));
+    k_ = end + 1;
+    return true;
+  }
+  bool punct(char c) {
+    skip();
+    if (k_ >= s_.size() || s_[k_] != c) return false;
+    ++k_;
+    return true;
+  }
+  // "[ a b, c ]" -> words
+  bool list(std::vector<std::string_view>& out) {
+    skip();
+    if (k_ >= s_.size() || s_[k_] != '[') return false;
+    const std::size_t end = s_.find(']', k_);
+    if (end == std::string_view::npos) return false;
+    std::string_view inner = s_.substr(k_ + 1, end - k_ - 1);
+    k_ = end + 1;
+    std::size_t j = 0;
+    while (j < inner.size()) {
+      while (j < inner.size() && (inner[j] == ' ' || inner[j] == '\t' || inner[j] == ','))
+        ++j;
+      const std::size_t b = j;
+      while (j < inner.size() && inner[j] != ' ' && inner[j] != '\t' && inner[j] != ',')
+        ++j;
+      if (j > b) out.push_back(inner.substr(b, j - b));
+    }
+    return true;
+  }
+  bool at_end() {
+    skip();
+    return k_ == s_.size();
+  }
+
+ private:
+  std::string_view s_;
+  std::size_t k_ = 0;
 };
 
 class FisParser {
@@ -55,9 +116,9 @@ class FisParser {
       line_ = line.number;
       const std::string_view s = text::trim(line.text);
       if (s.empty() || s[0] == '%' || s[0] == '#') continue;
-      if (s.front() == '[') {
+      if (s.front() == '[' && section != Section::Rules) {
         if (s.back() != ']') return fail("malformed section header '" + std::string(s) + "'");
-        const std::string_view name = s.substr(1, s.size() - 2);
+        const std::string_view name = text::trim(s.substr(1, s.size() - 2));
         var = nullptr;
         if (name == "System") {
           if (seen_system_) return fail("duplicate [System] section");
@@ -66,15 +127,15 @@ class FisParser {
         } else if (name == "Rules") {
           if (seen_rules_) return fail("duplicate [Rules] section");
           seen_rules_ = true;
-          rules_line_ = line_;
           section = Section::Rules;
         } else if (name.substr(0, 5) == "Input" || name.substr(0, 6) == "Output") {
           const bool input = name[0] == 'I';
           std::size_t index = 0;
           if (!text::parse_count(name.substr(input ? 5 : 6), index) || index < 1)
             return fail("malformed section header '" + std::string(s) + "'");
-          if (index > (input ? kMaxInputs : kMaxOutputs))
-            return fail(std::string("more than ") + (input ? "8 inputs" : "8 outputs"));
+          if (index > (input ? Cap::inputs : Cap::outputs))
+            return fail(std::string("more ") + (input ? "inputs" : "outputs") +
+                        " than the capacity (" + capacity_text() + ")");
           auto& vars = input ? inputs_ : outputs_;
           if (vars.count(index)) return fail("duplicate section '" + std::string(s) + "'");
           var = &vars[index];
@@ -85,6 +146,7 @@ class FisParser {
         }
         continue;
       }
+      if (s == "[Rules]") return fail("duplicate [Rules] section");
       switch (section) {
         case Section::None:
           return fail("'" + std::string(s) + "' before any section");
@@ -114,12 +176,6 @@ class FisParser {
     return fail(message);
   }
 
-  static bool unquote(std::string_view v, std::string& out) {
-    if (v.size() < 2 || v.front() != '\'' || v.back() != '\'') return false;
-    out = std::string(v.substr(1, v.size() - 2));
-    return out.find('\'') == std::string::npos;
-  }
-
   bool split_entry(std::string_view s, std::string_view& key, std::string_view& value) {
     const std::size_t eq = s.find('=');
     if (eq == std::string_view::npos)
@@ -129,14 +185,17 @@ class FisParser {
     return true;
   }
 
+  bool quoted_value(std::string_view key, std::string_view value, std::string& out) {
+    Scanner sc(value);
+    if (!sc.quoted(out) || !sc.at_end())
+      return fail(std::string(key) + " must be a quoted string, got '" + std::string(value) + "'");
+    return true;
+  }
+
   bool system_entry(std::string_view s) {
     std::string_view key, value;
     if (!split_entry(s, key, value)) return false;
     std::string str;
-    const auto quoted = [&](const char* what) {
-      if (!unquote(value, str)) return fail(std::string(what) + " must be a quoted string");
-      return true;
-    };
     const auto count = [&](std::size_t& n, int& at) {
       if (!text::parse_count(value, n))
         return fail(std::string(key) + " must be a non-negative integer, got '" +
@@ -145,73 +204,48 @@ class FisParser {
       return true;
     };
     if (key == "Name") {
-      if (!quoted("Name")) return false;
+      if (!quoted_value(key, value, str)) return false;
       if (!fuzzy::set_name(model_.name, str.data(), str.size()))
         return fail("system name longer than 31 bytes");
       return true;
     }
     if (key == "Type") {
-      if (!quoted("Type")) return false;
+      if (!quoted_value(key, value, str)) return false;
       if (str != "mamdani" && str != "sugeno")
-        return fail("unsupported system type '" + str + "' (mamdani or sugeno)");
+        return fail("unsupported system Type '" + str + "' (mamdani or sugeno)");
       type_ = str;
-      type_line_ = line_;
       return true;
     }
-    if (key == "Version") return true;
+    if (key == "Version" || key == "DisableStructuralChecks") return true;
     if (key == "NumInputs") return count(num_inputs_, num_inputs_line_) && (has_inputs_ = true);
     if (key == "NumOutputs") return count(num_outputs_, num_outputs_line_) && (has_outputs_ = true);
     if (key == "NumRules") return count(num_rules_, num_rules_line_) && (has_rules_ = true);
     if (key == "AndMethod" || key == "ImpMethod") {
-      if (!quoted(key == "AndMethod" ? "AndMethod" : "ImpMethod")) return false;
-      TNorm& op = key == "AndMethod" ? model_.conjunction : model_.implication;
-      if (str == "min") {
-        op = TNorm::Minimum;
-      } else if (str == "prod") {
-        op = TNorm::Product;
-      } else {
-        return fail("unsupported " + std::string(key) + " '" + str + "' (min or prod)");
-      }
+      if (!quoted_value(key, value, str)) return false;
+      TNorm& op = key == "AndMethod" ? block_.conjunction : block_.implication;
+      if (!fuzzy::parse(str, fuzzy::Naming::Fis, op))
+        return fail("unsupported " + std::string(key) + " '" + str + "'");
       return true;
     }
     if (key == "OrMethod") {
-      if (!quoted("OrMethod")) return false;
-      if (str == "max") {
-        model_.disjunction = SNorm::Maximum;
-      } else if (str == "probor") {
-        model_.disjunction = SNorm::ProbabilisticSum;
-      } else {
-        return fail("unsupported OrMethod '" + str + "' (max or probor)");
-      }
+      if (!quoted_value(key, value, str)) return false;
+      if (!fuzzy::parse(str, fuzzy::Naming::Fis, block_.disjunction))
+        return fail("unsupported OrMethod '" + str + "'");
       return true;
     }
     if (key == "AggMethod") {
-      if (!quoted("AggMethod")) return false;
-      if (str == "max") {
-        aggregation_ = fuzzy::Aggregation::Maximum;
-      } else if (str == "sum") {
-        aggregation_ = fuzzy::Aggregation::Sum;
-      } else {
-        return fail("unsupported AggMethod '" + str + "' (max or sum)");
-      }
+      if (!quoted_value(key, value, str)) return false;
+      if (!fuzzy::parse(str, fuzzy::Naming::Fis, aggregation_))
+        return fail("unsupported AggMethod '" + str + "'");
       return true;
     }
     if (key == "DefuzzMethod") {
-      if (!quoted("DefuzzMethod")) return false;
-      static const std::pair<const char*, Defuzzifier> names[] = {
-          {"centroid", Defuzzifier::Centroid},    {"bisector", Defuzzifier::Bisector},
-          {"mom", Defuzzifier::MeanOfMaximum},    {"som", Defuzzifier::SmallestOfMaximum},
-          {"lom", Defuzzifier::LargestOfMaximum}, {"wtaver", Defuzzifier::WeightedAverage},
-          {"wtsum", Defuzzifier::WeightedSum}};
-      for (const auto& n : names) {
-        if (str == n.first) {
-          defuzzifier_ = n.second;
-          defuzz_line_ = line_;
-          has_defuzz_ = true;
-          return true;
-        }
-      }
-      return fail("unsupported DefuzzMethod '" + str + "'");
+      if (!quoted_value(key, value, str)) return false;
+      if (!fuzzy::parse(str, fuzzy::Naming::Fis, defuzzifier_))
+        return fail("unsupported DefuzzMethod '" + str + "'");
+      defuzz_line_ = line_;
+      has_defuzz_ = true;
+      return true;
     }
     return fail("unknown [System] key '" + std::string(key) + "'");
   }
@@ -220,14 +254,15 @@ class FisParser {
     std::string_view key, value;
     if (!split_entry(s, key, value)) return false;
     if (key == "Name") {
-      if (!unquote(value, v.name)) return fail("Name must be a quoted string");
+      if (!quoted_value(key, value, v.name)) return false;
       v.name_line = line_;
       return true;
     }
     if (key == "Range") {
-      if (value.size() < 2 || value.front() != '[' || value.back() != ']')
-        return fail("Range must be [min max]");
-      const auto words = split_list(value.substr(1, value.size() - 2));
+      Scanner sc(value);
+      std::vector<std::string_view> words;
+      if (!sc.list(words) || !sc.at_end())
+        return fail("Range must be [min max], got '" + std::string(value) + "'");
       if (words.size() != 2 || !text::parse_number(words[0], v.min) ||
           !text::parse_number(words[1], v.max))
         return fail("Range must hold two numbers, got '" + std::string(value) + "'");
@@ -238,58 +273,43 @@ class FisParser {
     }
     if (key == "NumMFs") {
       if (!text::parse_count(value, v.num_mfs))
-        return fail("NumMFs must be a non-negative integer");
+        return fail("NumMFs must be a non-negative integer, got '" + std::string(value) + "'");
       v.num_mfs_line = line_;
       v.has_num_mfs = true;
       return true;
     }
     if (key.substr(0, 2) == "MF") {
-      std::size_t index = 0;
-      if (!text::parse_count(key.substr(2), index) || index < 1)
-        return fail("malformed key '" + std::string(key) + "'");
-      if (index > kMaxTerms) return fail("more than 16 membership functions");
-      if (v.mfs.count(index)) return fail("duplicate " + std::string(key));
-      // 'name':'type',[p1 p2 ...]
       VariableText::Mf mf;
+      if (!text::parse_count(key.substr(2), mf.k) || mf.k < 1)
+        return fail("malformed key '" + std::string(key) + "'");
+      for (const auto& other : v.mfs)
+        if (other.k == mf.k) return fail("duplicate " + std::string(key));
+      // 'name' : 'type' , [p1 p2 ...]
       mf.line = line_;
-      const std::size_t colon = value.find("':'");
-      const std::size_t comma = value.find("',[");
-      if (colon == std::string_view::npos || comma == std::string_view::npos || comma < colon ||
-          value.front() != '\'' || value.back() != ']')
-        return fail("expected MFk='name':'type',[params], got '" + std::string(value) + "'");
-      mf.name = std::string(value.substr(1, colon - 1));
-      mf.type = std::string(value.substr(colon + 3, comma - colon - 3));
-      for (std::string_view word : split_list(value.substr(comma + 3, value.size() - comma - 4))) {
+      Scanner sc(value);
+      std::vector<std::string_view> words;
+      if (!sc.quoted(mf.name) || !sc.punct(':') || !sc.quoted(mf.type) || !sc.punct(',') ||
+          !sc.list(words) || !sc.at_end())
+        return fail("expected " + std::string(key) + "='name':'type',[params], got '" +
+                    std::string(value) + "'");
+      for (std::string_view word : words) {
         double x = 0;
-        if (!text::parse_number(word, x, true))
-          return fail(std::string(key) + ": '" + std::string(word) + "' is not a number");
+        if (!text::parse_number(word, x, true)) {
+          if (mf.type == "function")
+            return fail("'function' terms (formulas evaluated at run time) are not supported");
+          return fail(std::string(key) + " '" + mf.name + "': '" + std::string(word) +
+                      "' is not a number");
+        }
         mf.params.push_back(x);
       }
-      v.mfs[index] = mf;
+      v.mfs.push_back(mf);
       return true;
     }
     return fail("unknown variable key '" + std::string(key) + "'");
   }
 
-  static std::vector<std::string_view> split_list(std::string_view s) {
-    std::vector<std::string_view> out;
-    std::size_t k = 0;
-    while (k < s.size()) {
-      while (k < s.size() && (s[k] == ' ' || s[k] == '\t' || s[k] == ','))
-        ++k;
-      const std::size_t b = k;
-      while (k < s.size() && s[k] != ' ' && s[k] != '\t' && s[k] != ',')
-        ++k;
-      if (k > b) out.push_back(s.substr(b, k - b));
-    }
-    return out;
-  }
-
-  bool integer(std::string_view word, int& value) {
-    double x = 0;
-    if (!text::parse_number(word, x) || std::floor(x) != x || std::fabs(x) > 1000) return false;
-    value = static_cast<int>(x);
-    return true;
+  bool integer_code(std::string_view word, double& value) {
+    return text::parse_number(word, value) && std::fabs(value) < 1000;
   }
 
   bool rule_line(std::string_view s) {
@@ -305,13 +325,13 @@ class FisParser {
       return fail("expected 'i1 i2 ..., o1 o2 ... (weight) : connection', got '" + std::string(s) +
                   "'");
     for (std::string_view w : text::split_words(s.substr(0, comma))) {
-      int v = 0;
-      if (!integer(w, v)) return fail("rule antecedent '" + std::string(w) + "' is not an integer");
+      double v = 0;
+      if (!integer_code(w, v)) return fail("rule antecedent '" + std::string(w) + "' is not a number");
       r.antecedent.push_back(v);
     }
     for (std::string_view w : text::split_words(s.substr(comma + 1, open - comma - 1))) {
-      int v = 0;
-      if (!integer(w, v)) return fail("rule consequent '" + std::string(w) + "' is not an integer");
+      double v = 0;
+      if (!integer_code(w, v)) return fail("rule consequent '" + std::string(w) + "' is not a number");
       r.consequent.push_back(v);
     }
     if (!text::parse_number(text::trim(s.substr(open + 1, close - open - 1)), r.weight) ||
@@ -319,83 +339,120 @@ class FisParser {
       return fail("rule weight must be a number in [0, 1]");
     if (!text::trim(s.substr(close + 1, colon - close - 1)).empty())
       return fail("unexpected text between ')' and ':'");
-    int connection = 0;
-    if (!integer(text::trim(s.substr(colon + 1)), connection) ||
+    std::size_t connection = 0;
+    if (!text::parse_count(text::trim(s.substr(colon + 1)), connection) ||
         (connection != 1 && connection != 2))
-      return fail("rule connection must be 1 (and) or 2 (or)");
+      return fail("rule connection must be 1 (and) or 2 (or), got '" +
+                  std::string(text::trim(s.substr(colon + 1))) + "'");
     r.disjunction = connection == 2;
-    if (rules_.size() == kMaxRules) return fail("more than 512 rules");
+    if (rules_.size() == Cap::rules)
+      return fail("more rules than the capacity (" + capacity_text() + ")");
     rules_.push_back(r);
+    return true;
+  }
+
+  // MATLAB's index code as fuzzylite reads it: sign = not, integer part = term (0 = none),
+  // fraction = hedge (.01 seldom, .05 somewhat, .2 very, .3 extremely, .4 very very, .99 any).
+  bool decode(double code, std::size_t index, std::size_t num_terms, int& term, Token& t,
+              bool output) {
+    const double a = std::fabs(code);
+    const double whole = std::floor(a);
+    const double frac = a - whole;
+    term = static_cast<int>(whole) - 1;
+    t.num_hedges = 0;
+    if (code < 0) t.hedges[t.num_hedges++] = Hedge::Not;
+    const auto near = [&](double v) { return std::fabs(frac - v) < 1e-6; };
+    if (near(0.0) || near(1.0)) {
+      if (near(1.0)) ++term;
+    } else if (near(0.01)) {
+      t.hedges[t.num_hedges++] = Hedge::Seldom;
+    } else if (near(0.05)) {
+      t.hedges[t.num_hedges++] = Hedge::Somewhat;
+    } else if (near(0.2)) {
+      t.hedges[t.num_hedges++] = Hedge::Very;
+    } else if (near(0.3)) {
+      t.hedges[t.num_hedges++] = Hedge::Extremely;
+    } else if (near(0.4)) {
+      t.hedges[t.num_hedges++] = Hedge::Very;
+      t.hedges[t.num_hedges++] = Hedge::Very;
+    } else if (near(0.99) && term == -1 && !output) {
+      t.hedges[t.num_hedges++] = Hedge::Any;
+      t.term = Token::kAnyTerm;
+      return true;
+    } else {
+      return fail("rule index " + text::format_number(code) +
+                  " has an unknown hedge code (fractions .01 .05 .2 .3 .4, or 0.99 for any)");
+    }
+    if (term < 0 || term >= static_cast<int>(num_terms))
+      return fail("rule names term " + std::to_string(term + 1) + " of " +
+                  (output ? "output " : "input ") + std::to_string(index + 1) + ", which has " +
+                  std::to_string(num_terms));
+    t.term = static_cast<std::uint8_t>(term);
     return true;
   }
 
   bool build_variable(const VariableText& v, bool input, std::size_t index) {
     const std::string what = (input ? "[Input" : "[Output") + std::to_string(index) + "]";
     if (v.name.empty()) return fail_at(v.line, what + " has no Name");
-    if (!text::valid_identifier(v.name))
-      return fail_at(v.name_line,
-                     "variable name '" + v.name +
-                         "' must be letters, digits, '_' or '.' and not a rule keyword");
     if (v.name.size() > fuzzy::kMaxNameLength)
-      return fail_at(v.name_line, "variable name longer than 31 bytes");
-    if (!names_.insert({v.name, v.name_line}).second)
-      return fail_at(v.name_line, "duplicate variable name '" + v.name + "'");
+      return fail_at(v.name_line, "variable name '" + v.name + "' longer than 31 bytes");
     if (!v.has_range) return fail_at(v.line, what + " has no Range");
     if (!v.has_num_mfs) return fail_at(v.line, what + " has no NumMFs");
-    if (v.num_mfs < 1) return fail_at(v.num_mfs_line, "NumMFs must be at least 1");
-    if (v.num_mfs > kMaxTerms) return fail_at(v.num_mfs_line, "more than 16 membership functions");
-    if (v.mfs.size() != v.num_mfs || (!v.mfs.empty() && v.mfs.rbegin()->first != v.num_mfs))
+    if (v.num_mfs > Cap::terms)
+      return fail_at(v.num_mfs_line, "more membership functions than the capacity (" +
+                                         capacity_text() + ")");
+    if (v.mfs.size() != v.num_mfs)
       return fail_at(v.num_mfs_line, "NumMFs=" + std::to_string(v.num_mfs) + " but " +
-                                         std::to_string(v.mfs.size()) +
-                                         " MF lines (numbered 1..NumMFs) follow");
+                                         std::to_string(v.mfs.size()) + " MF lines follow");
+    for (const auto& mf : v.mfs)
+      if (mf.k > v.num_mfs)
+        return fail_at(mf.line, "MF" + std::to_string(mf.k) + " beyond NumMFs=" +
+                                    std::to_string(v.num_mfs));
     const bool sugeno = type_ == "sugeno";
-    std::map<std::string, int> term_names;
-    for (const auto& [k, mf] : v.mfs) {
-      if (!text::valid_identifier(mf.name))
-        return fail_at(mf.line, "term name '" + mf.name +
-                                    "' must be letters, digits, '_' or '.' and not a rule keyword");
+    for (std::size_t t = 0; t < v.mfs.size(); ++t) {
+      const auto& mf = v.mfs[t];
       if (mf.name.size() > fuzzy::kMaxNameLength)
-        return fail_at(mf.line, "term name longer than 31 bytes");
-      if (!term_names.insert({mf.name, mf.line}).second)
-        return fail_at(mf.line, "duplicate term name '" + mf.name + "'");
-      const std::size_t t = k - 1;
+        return fail_at(mf.line, "term name '" + mf.name + "' longer than 31 bytes");
       std::string why;
       if (input) {
         auto& in = model_.inputs[index - 1];
-        why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, in.terms[t]);
+        why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, model_, in.terms[t]);
         (void)fuzzy::set_name(in.term_names[t], mf.name.data(), mf.name.size());
       } else {
         auto& out = model_.outputs[index - 1];
         auto& term = out.terms[t];
         (void)fuzzy::set_name(out.term_names[t], mf.name.data(), mf.name.size());
-        if (sugeno) {
+        if (mf.type == "constant" || mf.type == "linear") {
+          if (!sugeno)
+            why = "'" + mf.type + "' terms need Type='sugeno'";
           for (double x : mf.params)
-            if (!std::isfinite(x)) why = "coefficients must be finite";
-          if (!why.empty()) {
-          } else if (mf.type == "constant") {
-            if (mf.params.size() != 1) why = "'constant' takes 1 parameter";
-            term.kind = fuzzy::OutputTermKind::Constant;
-            if (why.empty()) term.coefficients[0] = mf.params[0];
-          } else if (mf.type == "linear") {
-            if (mf.params.size() != num_inputs_ + 1)
-              why = "'linear' takes NumInputs + 1 = " + std::to_string(num_inputs_ + 1) +
-                    " parameters, got " + std::to_string(mf.params.size());
-            term.kind = fuzzy::OutputTermKind::Linear;
-            for (std::size_t c = 0; why.empty() && c < mf.params.size(); ++c)
-              term.coefficients[c] = mf.params[c];
-          } else {
-            why = "a sugeno output needs 'constant' or 'linear' terms, not '" + mf.type + "'";
+            if (why.empty() && !std::isfinite(x)) why = "coefficients must be finite";
+          std::vector<double> p = mf.params;
+          const std::size_t want = mf.type == "constant" ? 1 : num_inputs_ + 1;
+          while (p.size() > want && p.back() == 0.0)  // MATLAB 1.x zero padding
+            p.pop_back();
+          if (why.empty() && p.size() != want)
+            why = "'" + mf.type + "' takes " + std::to_string(want) + " parameters, got " +
+                  std::to_string(mf.params.size());
+          if (why.empty()) {
+            term.kind = mf.type == "constant" ? fuzzy::OutputTermKind::Constant
+                                              : fuzzy::OutputTermKind::Linear;
+            for (std::size_t c = 0; c < p.size(); ++c)
+              term.coefficients[c] = p[c];
           }
+        } else if (sugeno) {
+          why = "a sugeno output needs 'constant' or 'linear' terms, not '" + mf.type + "'";
         } else {
           term.kind = fuzzy::OutputTermKind::Membership;
-          why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, term.membership);
+          why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, model_,
+                                       term.membership);
           if (why.empty() && options_.exact_centroid && defuzzifier_ == Defuzzifier::Centroid &&
               !fuzzy::is_piecewise_linear(term.membership))
             why = "'" + mf.type + "' is not piecewise linear (exact centroid requested)";
         }
       }
       if (!why.empty())
-        return fail_at(mf.line, "MF" + std::to_string(k) + " '" + mf.name + "': " + why);
+        return fail_at(mf.line, "MF" + std::to_string(mf.k) + " '" + mf.name + "': " + why);
     }
     if (input) {
       auto& in = model_.inputs[index - 1];
@@ -403,6 +460,7 @@ class FisParser {
       in.min = v.min;
       in.max = v.max;
       in.num_terms = v.num_mfs;
+      lines_.inputs.push_back(v.line);
     } else {
       auto& out = model_.outputs[index - 1];
       (void)fuzzy::set_name(out.name, v.name.data(), v.name.size());
@@ -412,7 +470,8 @@ class FisParser {
       out.defuzzifier = defuzzifier_;
       out.aggregation = aggregation_;
       out.resolution = options_.fis_resolution;
-      out.exact_centroid = options_.exact_centroid;
+      out.exact_centroid = options_.exact_centroid && !sugeno;
+      lines_.outputs.push_back(v.line);
     }
     return true;
   }
@@ -426,11 +485,13 @@ class FisParser {
     const bool sugeno = type_ == "sugeno";
     if (sugeno != fuzzy::is_sugeno(defuzzifier_))
       return fail_at(defuzz_line_, "DefuzzMethod does not fit Type='" + type_ + "'");
-    if (num_inputs_ < 1 || num_inputs_ > kMaxInputs)
-      return fail_at(num_inputs_line_, "NumInputs must be in 1..8");
-    if (num_outputs_ < 1 || num_outputs_ > kMaxOutputs)
-      return fail_at(num_outputs_line_, "NumOutputs must be in 1..8");
-    if (num_rules_ > kMaxRules) return fail_at(num_rules_line_, "NumRules must be at most 512");
+    if (num_inputs_ < 1 || num_inputs_ > Cap::inputs)
+      return fail_at(num_inputs_line_, "NumInputs must be in 1.." + std::to_string(Cap::inputs));
+    if (num_outputs_ < 1 || num_outputs_ > Cap::outputs)
+      return fail_at(num_outputs_line_,
+                     "NumOutputs must be in 1.." + std::to_string(Cap::outputs));
+    if (num_rules_ > Cap::rules)
+      return fail_at(num_rules_line_, "NumRules above the capacity (" + capacity_text() + ")");
     if (options_.fis_resolution < 1) return fail_at(0, "LoadOptions::fis_resolution must be >= 1");
     model_.num_inputs = num_inputs_;
     model_.num_outputs = num_outputs_;
@@ -456,8 +517,9 @@ class FisParser {
     if (rules_.size() != num_rules_)
       return fail_at(num_rules_line_, "NumRules=" + std::to_string(num_rules_) + " but " +
                                           std::to_string(rules_.size()) + " rules follow");
-    for (std::size_t r = 0; r < rules_.size(); ++r) {
-      const RuleText& rt = rules_[r];
+    model_.num_blocks = 1;
+    model_.blocks[0] = block_;
+    for (const RuleText& rt : rules_) {
       line_ = rt.line;
       if (rt.antecedent.size() != num_inputs_)
         return fail("rule has " + std::to_string(rt.antecedent.size()) +
@@ -465,43 +527,42 @@ class FisParser {
       if (rt.consequent.size() != num_outputs_)
         return fail("rule has " + std::to_string(rt.consequent.size()) +
                     " consequent indices, NumOutputs is " + std::to_string(num_outputs_));
-      fuzzy::Rule<double> rule;
-      std::size_t antecedents = 0, consequents = 0;
+      std::vector<Token> tokens;
       for (std::size_t i = 0; i < num_inputs_; ++i) {
-        const int a = rt.antecedent[i];
-        if (std::abs(a) > static_cast<int>(model_.inputs[i].num_terms))
-          return fail("rule names term " + std::to_string(a) + " of input " +
-                      std::to_string(i + 1) + ", which has " +
-                      std::to_string(model_.inputs[i].num_terms));
-        rule.antecedent[i] = static_cast<std::int8_t>(a);
-        antecedents += a != 0;
+        if (rt.antecedent[i] == 0) continue;
+        Token t{Token::Kind::Proposition, static_cast<std::uint8_t>(i), 0, 0, {}};
+        int term = 0;
+        if (!decode(rt.antecedent[i], i, model_.inputs[i].num_terms, term, t, false)) return false;
+        tokens.push_back(t);
+        if (tokens.size() > 1)
+          tokens.push_back({rt.disjunction ? Token::Kind::Or : Token::Kind::And, 0, 0, 0, {}});
       }
+      std::vector<Conclusion> conclusions;
       for (std::size_t o = 0; o < num_outputs_; ++o) {
-        const int c = rt.consequent[o];
-        if (c < 0) return fail("negated consequents are not supported");
-        if (c > static_cast<int>(model_.outputs[o].num_terms))
-          return fail("rule names term " + std::to_string(c) + " of output " +
-                      std::to_string(o + 1) + ", which has " +
-                      std::to_string(model_.outputs[o].num_terms));
-        rule.consequent[o] = static_cast<std::int8_t>(c);
-        consequents += c != 0;
+        if (rt.consequent[o] == 0) continue;
+        if (rt.consequent[o] < 0)
+          return fail("negated consequent " + text::format_number(rt.consequent[o]) +
+                      " is not supported");
+        Token t{};
+        int term = 0;
+        if (!decode(rt.consequent[o], o, model_.outputs[o].num_terms, term, t, true)) return false;
+        Conclusion c{static_cast<std::uint8_t>(o), t.term, t.num_hedges, t.hedges};
+        conclusions.push_back(c);
       }
-      if (antecedents == 0) return fail("rule has no antecedent (all indices 0)");
-      if (consequents == 0) return fail("rule has no consequent (all indices 0)");
-      rule.weight = rt.weight;
-      rule.disjunction = rt.disjunction;
-      model_.rules[r] = rule;
+      if (tokens.empty()) return fail("rule has no antecedent (all indices 0)");
+      if (conclusions.empty()) return fail("rule has no consequent (all indices 0)");
+      if (!model_.add_rule(tokens.data(), tokens.size(), conclusions.data(), conclusions.size(),
+                           rt.weight, 0))
+        return fail("rules exceed the capacity (" + capacity_text() + ")");
+      lines_.rules.push_back(rt.line);
     }
-    model_.num_rules = rules_.size();
-    const fuzzy::ModelError e = model_.validate();
-    if (e) return fail_at(0, e.message);
-    return true;
+    return check_model(model_, lines_, error_);
   }
 
   struct RuleText {
     int line = 0;
-    std::vector<int> antecedent;
-    std::vector<int> consequent;
+    std::vector<double> antecedent;
+    std::vector<double> consequent;
     double weight = 1;
     bool disjunction = false;
   };
@@ -512,20 +573,78 @@ class FisParser {
   int line_ = 0;
   bool seen_system_ = false;
   bool seen_rules_ = false;
-  int rules_line_ = 0;
   std::string type_;
-  int type_line_ = 0;
   std::size_t num_inputs_ = 0, num_outputs_ = 0, num_rules_ = 0;
   int num_inputs_line_ = 0, num_outputs_line_ = 0, num_rules_line_ = 0;
   bool has_inputs_ = false, has_outputs_ = false, has_rules_ = false, has_defuzz_ = false;
   Defuzzifier defuzzifier_ = Defuzzifier::Centroid;
   int defuzz_line_ = 0;
-  fuzzy::Aggregation aggregation_ = fuzzy::Aggregation::Maximum;
+  fuzzy::RuleBlock block_{};
+  SNorm aggregation_ = SNorm::Maximum;
   std::map<std::size_t, VariableText> inputs_;
   std::map<std::size_t, VariableText> outputs_;
-  std::map<std::string, int> names_;
   std::vector<RuleText> rules_;
+  SourceLines lines_;
 };
+
+// A rule's antecedent as MATLAB's row: one code per input joined all by and or all by or; false
+// when the rule does not have that form.
+bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<double>& codes,
+                bool& disjunction, std::string& why) {
+  codes.assign(m.num_inputs, 0.0);
+  int connective = 0;  // 0 none yet, 1 and, 2 or
+  for (std::size_t k = 0; k < rule.num_tokens; ++k) {
+    const Token& t = m.tokens[rule.first_token + k];
+    if (t.kind != Token::Kind::Proposition) {
+      const int c = t.kind == Token::Kind::And ? 1 : 2;
+      if (connective != 0 && connective != c) {
+        why = "a rule mixes 'and' and 'or'";
+        return false;
+      }
+      connective = c;
+      // Postfix of a left fold: operators follow the second and later propositions.
+      if (k < 2 || m.tokens[rule.first_token + k - 1].kind != Token::Kind::Proposition) {
+        why = "a rule groups propositions with parentheses";
+        return false;
+      }
+      continue;
+    }
+    if (codes[t.input] != 0.0) {
+      why = "a rule names an input twice";
+      return false;
+    }
+    double code = t.term == Token::kAnyTerm ? 0.0 : t.term + 1.0;
+    bool negate = false;
+    std::size_t h = 0;
+    if (h < t.num_hedges && t.hedges[h] == Hedge::Not) {
+      negate = true;
+      ++h;
+    }
+    if (h < t.num_hedges) {
+      const std::size_t rest = t.num_hedges - h;
+      const Hedge first = t.hedges[h];
+      if (rest == 2 && first == Hedge::Very && t.hedges[h + 1] == Hedge::Very) {
+        code += 0.4;
+      } else if (rest == 1 && first == Hedge::Seldom) {
+        code += 0.01;
+      } else if (rest == 1 && first == Hedge::Somewhat) {
+        code += 0.05;
+      } else if (rest == 1 && first == Hedge::Very) {
+        code += 0.2;
+      } else if (rest == 1 && first == Hedge::Extremely) {
+        code += 0.3;
+      } else if (rest == 1 && first == Hedge::Any) {
+        code = 0.99;
+      } else {
+        why = "a rule has hedges .fis cannot encode";
+        return false;
+      }
+    }
+    codes[t.input] = negate ? -code : code;
+  }
+  disjunction = connective == 2;
+  return true;
+}
 
 }  // namespace
 
@@ -540,6 +659,11 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
     error = std::string("invalid model: ") + e.message;
     return false;
   }
+  if (m.num_blocks != 1) {
+    error = ".fis has one rule block, the model has " + std::to_string(m.num_blocks);
+    return false;
+  }
+  const auto& block = m.blocks[0];
   const auto& first = m.outputs[0];
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];
@@ -554,31 +678,37 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
               "' has lock-range or a default value, which .fis cannot express";
       return false;
     }
+    if (!(std::isfinite(v.min) && std::isfinite(v.max))) {
+      error = "output '" + std::string(text::name_of(v.name)) + "' has an infinite range";
+      return false;
+    }
+    if (!fuzzy::is_sugeno(v.defuzzifier) && v.resolution != 100) {
+      error = "output '" + std::string(text::name_of(v.name)) + "' has resolution " +
+              std::to_string(v.resolution) + "; .fis has none (readers use 100)";
+      return false;
+    }
   }
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
-    if (m.inputs[i].lock_range) {
+    if (m.inputs[i].lock_range || !std::isfinite(m.inputs[i].min) ||
+        !std::isfinite(m.inputs[i].max)) {
       error = "input '" + std::string(text::name_of(m.inputs[i].name)) +
-              "' has lock-range, which .fis cannot express";
+              "' has lock-range or an infinite range, which .fis cannot express";
       return false;
     }
   }
   using text::format_number;
   const bool sugeno = fuzzy::is_sugeno(first.defuzzifier);
-  static const char* const defuzz[] = {"centroid", "bisector", "mom",  "som",
-                                       "lom",      "wtaver",   "wtsum"};
   std::string s = "[System]\n";
   s += "Name=" + text::quoted(text::name_of(m.name)) + "\n";
   s += std::string("Type='") + (sugeno ? "sugeno" : "mamdani") + "'\nVersion=2.0\n";
   s += "NumInputs=" + std::to_string(m.num_inputs) + "\n";
   s += "NumOutputs=" + std::to_string(m.num_outputs) + "\n";
   s += "NumRules=" + std::to_string(m.num_rules) + "\n";
-  s += std::string("AndMethod='") + (m.conjunction == TNorm::Product ? "prod" : "min") + "'\n";
-  s += std::string("OrMethod='") + (m.disjunction == SNorm::ProbabilisticSum ? "probor" : "max") +
-       "'\n";
-  s += std::string("ImpMethod='") + (m.implication == TNorm::Product ? "prod" : "min") + "'\n";
-  s += std::string("AggMethod='") + (first.aggregation == fuzzy::Aggregation::Sum ? "sum" : "max") +
-       "'\n";
-  s += std::string("DefuzzMethod='") + defuzz[static_cast<int>(first.defuzzifier)] + "'\n";
+  s += std::string("AndMethod='") + fuzzy::names(block.conjunction).fis + "'\n";
+  s += std::string("OrMethod='") + fuzzy::names(block.disjunction).fis + "'\n";
+  s += std::string("ImpMethod='") + fuzzy::names(block.implication).fis + "'\n";
+  s += std::string("AggMethod='") + fuzzy::names(first.aggregation).fis + "'\n";
+  s += std::string("DefuzzMethod='") + fuzzy::names(first.defuzzifier).fis + "'\n";
   const auto variable = [&](const char* kind, std::size_t index, const fuzzy::Name& name, double lo,
                             double hi, std::size_t n) {
     s += "\n[" + std::string(kind) + std::to_string(index + 1) + "]\n";
@@ -590,10 +720,10 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
     const auto& in = m.inputs[i];
     variable("Input", i, in.name, in.min, in.max, in.num_terms);
     for (std::size_t t = 0; t < in.num_terms; ++t) {
-      const std::string w = terms::write_membership(terms::Format::Fis, in.terms[t]);
+      const std::string w = terms::write_membership(terms::Format::Fis, in.terms[t], m);
       if (w.empty()) {
         error = "input term '" + std::string(text::name_of(in.term_names[t])) +
-                "' has a shape .fis cannot express";
+                "' has a shape or height .fis cannot express";
         return false;
       }
       s += "MF" + std::to_string(t + 1) + "=" + text::quoted(text::name_of(in.term_names[t])) +
@@ -614,11 +744,11 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
           w += (c ? " " : "") + format_number(term.coefficients[c]);
         w += "]";
       } else {
-        w = terms::write_membership(terms::Format::Fis, term.membership);
+        w = terms::write_membership(terms::Format::Fis, term.membership, m);
       }
       if (w.empty()) {
         error = "output term '" + std::string(text::name_of(v.term_names[t])) +
-                "' has a shape .fis cannot express";
+                "' has a shape or height .fis cannot express";
         return false;
       }
       s += "MF" + std::to_string(t + 1) + "=" + text::quoted(text::name_of(v.term_names[t])) + ":" +
@@ -628,17 +758,35 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
   s += "\n[Rules]\n";
   for (std::size_t r = 0; r < m.num_rules; ++r) {
     const auto& rule = m.rules[r];
+    std::vector<double> codes;
+    bool disjunction = false;
+    std::string why;
+    if (!matlab_row(m, rule, codes, disjunction, why)) {
+      error = "rule " + std::to_string(r + 1) + ": " + why + ", which .fis cannot express";
+      return false;
+    }
+    std::vector<double> outs(m.num_outputs, 0.0);
+    double degree_hedges = 0;
+    for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
+      const auto& c = m.conclusions[rule.first_conclusion + k];
+      degree_hedges += c.num_hedges;
+      outs[c.output] = c.term + 1.0;
+    }
+    if (degree_hedges > 0) {
+      error = "rule " + std::to_string(r + 1) + " has hedged conclusions, which .fis cannot express";
+      return false;
+    }
     std::string line;
     for (std::size_t i = 0; i < m.num_inputs; ++i)
-      line += (i ? " " : "") + std::to_string(rule.antecedent[i]);
+      line += (i ? " " : "") + format_number(codes[i]);
     line += ",";
     for (std::size_t o = 0; o < m.num_outputs; ++o)
-      line += " " + std::to_string(rule.consequent[o]);
-    line += " (" + format_number(rule.weight) + ") : " + (rule.disjunction ? "2" : "1");
+      line += " " + format_number(outs[o]);
+    line += " (" + format_number(rule.weight) + ") : " + (disjunction ? "2" : "1");
     s += line + "\n";
   }
   out = std::move(s);
   return true;
 }
 
-}  // namespace fuzzypid::io
+}  // namespace fuzzypid::rulefile

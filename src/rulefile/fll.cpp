@@ -1,24 +1,27 @@
 // fuzzylite .fll reader and writer. The grammar is fuzzylite 6's FllImporter: one `key: value`
-// per line, `#` starts a comment, sections Engine / InputVariable / OutputVariable / RuleBlock.
+// per line, `#` starts a comment, sections Engine / InputVariable / OutputVariable / RuleBlock
+// (several rule blocks allowed). Names are read the way fuzzylite reads them (characters other
+// than letters, digits, '_' and '.' dropped).
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
-#include "fuzzypid/io/rule_file.hpp"
+#include "check.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
+#include "rules.hpp"
 #include "terms.hpp"
 #include "text.hpp"
 
-namespace fuzzypid::io {
+namespace fuzzypid::rulefile {
 
 namespace {
 
 using fuzzy::Defuzzifier;
-using fuzzy::kMaxInputs;
-using fuzzy::kMaxOutputs;
-using fuzzy::kMaxRules;
-using fuzzy::kMaxTerms;
 using fuzzy::SNorm;
 using fuzzy::TNorm;
+using Cap = Model::Capacity;
 
 enum class Section { None, Engine, Input, Output, RuleBlock };
 
@@ -31,10 +34,7 @@ class FllParser {
 
   bool parse(std::string_view text) {
     model_ = Model{};
-    // Until a RuleBlock states them, the operators are unset.
-    model_.conjunction = TNorm::None;
-    model_.disjunction = SNorm::None;
-    model_.implication = TNorm::None;
+    model_.num_blocks = 0;
     for (const text::Line& line : text::split_lines(text)) {
       line_ = line.number;
       std::string_view s = line.text;
@@ -47,6 +47,7 @@ class FllParser {
         return fail("expected 'key: value', got '" + std::string(s) + "'");
       if (!property(text::trim(s.substr(0, colon)), text::trim(s.substr(colon + 1)))) return false;
     }
+    end_block();
     return finish();
   }
 
@@ -55,6 +56,21 @@ class FllParser {
     error_.line = line_;
     error_.message = message;
     return false;
+  }
+  bool fail_at(int line, const std::string& message) {
+    line_ = line;
+    return fail(message);
+  }
+
+  // Drops the rules of a disabled block (fuzzylite skips it).
+  void end_block() {
+    if (section_ == Section::RuleBlock && !block_enabled_) {
+      model_.num_rules = block_first_rule_;
+      model_.num_tokens = block_first_token_;
+      model_.num_conclusions = block_first_conclusion_;
+      lines_.rules.resize(block_first_rule_);
+      --model_.num_blocks;
+    }
   }
 
   bool property(std::string_view key, std::string_view value) {
@@ -66,25 +82,33 @@ class FllParser {
         return fail("engine name longer than 31 bytes");
       return true;
     }
-    if (!seen_engine_ && (key == "InputVariable" || key == "OutputVariable" || key == "RuleBlock"))
-      return fail("'Engine:' must come first");
+    if (key == "InputVariable" || key == "OutputVariable" || key == "RuleBlock") {
+      end_block();
+      if (!seen_engine_) seen_engine_ = true;  // fuzzylite allows an unnamed engine
+    }
     if (key == "InputVariable" || key == "OutputVariable") {
       const bool input = key == "InputVariable";
-      if (seen_rule_block_) return fail("variables must come before the RuleBlock");
-      if (!check_new_variable_name(value)) return false;
+      const std::string name = text::sanitized(value);
+      if (!check_new_variable_name(name)) return false;
+      const double inf = std::numeric_limits<double>::infinity();
       if (input) {
-        if (model_.num_inputs == kMaxInputs) return fail("more than 8 input variables");
+        if (model_.num_inputs == Cap::inputs)
+          return fail("more inputs than the capacity (" + capacity_text() + ")");
         auto& in = model_.inputs[model_.num_inputs++];
-        (void)fuzzy::set_name(in.name, value.data(), value.size());
-        input_lines_.push_back(line_);
+        (void)fuzzy::set_name(in.name, name.data(), name.size());
+        in.min = -inf;
+        in.max = inf;
+        lines_.inputs.push_back(line_);
         section_ = Section::Input;
       } else {
-        if (model_.num_outputs == kMaxOutputs) return fail("more than 8 output variables");
+        if (model_.num_outputs == Cap::outputs)
+          return fail("more outputs than the capacity (" + capacity_text() + ")");
         auto& out = model_.outputs[model_.num_outputs++];
-        out = fuzzy::OutputSpec<double>{};
-        (void)fuzzy::set_name(out.name, value.data(), value.size());
+        (void)fuzzy::set_name(out.name, name.data(), name.size());
+        out.min = -inf;
+        out.max = inf;
         out.exact_centroid = options_.exact_centroid;
-        output_lines_.push_back(line_);
+        lines_.outputs.push_back(line_);
         defuzzifier_seen_.push_back(false);
         aggregation_seen_.push_back(false);
         section_ = Section::Output;
@@ -92,9 +116,16 @@ class FllParser {
       return true;
     }
     if (key == "RuleBlock") {
-      if (seen_rule_block_) return fail("more than one RuleBlock is not supported");
-      seen_rule_block_ = true;
-      rule_block_line_ = line_;
+      if (model_.num_blocks == Cap::blocks)
+        return fail("more rule blocks than the capacity (" + std::to_string(Cap::blocks) + ")");
+      auto& b = model_.blocks[model_.num_blocks++];
+      b = fuzzy::RuleBlock{};
+      b.has_conjunction = b.has_disjunction = b.has_implication = false;
+      (void)fuzzy::set_name(b.name, value.data(), std::min(value.size(), fuzzy::kMaxNameLength));
+      block_enabled_ = true;
+      block_first_rule_ = model_.num_rules;
+      block_first_token_ = model_.num_tokens;
+      block_first_conclusion_ = model_.num_conclusions;
       section_ = Section::RuleBlock;
       return true;
     }
@@ -113,17 +144,16 @@ class FllParser {
     return fail("unreachable");
   }
 
-  bool check_new_variable_name(std::string_view name) {
-    if (!text::valid_identifier(name))
-      return fail("variable name '" + std::string(name) +
-                  "' must be letters, digits, '_' or '.' and not a rule keyword");
+  bool check_new_variable_name(const std::string& name) {
+    if (name.empty() || text::is_reserved(name))
+      return fail("variable name '" + name + "' is empty or a rule keyword");
     if (name.size() > fuzzy::kMaxNameLength) return fail("variable name longer than 31 bytes");
     for (std::size_t i = 0; i < model_.num_inputs; ++i)
       if (text::name_of(model_.inputs[i].name) == name)
-        return fail("duplicate variable name '" + std::string(name) + "'");
+        return fail("duplicate variable name '" + name + "'");
     for (std::size_t o = 0; o < model_.num_outputs; ++o)
       if (text::name_of(model_.outputs[o].name) == name)
-        return fail("duplicate variable name '" + std::string(name) + "'");
+        return fail("duplicate variable name '" + name + "'");
     return true;
   }
 
@@ -140,13 +170,12 @@ class FllParser {
 
   bool variable_property(std::string_view key, std::string_view value) {
     const bool input = section_ == Section::Input;
-    // The current variable is the last one declared of its kind (the other kind may have none).
     auto& in = model_.inputs[input ? model_.num_inputs - 1 : 0];
     auto& out = model_.outputs[input ? 0 : model_.num_outputs - 1];
     if (key == "enabled") {
       bool enabled = true;
       if (!boolean(value, enabled)) return false;
-      return enabled ? true : fail("disabled variables are not supported");
+      return enabled ? true : fail("disabled variables (enabled: false) are not supported");
     }
     if (key == "range") {
       const auto words = text::split_words(value);
@@ -154,8 +183,7 @@ class FllParser {
       if (words.size() != 2 || !text::parse_number(words[0], lo) ||
           !text::parse_number(words[1], hi))
         return fail("range takes two numbers, got '" + std::string(value) + "'");
-      if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi))
-        return fail("range must be finite with min < max, got '" + std::string(value) + "'");
+      if (!(lo < hi)) return fail("range must have min < max, got '" + std::string(value) + "'");
       (input ? in.min : out.min) = lo;
       (input ? in.max : out.max) = hi;
       return true;
@@ -163,18 +191,10 @@ class FllParser {
     if (key == "lock-range") return boolean(value, input ? in.lock_range : out.lock_range);
     if (key == "term") return term(value);
     if (input) return fail("unknown InputVariable property '" + std::string(key) + "'");
-    if (key == "aggregation") {
-      aggregation_seen_.back() = true;
-      if (value == "Maximum") {
-        out.aggregation = fuzzy::Aggregation::Maximum;
-      } else if (value == "UnboundedSum") {
-        out.aggregation = fuzzy::Aggregation::Sum;
-      } else if (value == "none") {
-        aggregation_seen_.back() = false;
-      } else {
-        return fail("unsupported aggregation '" + std::string(value) +
-                    "' (Maximum, UnboundedSum or none)");
-      }
+    if (key == "aggregation" || key == "accumulation") {
+      aggregation_seen_.back() = value != "none";
+      if (value != "none" && !fuzzy::parse(value, fuzzy::Naming::Fuzzylite, out.aggregation))
+        return fail("unsupported " + std::string(key) + " '" + std::string(value) + "'");
       return true;
     }
     if (key == "defuzzifier") return defuzzifier(value, out);
@@ -185,10 +205,11 @@ class FllParser {
       out.default_value = d;
       return true;
     }
-    if (key == "lock-previous") {
+    if (key == "lock-previous" || key == "lock-valid") {
       bool lock = false;
       if (!boolean(value, lock)) return false;
-      return lock ? fail("lock-previous: true is not supported (the engine is stateless)") : true;
+      return lock ? fail(std::string(key) + ": true is not supported (the engine is stateless)")
+                  : true;
     }
     return fail("unknown OutputVariable property '" + std::string(key) + "'");
   }
@@ -196,21 +217,14 @@ class FllParser {
   bool defuzzifier(std::string_view value, fuzzy::OutputSpec<double>& out) {
     const auto words = text::split_words(value);
     if (words.empty()) return fail("defuzzifier needs a name");
-    const std::string_view name = words[0];
-    struct Named {
-      const char* name;
-      Defuzzifier d;
-    };
-    static const Named integral[] = {{"Centroid", Defuzzifier::Centroid},
-                                     {"Bisector", Defuzzifier::Bisector},
-                                     {"MeanOfMaximum", Defuzzifier::MeanOfMaximum},
-                                     {"SmallestOfMaximum", Defuzzifier::SmallestOfMaximum},
-                                     {"LargestOfMaximum", Defuzzifier::LargestOfMaximum}};
-    for (const auto& n : integral) {
-      if (name != n.name) continue;
-      out.defuzzifier = n.d;
+    if (words[0] == "none") return true;
+    Defuzzifier d{};
+    if (!fuzzy::parse(words[0], fuzzy::Naming::Fuzzylite, d))
+      return fail("unsupported defuzzifier '" + std::string(words[0]) + "'");
+    out.defuzzifier = d;
+    if (words.size() > 2) return fail("defuzzifier takes at most one parameter");
+    if (!fuzzy::is_sugeno(d)) {
       out.resolution = 100;
-      if (words.size() > 2) return fail("defuzzifier takes at most a resolution");
       if (words.size() == 2) {
         std::size_t r = 0;
         if (!text::parse_count(words[1], r) || r < 1 || r > 100000000)
@@ -218,38 +232,32 @@ class FllParser {
                       "'");
         out.resolution = static_cast<int>(r);
       }
-      defuzzifier_seen_.back() = true;
-      return true;
+    } else if (words.size() == 2 && words[1] != "Automatic" && words[1] != "TakagiSugeno") {
+      return fail("unsupported weighted defuzzifier type '" + std::string(words[1]) +
+                  "' (Automatic or TakagiSugeno; Tsukamoto is not supported)");
     }
-    if (name == "WeightedAverage" || name == "WeightedSum") {
-      out.defuzzifier =
-          name == "WeightedAverage" ? Defuzzifier::WeightedAverage : Defuzzifier::WeightedSum;
-      if (words.size() > 2) return fail("defuzzifier takes at most a type");
-      if (words.size() == 2 && words[1] != "Automatic" && words[1] != "TakagiSugeno")
-        return fail("unsupported weighted defuzzifier type '" + std::string(words[1]) +
-                    "' (Automatic or TakagiSugeno)");
-      defuzzifier_seen_.back() = true;
-      return true;
-    }
-    return fail("unsupported defuzzifier '" + std::string(name) + "'");
+    defuzzifier_seen_.back() = true;
+    return true;
   }
 
   bool term(std::string_view value) {
     const bool input = section_ == Section::Input;
     const auto words = text::split_words(value);
     if (words.size() < 2) return fail("term needs a name, a type and parameters");
-    const std::string_view name = words[0];
+    const std::string name = text::sanitized(words[0]);
     const std::string_view type = words[1];
-    if (!text::valid_identifier(name))
-      return fail("term name '" + std::string(name) +
-                  "' must be letters, digits, '_' or '.' and not a rule keyword");
+    if (name.empty() || text::is_reserved(name))
+      return fail("term name '" + std::string(words[0]) + "' is empty or a rule keyword");
     if (name.size() > fuzzy::kMaxNameLength) return fail("term name longer than 31 bytes");
     std::vector<double> p;
     for (std::size_t k = 2; k < words.size(); ++k) {
       double x = 0;
-      if (!text::parse_number(words[k], x, true))
-        return fail("term '" + std::string(name) + "': '" + std::string(words[k]) +
-                    "' is not a number");
+      if (!text::parse_number(words[k], x, true)) {
+        if (type == "Function")
+          return fail("term '" + name +
+                      "': 'Function' terms (formulas evaluated at run time) are not supported");
+        return fail("term '" + name + "': '" + std::string(words[k]) + "' is not a number");
+      }
       p.push_back(x);
     }
     std::size_t& count = input ? model_.inputs[model_.num_inputs - 1].num_terms
@@ -257,38 +265,39 @@ class FllParser {
     auto& names = input ? model_.inputs[model_.num_inputs - 1].term_names
                         : model_.outputs[model_.num_outputs - 1].term_names;
     for (std::size_t t = 0; t < count; ++t)
-      if (text::name_of(names[t]) == name)
-        return fail("duplicate term name '" + std::string(name) + "'");
-    if (count == kMaxTerms) return fail("more than 16 terms in a variable");
+      if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
+    if (count == Cap::terms)
+      return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     if (input) {
+      if (type == "Constant" || type == "Linear")
+        return fail("term '" + name + "': '" + std::string(type) +
+                    "' is an output term (not a membership function of an input)");
       auto& t = model_.inputs[model_.num_inputs - 1].terms[count];
-      const std::string why = terms::make_membership(terms::Format::Fll, type, p, t);
-      if (!why.empty()) return fail("term '" + std::string(name) + "': " + why);
+      const std::string why = terms::make_membership(terms::Format::Fll, type, p, model_, t);
+      if (!why.empty()) return fail("term '" + name + "': " + why);
     } else {
       auto& t = model_.outputs[model_.num_outputs - 1].terms[count];
       if (type == "Constant" || type == "Linear") {
         for (double x : p)
-          if (!std::isfinite(x))
-            return fail("term '" + std::string(name) + "': coefficients must be finite");
+          if (!std::isfinite(x)) return fail("term '" + name + "': coefficients must be finite");
         if (type == "Constant") {
-          if (p.size() != 1)
-            return fail("term '" + std::string(name) + "': Constant takes 1 value");
+          if (p.size() != 1) return fail("term '" + name + "': Constant takes 1 value");
           t.kind = fuzzy::OutputTermKind::Constant;
           t.coefficients[0] = p[0];
         } else {
           const std::size_t n = model_.num_inputs;
           if (p.size() != n && p.size() != n + 1)
-            return fail("term '" + std::string(name) + "': Linear takes " + std::to_string(n) +
-                        " or " + std::to_string(n + 1) + " coefficients, got " +
-                        std::to_string(p.size()));
+            return fail("term '" + name + "': Linear takes " + std::to_string(n) + " or " +
+                        std::to_string(n + 1) + " coefficients, got " + std::to_string(p.size()));
           t.kind = fuzzy::OutputTermKind::Linear;
           for (std::size_t k = 0; k < p.size(); ++k)
             t.coefficients[k] = p[k];
         }
       } else {
         t.kind = fuzzy::OutputTermKind::Membership;
-        const std::string why = terms::make_membership(terms::Format::Fll, type, p, t.membership);
-        if (!why.empty()) return fail("term '" + std::string(name) + "': " + why);
+        const std::string why =
+            terms::make_membership(terms::Format::Fll, type, p, model_, t.membership);
+        if (!why.empty()) return fail("term '" + name + "': " + why);
       }
     }
     (void)fuzzy::set_name(names[count], name.data(), name.size());
@@ -297,194 +306,62 @@ class FllParser {
   }
 
   bool rule_block_property(std::string_view key, std::string_view value) {
-    if (key == "enabled") {
-      bool enabled = true;
-      if (!boolean(value, enabled)) return false;
-      return enabled ? true : fail("a disabled RuleBlock is not supported");
-    }
-    if (key == "conjunction" || key == "implication") {
-      TNorm& op = key == "conjunction" ? model_.conjunction : model_.implication;
-      if (value == "Minimum") {
-        op = TNorm::Minimum;
-      } else if (value == "AlgebraicProduct") {
-        op = TNorm::Product;
-      } else if (value == "none") {
-        op = TNorm::None;
-      } else {
-        return fail("unsupported " + std::string(key) + " '" + std::string(value) +
-                    "' (Minimum, AlgebraicProduct or none)");
+    auto& b = model_.blocks[model_.num_blocks - 1];
+    if (key == "enabled") return boolean(value, block_enabled_);
+    if (key == "conjunction" || key == "implication" ||
+        (key == "activation" && fuzzy::parse(value, fuzzy::Naming::Fuzzylite, b.implication))) {
+      // fuzzylite 5 wrote the implication as `activation: <t-norm>`.
+      const bool conj = key == "conjunction";
+      TNorm& op = conj ? b.conjunction : b.implication;
+      bool& has = conj ? b.has_conjunction : b.has_implication;
+      if (value == "none") {
+        has = false;
+        return true;
       }
+      if (!fuzzy::parse(value, fuzzy::Naming::Fuzzylite, op))
+        return fail("unsupported " + std::string(key) + " '" + std::string(value) + "'");
+      has = true;
       return true;
     }
     if (key == "disjunction") {
-      if (value == "Maximum") {
-        model_.disjunction = SNorm::Maximum;
-      } else if (value == "AlgebraicSum") {
-        model_.disjunction = SNorm::ProbabilisticSum;
-      } else if (value == "none") {
-        model_.disjunction = SNorm::None;
-      } else {
-        return fail("unsupported disjunction '" + std::string(value) +
-                    "' (Maximum, AlgebraicSum or none)");
+      if (value == "none") {
+        b.has_disjunction = false;
+        return true;
       }
+      if (!fuzzy::parse(value, fuzzy::Naming::Fuzzylite, b.disjunction))
+        return fail("unsupported disjunction '" + std::string(value) + "'");
+      b.has_disjunction = true;
       return true;
     }
     if (key == "activation") {
       if (value == "General" || value == "none") return true;
       return fail("unsupported activation '" + std::string(value) + "' (General)");
     }
-    if (key == "rule") return rule(value);
+    if (key == "rule") {
+      const std::string why = rules::parse_rule(value, model_, model_.num_blocks - 1, false);
+      if (!why.empty()) return fail(why);
+      lines_.rules.push_back(line_);
+      return true;
+    }
     return fail("unknown RuleBlock property '" + std::string(key) + "'");
   }
 
-  int find_input(std::string_view name) const {
-    for (std::size_t i = 0; i < model_.num_inputs; ++i)
-      if (text::name_of(model_.inputs[i].name) == name) return static_cast<int>(i);
-    return -1;
-  }
-  int find_output(std::string_view name) const {
-    for (std::size_t o = 0; o < model_.num_outputs; ++o)
-      if (text::name_of(model_.outputs[o].name) == name) return static_cast<int>(o);
-    return -1;
-  }
-  static int find_term(const std::array<fuzzy::Name, kMaxTerms>& names, std::size_t n,
-                       std::string_view name) {
-    for (std::size_t t = 0; t < n; ++t)
-      if (text::name_of(names[t]) == name) return static_cast<int>(t);
-    return -1;
-  }
-
-  // if A is [not] T {and|or B is [not] T} then O is T {and P is T} [with w]
-  bool rule(std::string_view value) {
-    if (model_.num_rules == kMaxRules) return fail("more than 512 rules");
-    fuzzy::Rule<double> r;
-    const auto w = text::split_words(value);
-    std::size_t k = 0;
-    const auto word = [&](std::size_t i) { return i < w.size() ? w[i] : std::string_view{}; };
-    for (const auto& token : w)
-      if (token.find('(') != std::string_view::npos || token.find(')') != std::string_view::npos)
-        return fail("parentheses in rules are not supported: '" + std::string(value) + "'");
-    if (word(k++) != "if") return fail("rule must start with 'if'");
-    int joiner = 0;  // 0 unknown, 1 and, 2 or
-    for (;;) {
-      const std::string_view var = word(k++);
-      const int i = find_input(var);
-      if (i < 0) return fail("rule names unknown input variable '" + std::string(var) + "'");
-      if (word(k++) != "is") return fail("expected 'is' after '" + std::string(var) + "'");
-      bool negate = false;
-      if (word(k) == "not") {
-        negate = true;
-        ++k;
-      }
-      const std::string_view tname = word(k++);
-      static const char* const hedges[] = {"any", "extremely", "seldom", "somewhat", "very"};
-      for (const char* h : hedges)
-        if (tname == h) return fail("unsupported hedge '" + std::string(tname) + "'");
-      const auto& in = model_.inputs[static_cast<std::size_t>(i)];
-      const int t = find_term(in.term_names, in.num_terms, tname);
-      if (t < 0)
-        return fail("rule names unknown term '" + std::string(tname) + "' of input '" +
-                    std::string(var) + "'");
-      if (r.antecedent[static_cast<std::size_t>(i)] != 0)
-        return fail("input '" + std::string(var) + "' appears twice in one rule (not supported)");
-      r.antecedent[static_cast<std::size_t>(i)] =
-          static_cast<std::int8_t>(negate ? -(t + 1) : t + 1);
-      const std::string_view next = word(k++);
-      if (next == "then") break;
-      const int j = next == "and" ? 1 : next == "or" ? 2 : 0;
-      if (j == 0) return fail("expected 'and', 'or' or 'then', got '" + std::string(next) + "'");
-      if (joiner != 0 && joiner != j) return fail("rules mixing 'and' and 'or' are not supported");
-      joiner = j;
-    }
-    r.disjunction = joiner == 2;
-    for (;;) {
-      const std::string_view var = word(k++);
-      const int o = find_output(var);
-      if (o < 0) return fail("rule names unknown output variable '" + std::string(var) + "'");
-      if (word(k++) != "is") return fail("expected 'is' after '" + std::string(var) + "'");
-      const std::string_view tname = word(k++);
-      if (tname == "not") return fail("negated consequents are not supported");
-      const auto& out = model_.outputs[static_cast<std::size_t>(o)];
-      const int t = find_term(out.term_names, out.num_terms, tname);
-      if (t < 0)
-        return fail("rule names unknown term '" + std::string(tname) + "' of output '" +
-                    std::string(var) + "'");
-      if (r.consequent[static_cast<std::size_t>(o)] != 0)
-        return fail("output '" + std::string(var) + "' appears twice in one rule");
-      r.consequent[static_cast<std::size_t>(o)] = static_cast<std::int8_t>(t + 1);
-      const std::string_view next = word(k++);
-      if (next.empty()) break;
-      if (next == "with") {
-        double weight = 0;
-        if (!text::parse_number(word(k++), weight) || !(weight >= 0 && weight <= 1))
-          return fail("rule weight must be a number in [0, 1]");
-        r.weight = weight;
-        if (!word(k).empty()) return fail("unexpected '" + std::string(word(k)) + "' after weight");
-        break;
-      }
-      if (next != "and") return fail("expected 'and' or 'with', got '" + std::string(next) + "'");
-    }
-    const std::size_t antecedents = [&] {
-      std::size_t n = 0;
-      for (auto a : r.antecedent)
-        n += a != 0;
-      return n;
-    }();
-    if (antecedents > 1 &&
-        (r.disjunction ? model_.disjunction == SNorm::None : model_.conjunction == TNorm::None))
-      return fail(std::string("rule uses '") + (r.disjunction ? "or" : "and") +
-                  "' but the RuleBlock's " + (r.disjunction ? "disjunction" : "conjunction") +
-                  " is none (state it before the rules)");
-    model_.rules[model_.num_rules++] = r;
-    return true;
-  }
-
   bool finish() {
-    if (!seen_engine_) {
-      line_ = 0;
-      return fail("missing 'Engine:' line");
-    }
+    if (!seen_engine_) return fail_at(0, "missing 'Engine:' line");
     if (model_.num_inputs == 0) return fail_at(0, "no InputVariable");
     if (model_.num_outputs == 0) return fail_at(0, "no OutputVariable");
-    for (std::size_t i = 0; i < model_.num_inputs; ++i)
-      if (model_.inputs[i].num_terms == 0) return fail_at(input_lines_[i], "input has no terms");
-    bool mamdani = false;
+    if (model_.num_blocks == 0) {  // no rule block: every output takes its default
+      model_.num_blocks = 1;
+      model_.blocks[0] = fuzzy::RuleBlock{};
+    }
     for (std::size_t o = 0; o < model_.num_outputs; ++o) {
       const auto& out = model_.outputs[o];
-      const int at = output_lines_[o];
-      if (out.num_terms == 0) return fail_at(at, "output has no terms");
+      const int at = lines_.outputs[o];
       if (!defuzzifier_seen_[o]) return fail_at(at, "output has no defuzzifier");
-      const bool sugeno = fuzzy::is_sugeno(out.defuzzifier);
-      for (std::size_t t = 0; t < out.num_terms; ++t) {
-        const bool membership = out.terms[t].kind == fuzzy::OutputTermKind::Membership;
-        if (membership == sugeno)
-          return fail_at(at, std::string("term '") + out.term_names[t].data() + "' " +
-                                 (sugeno ? "must be Constant or Linear for a weighted defuzzifier"
-                                         : "must be a membership function for an integral "
-                                           "defuzzifier"));
-        if (membership && out.exact_centroid && out.defuzzifier == Defuzzifier::Centroid &&
-            !fuzzy::is_piecewise_linear(out.terms[t].membership))
-          return fail_at(at, std::string("term '") + out.term_names[t].data() +
-                                 "' is not piecewise linear (exact centroid requested)");
-      }
-      if (!sugeno && !aggregation_seen_[o])
-        return fail_at(at, "output needs an aggregation (Maximum or UnboundedSum)");
-      mamdani = mamdani || !sugeno;
+      if (!fuzzy::is_sugeno(out.defuzzifier) && !aggregation_seen_[o])
+        return fail_at(at, "output needs an aggregation");
     }
-    if (model_.num_rules == 0) return fail_at(rule_block_line_, "no rules");
-    if (mamdani && model_.implication == TNorm::None)
-      return fail_at(rule_block_line_, "the RuleBlock needs an implication for Mamdani outputs");
-    if (model_.conjunction == TNorm::None) model_.conjunction = TNorm::Minimum;
-    if (model_.disjunction == SNorm::None) model_.disjunction = SNorm::Maximum;
-    if (model_.implication == TNorm::None) model_.implication = TNorm::Minimum;
-    const fuzzy::ModelError e = model_.validate();
-    if (e) return fail_at(0, e.message);
-    return true;
-  }
-
-  bool fail_at(int line, const std::string& message) {
-    line_ = line;
-    return fail(message);
+    return check_model(model_, lines_, error_);
   }
 
   Model& model_;
@@ -493,17 +370,12 @@ class FllParser {
   Section section_ = Section::None;
   int line_ = 0;
   bool seen_engine_ = false;
-  bool seen_rule_block_ = false;
-  int rule_block_line_ = 0;
-  std::vector<int> input_lines_;
-  std::vector<int> output_lines_;
+  bool block_enabled_ = true;
+  std::size_t block_first_rule_ = 0, block_first_token_ = 0, block_first_conclusion_ = 0;
   std::vector<bool> defuzzifier_seen_;
   std::vector<bool> aggregation_seen_;
+  SourceLines lines_;
 };
-
-const char* tnorm_name(TNorm op) {
-  return op == TNorm::Minimum ? "Minimum" : op == TNorm::Product ? "AlgebraicProduct" : "none";
-}
 
 }  // namespace
 
@@ -512,48 +384,71 @@ bool parse_fll(std::string_view text, const std::string& source, Model& model, L
   return FllParser(source, model, error, options).parse(text);
 }
 
+// Checks that the sanitised names of the variables, and of the terms within each variable, are
+// distinct, as .fll and .fcl rules need.
+bool check_sanitized_names(const Model& m, std::string& error) {
+  std::vector<std::string> vars;
+  const auto unique = [&](std::vector<std::string>& seen, const std::string& n) {
+    for (const auto& s : seen)
+      if (s == n) {
+        error = "two names become '" + n + "' once sanitised for .fll/.fcl";
+        return false;
+      }
+    seen.push_back(n);
+    return true;
+  };
+  for (std::size_t i = 0; i < m.num_inputs; ++i) {
+    if (!unique(vars, rules::fll_name(m.inputs[i].name))) return false;
+    std::vector<std::string> ts;
+    for (std::size_t t = 0; t < m.inputs[i].num_terms; ++t)
+      if (!unique(ts, rules::fll_name(m.inputs[i].term_names[t]))) return false;
+  }
+  for (std::size_t o = 0; o < m.num_outputs; ++o) {
+    if (!unique(vars, rules::fll_name(m.outputs[o].name))) return false;
+    std::vector<std::string> ts;
+    for (std::size_t t = 0; t < m.outputs[o].num_terms; ++t)
+      if (!unique(ts, rules::fll_name(m.outputs[o].term_names[t]))) return false;
+  }
+  return true;
+}
+
 bool to_fll(const Model& m, std::string& out, std::string& error) {
   const fuzzy::ModelError e = m.validate();
   if (e) {
     error = std::string("invalid model: ") + e.message;
     return false;
   }
+  if (!check_sanitized_names(m, error)) return false;
   using text::format_number;
-  std::string s = "Engine: " + std::string(text::name_of(m.name)) + "\n";
+  std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    s += "InputVariable: " + std::string(text::name_of(in.name)) + "\n  enabled: true\n";
+    s += "InputVariable: " + rules::fll_name(in.name) + "\n  enabled: true\n";
     s += "  range: " + format_number(in.min) + " " + format_number(in.max) + "\n";
     s += std::string("  lock-range: ") + (in.lock_range ? "true" : "false") + "\n";
     for (std::size_t t = 0; t < in.num_terms; ++t) {
-      const std::string w = terms::write_membership(terms::Format::Fll, in.terms[t]);
+      const std::string w = terms::write_membership(terms::Format::Fll, in.terms[t], m);
       if (w.empty()) {
         error = "input term '" + std::string(text::name_of(in.term_names[t])) +
                 "' has a shape .fll cannot express";
         return false;
       }
-      s += "  term: " + std::string(text::name_of(in.term_names[t])) + " " + w + "\n";
+      s += "  term: " + rules::fll_name(in.term_names[t]) + " " + w + "\n";
     }
   }
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
-    const auto& out = m.outputs[o];
-    const bool sugeno = fuzzy::is_sugeno(out.defuzzifier);
-    s += "OutputVariable: " + std::string(text::name_of(out.name)) + "\n  enabled: true\n";
-    s += "  range: " + format_number(out.min) + " " + format_number(out.max) + "\n";
-    s += std::string("  lock-range: ") + (out.lock_range ? "true" : "false") + "\n";
+    const auto& v = m.outputs[o];
+    const bool sugeno = fuzzy::is_sugeno(v.defuzzifier);
+    s += "OutputVariable: " + rules::fll_name(v.name) + "\n  enabled: true\n";
+    s += "  range: " + format_number(v.min) + " " + format_number(v.max) + "\n";
+    s += std::string("  lock-range: ") + (v.lock_range ? "true" : "false") + "\n";
     s += std::string("  aggregation: ") +
-         (sugeno                                           ? "none"
-          : out.aggregation == fuzzy::Aggregation::Maximum ? "Maximum"
-                                                           : "UnboundedSum") +
-         "\n";
-    static const char* const names[] = {"Centroid",          "Bisector",         "MeanOfMaximum",
-                                        "SmallestOfMaximum", "LargestOfMaximum", "WeightedAverage",
-                                        "WeightedSum"};
-    s += std::string("  defuzzifier: ") + names[static_cast<int>(out.defuzzifier)] +
-         (sugeno ? std::string(" TakagiSugeno") : " " + std::to_string(out.resolution)) + "\n";
-    s += "  default: " + format_number(out.default_value) + "\n  lock-previous: false\n";
-    for (std::size_t t = 0; t < out.num_terms; ++t) {
-      const auto& term = out.terms[t];
+         (sugeno ? "none" : fuzzy::names(v.aggregation).fuzzylite) + "\n";
+    s += std::string("  defuzzifier: ") + fuzzy::names(v.defuzzifier).fuzzylite +
+         (sugeno ? std::string(" TakagiSugeno") : " " + std::to_string(v.resolution)) + "\n";
+    s += "  default: " + format_number(v.default_value) + "\n  lock-previous: false\n";
+    for (std::size_t t = 0; t < v.num_terms; ++t) {
+      const auto& term = v.terms[t];
       std::string w;
       if (term.kind == fuzzy::OutputTermKind::Constant) {
         w = "Constant " + format_number(term.coefficients[0]);
@@ -562,49 +457,33 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
         for (std::size_t c = 0; c <= m.num_inputs; ++c)
           w += " " + format_number(term.coefficients[c]);
       } else {
-        w = terms::write_membership(terms::Format::Fll, term.membership);
+        w = terms::write_membership(terms::Format::Fll, term.membership, m);
       }
       if (w.empty()) {
-        error = "output term '" + std::string(text::name_of(out.term_names[t])) +
+        error = "output term '" + std::string(text::name_of(v.term_names[t])) +
                 "' has a shape .fll cannot express";
         return false;
       }
-      s += "  term: " + std::string(text::name_of(out.term_names[t])) + " " + w + "\n";
+      s += "  term: " + rules::fll_name(v.term_names[t]) + " " + w + "\n";
     }
   }
-  s += "RuleBlock: rules\n  enabled: true\n";
-  s += std::string("  conjunction: ") + tnorm_name(m.conjunction) + "\n";
-  s += std::string("  disjunction: ") +
-       (m.disjunction == SNorm::Maximum ? "Maximum" : "AlgebraicSum") + "\n";
-  s += std::string("  implication: ") + tnorm_name(m.implication) + "\n  activation: General\n";
-  for (std::size_t r = 0; r < m.num_rules; ++r) {
-    const auto& rule = m.rules[r];
-    std::string line = "  rule: if";
-    bool first = true;
-    for (std::size_t i = 0; i < m.num_inputs; ++i) {
-      const int a = rule.antecedent[i];
-      if (a == 0) continue;
-      if (!first) line += rule.disjunction ? " or" : " and";
-      first = false;
-      line += " " + std::string(text::name_of(m.inputs[i].name)) + " is " + (a < 0 ? "not " : "") +
-              std::string(text::name_of(
-                  m.inputs[i].term_names[static_cast<std::size_t>((a < 0 ? -a : a) - 1)]));
-    }
-    line += " then";
-    first = true;
-    for (std::size_t o = 0; o < m.num_outputs; ++o) {
-      const int c = rule.consequent[o];
-      if (c == 0) continue;
-      if (!first) line += " and";
-      first = false;
-      line += " " + std::string(text::name_of(m.outputs[o].name)) + " is " +
-              std::string(text::name_of(m.outputs[o].term_names[static_cast<std::size_t>(c - 1)]));
-    }
-    if (rule.weight != 1.0) line += " with " + format_number(rule.weight);
-    s += line + "\n";
+  for (std::size_t b = 0; b < m.num_blocks; ++b) {
+    const auto& block = m.blocks[b];
+    const std::string name(text::name_of(block.name));
+    s += "RuleBlock: " + text::sanitized(name.empty() ? std::string("rules") : name) +
+         "\n  enabled: true\n";
+    s += std::string("  conjunction: ") +
+         (block.has_conjunction ? fuzzy::names(block.conjunction).fuzzylite : "none") + "\n";
+    s += std::string("  disjunction: ") +
+         (block.has_disjunction ? fuzzy::names(block.disjunction).fuzzylite : "none") + "\n";
+    s += std::string("  implication: ") +
+         (block.has_implication ? fuzzy::names(block.implication).fuzzylite : "none") +
+         "\n  activation: General\n";
+    for (std::size_t r = 0; r < m.num_rules; ++r)
+      if (m.rules[r].block == b) s += "  rule: " + rules::write_rule(m, r) + "\n";
   }
   out = std::move(s);
   return true;
 }
 
-}  // namespace fuzzypid::io
+}  // namespace fuzzypid::rulefile

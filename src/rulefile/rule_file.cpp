@@ -1,13 +1,48 @@
-// File access and format dispatch for the rule-file readers.
-#include "fuzzypid/io/rule_file.hpp"
+// File access, format dispatch and the shared model check of the rule-file readers.
+#include "fuzzypid/rulefile/rule_file.hpp"
 
 #include <fstream>
 #include <sstream>
 
-namespace fuzzypid::io {
+#include "check.hpp"
+#include "text.hpp"
+
+namespace fuzzypid::rulefile {
 
 std::string LoadError::to_string() const {
   return line > 0 ? file + ":" + std::to_string(line) + ": " + message : file + ": " + message;
+}
+
+bool check_model(const Model& model, const SourceLines& lines, LoadError& error) {
+  if (model.num_rules == 0) {
+    error.line = 0;
+    error.message = "no rules";
+    return false;
+  }
+  const fuzzy::ModelError e = model.validate();
+  if (!e) return true;
+  using Where = fuzzy::ModelError::Where;
+  const auto at = [&](const std::vector<int>& v) { return e.index < v.size() ? v[e.index] : 0; };
+  std::string what;
+  switch (e.where) {
+    case Where::Input:
+      error.line = at(lines.inputs);
+      what = "input '" + std::string(text::name_of(model.inputs[e.index].name)) + "': ";
+      break;
+    case Where::Output:
+      error.line = at(lines.outputs);
+      what = "output '" + std::string(text::name_of(model.outputs[e.index].name)) + "': ";
+      break;
+    case Where::Rule:
+      error.line = at(lines.rules);
+      what = "rule " + std::to_string(e.index + 1) + ": ";
+      break;
+    case Where::Model:
+      error.line = 0;
+      break;
+  }
+  error.message = what + e.message;
+  return false;
 }
 
 namespace {
@@ -24,9 +59,9 @@ bool read_file(const std::string& path, std::string& text, LoadError& error) {
   return true;
 }
 
-bool ends_with(const std::string& s, const char* suffix) {
-  const std::string t(suffix);
-  return s.size() >= t.size() && s.compare(s.size() - t.size(), t.size(), t) == 0;
+bool has_extension(const std::string& path, const char* ext) {
+  const std::string e(ext);
+  return path.size() >= e.size() && text::iequals(path.substr(path.size() - e.size()), e);
 }
 
 }  // namespace
@@ -41,12 +76,18 @@ bool load_fis(const std::string& path, Model& model, LoadError& error, const Loa
   return read_file(path, text, error) && parse_fis(text, path, model, error, options);
 }
 
+bool load_fcl(const std::string& path, Model& model, LoadError& error, const LoadOptions& options) {
+  std::string text;
+  return read_file(path, text, error) && parse_fcl(text, path, model, error, options);
+}
+
 bool load_rule_file(const std::string& path, Model& model, LoadError& error,
                     const LoadOptions& options) {
-  if (ends_with(path, ".fis")) return load_fis(path, model, error, options);
-  if (ends_with(path, ".fll")) return load_fll(path, model, error, options);
-  error = LoadError{path, 0, "unknown rule file extension (expected .fis or .fll)"};
+  if (has_extension(path, ".fis")) return load_fis(path, model, error, options);
+  if (has_extension(path, ".fll")) return load_fll(path, model, error, options);
+  if (has_extension(path, ".fcl")) return load_fcl(path, model, error, options);
+  error = LoadError{path, 0, "unknown rule file extension (expected .fis, .fll or .fcl)"};
   return false;
 }
 
-}  // namespace fuzzypid::io
+}  // namespace fuzzypid::rulefile

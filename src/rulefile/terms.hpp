@@ -1,25 +1,32 @@
-// Membership terms as the files name them, with the checks that turn bad parameters into load
-// errors (private to fuzzypid::rulefile).
+// Membership terms as the three formats name them, with the checks that turn bad parameters into
+// load errors (private to fuzzypid::rulefile).
 #pragma once
 
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 
-namespace fuzzypid::io::terms {
+namespace fuzzypid::rulefile::terms {
 
-enum class Format { Fis, Fll };
+enum class Format { Fis, Fll, Fcl };
 
-// Builds a membership term from the file's type name and parameters:
-//   .fis: trimf [a b c], trapmf [a b c d], gaussmf [sigma mean], gbellmf [width slope center]
-//   .fll: Triangle a b c, Trapezoid a b c d, Gaussian mean sigma, Bell center width slope
+// Builds a membership term from the file's type name and parameters (Discrete points go to the
+// model's pool):
+//   .fll/.fcl: fuzzylite's class names and parameter order, an optional last parameter = height
+//   .fis:      MATLAB's names and order (trimf [a b c], gaussmf [sigma mean], gbellmf [a b c],
+//              sigmf [a c], dsigmf/psigmf [a1 c1 a2 c2], linsmf/linzmf [a b], ...) and
+//              fuzzylite's .fis names for the others (rectmf, rampmf, cosinemf, ...); trailing
+//              zeros beyond the count are MATLAB 1.x padding and ignored.
 // Returns an empty string on success, else the reason.
 std::string make_membership(Format format, std::string_view type, const std::vector<double>& p,
-                            fuzzy::Term<double>& term);
+                            Model& model, fuzzy::Term<double>& term);
 
-// Writes a term as (type, parameters) in the given format; empty type when not expressible.
-std::string write_membership(Format format, const fuzzy::Term<double>& term);
+// True when `type` names a membership function in that format (to tell a bad type from others).
+bool is_membership_name(Format format, std::string_view type);
 
-}  // namespace fuzzypid::io::terms
+// Writes a term as "type params" in the format's syntax; empty when not expressible.
+std::string write_membership(Format format, const fuzzy::Term<double>& term, const Model& model);
+
+}  // namespace fuzzypid::rulefile::terms

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
-namespace fuzzypid::io::text {
+namespace fuzzypid::rulefile::text {
 
 std::vector<Line> split_lines(std::string_view text) {
   std::vector<Line> lines;
@@ -94,13 +94,8 @@ std::string_view name_of(const fuzzy::Name& name) {
   return std::string_view(name.data());
 }
 
-bool valid_identifier(std::string_view s) {
+bool is_identifier(std::string_view s) {
   if (s.empty()) return false;
-  // Words of .fll rules (and fuzzylite's hedges) would make an exported rule ambiguous.
-  static const char* const reserved[] = {"if",   "is",  "not",       "and",    "or",       "then",
-                                         "with", "any", "extremely", "seldom", "somewhat", "very"};
-  for (const char* r : reserved)
-    if (s == r) return false;
   for (char c : s) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                     c == '_' || c == '.';
@@ -109,4 +104,32 @@ bool valid_identifier(std::string_view s) {
   return true;
 }
 
-}  // namespace fuzzypid::io::text
+bool is_reserved(std::string_view s) {
+  static const char* const reserved[] = {"if",   "is",  "not",       "and",    "or",       "then",
+                                         "with", "any", "extremely", "seldom", "somewhat", "very"};
+  for (const char* r : reserved)
+    if (s == r) return true;
+  return false;
+}
+
+std::string sanitized(std::string_view name) {
+  std::string out;
+  for (char c : name)
+    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+        c == '.')
+      out += c;
+  return trim(name).empty() ? std::string("unnamed") : out;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+  return lower(a) == lower(b);
+}
+
+}  // namespace fuzzypid::rulefile::text

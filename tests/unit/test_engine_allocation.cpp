@@ -10,23 +10,24 @@
 #include <new>
 #include <string>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/io/rule_file.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 
 namespace {
 
-using fuzzypid::io::LoadError;
-using fuzzypid::io::LoadOptions;
-using fuzzypid::io::Model;
+using fuzzypid::rulefile::LoadError;
+using fuzzypid::rulefile::LoadOptions;
+using fuzzypid::rulefile::Model;
 using fuzzypid::support::allocation_count;
 
 std::unique_ptr<Model> load(const std::string& path, const LoadOptions& options = {}) {
   auto model = std::make_unique<Model>();
   LoadError error;
-  EXPECT_TRUE(fuzzypid::io::load_rule_file(path, *model, error, options)) << error.to_string();
+  EXPECT_TRUE(fuzzypid::rulefile::load_rule_file(path, *model, error, options)) << error.to_string();
   return model;
 }
 
@@ -61,7 +62,7 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
 
 TEST(EngineAllocation, FuzzyPidWithALoadedSystemAllocatesNothingPerTick) {
   const auto model = load(FUZZYPID_RULEBASES_DIR "/paper.fis");
-  using Supervisor = fuzzypid::fuzzy::EngineSupervisor<double>;
+  using Supervisor = fuzzypid::control::EngineSupervisor<double>;
   const Supervisor supervisor(model.get());
   auto controller = std::make_unique<fuzzypid::control::FuzzyPid<double, Supervisor>>(
       &supervisor, fuzzypid::paper::paper_config<double>());

@@ -1,15 +1,17 @@
-// Mamdani building blocks shared by the table-driven MamdaniSystem and the run-time Engine:
-// implication, aggregation, the aggregated output set, and its defuzzification.
+// Mamdani building blocks of the run-time Engine: the aggregated output set and its
+// defuzzification.
 //
 // An activation is an output term with a degree w (the strength of the rule(s) that name it).
-// Implication shapes the term by w, aggregation folds the shaped terms into one fuzzy set:
+// Implication (any t-norm, operators.hpp) shapes the term by w, aggregation (any s-norm) folds the
+// shaped terms into one fuzzy set, e.g.
 //   implication  Minimum: f(x) = min(mu(x), w)      Product: f(x) = w mu(x)
-//   aggregation  Maximum: F(x) = max_k f_k(x)       Sum:     F(x) = sum_k f_k(x)  (unbounded)
+//   aggregation  Maximum: F(x) = max_k f_k(x)       UnboundedSum: F(x) = sum_k f_k(x)
 // Sampled defuzzifiers follow fuzzylite 6 exactly (same sample points, same comparisons with its
 // tolerance macheps set to 0), so results agree with fuzzylite at the same resolution:
 //   x_i = min + (i + 1/2) dx, dx = (max - min) / resolution, i = 0 .. resolution - 1.
 // The exact centroid integrates F over [min, max] in closed form when every term is piecewise
-// linear (triangle, trapezoid, shoulders).
+// linear (triangle, trapezoid, shoulders), the implication Minimum or Product and the aggregation
+// Maximum or UnboundedSum.
 //
 // Nothing here allocates or throws; scratch space is passed in by the caller.
 #pragma once
@@ -20,67 +22,45 @@
 #include <limits>
 
 #include "fuzzypid/fuzzy/membership.hpp"
+#include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
 
 namespace fuzzypid::fuzzy {
 
-enum class Implication : std::uint8_t {
-  Minimum,  // clip the term at the rule strength
-  Product,  // scale the term by the rule strength
-};
-
-enum class Aggregation : std::uint8_t {
-  Maximum,  // MATLAB 'max', fuzzylite Maximum
-  Sum,      // MATLAB 'sum', fuzzylite UnboundedSum
-};
-
-[[nodiscard]] constexpr const char* to_string(Implication i) noexcept {
-  return i == Implication::Minimum ? "min" : "prod";
-}
-[[nodiscard]] constexpr const char* to_string(Aggregation a) noexcept {
-  return a == Aggregation::Maximum ? "max" : "sum";
-}
-
-template <class Scalar>
-constexpr Scalar implicate(Implication op, Scalar mu, Scalar w) noexcept {
-  return op == Implication::Minimum ? detail::min(mu, w) : mu * w;
-}
-
-template <class Scalar>
-constexpr Scalar aggregate(Aggregation op, Scalar acc, Scalar f) noexcept {
-  return op == Aggregation::Maximum ? detail::max(acc, f) : acc + f;
-}
-
-// One output term shaped by a degree.
+// One output term shaped by a degree: f(x) = implication(mu(x), degree).
 template <class Scalar>
 struct Activation {
   const Term<Scalar>* term = nullptr;
   Scalar degree = Scalar(0);
+  TNorm implication = TNorm::Minimum;
 };
 
 // The aggregated output set F(x) of `count` activations (a view: it does not own them).
+// `points` is the pool of (x, y) pairs of Discrete terms (may be null without them).
 template <class Scalar>
 struct AggregatedSet {
   const Activation<Scalar>* activations = nullptr;
   std::size_t count = 0;
-  Implication implication = Implication::Minimum;
-  Aggregation aggregation = Aggregation::Maximum;
+  SNorm aggregation = SNorm::Maximum;
+  const Scalar* points = nullptr;
 
   // F(x), folded in activation order from 0 as fuzzylite's Aggregated::membership does.
   Scalar operator()(Scalar x) const noexcept {
     Scalar mu = Scalar(0);
     for (std::size_t k = 0; k < count; ++k)
-      mu = aggregate(aggregation, mu,
-                     implicate(implication, (*activations[k].term)(x), activations[k].degree));
+      mu = apply(aggregation, mu,
+                 apply(activations[k].implication, (*activations[k].term)(x, points),
+                       activations[k].degree));
     return mu;
   }
 };
 
-// True for the shapes the exact centroid integrates in closed form.
+// True for the shapes the exact centroid integrates in closed form (at height 1).
 template <class Scalar>
 constexpr bool is_piecewise_linear(const Term<Scalar>& t) noexcept {
-  return t.shape == Shape::Triangle || t.shape == Shape::Trapezoid ||
-         t.shape == Shape::LeftShoulder || t.shape == Shape::RightShoulder;
+  return (t.shape == Shape::Triangle || t.shape == Shape::Trapezoid ||
+          t.shape == Shape::LeftShoulder || t.shape == Shape::RightShoulder) &&
+         t.height == Scalar(1);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -204,13 +184,13 @@ namespace defuzzify_detail {
 
 // Appends the breakpoints of one shaped term that lie strictly inside (min, max).
 template <class Scalar>
-inline std::size_t term_breakpoints(const Term<Scalar>& t, Scalar w, Implication imp, Scalar min,
+inline std::size_t term_breakpoints(const Term<Scalar>& t, Scalar w, TNorm imp, Scalar min,
                                     Scalar max, Scalar* out) noexcept {
   std::size_t n = 0;
   const auto push = [&](Scalar x) {
     if (x > min && x < max) out[n++] = x;
   };
-  const bool clip = imp == Implication::Minimum && w < Scalar(1);
+  const bool clip = imp == TNorm::Minimum && w < Scalar(1);
   const auto& p = t.p;
   switch (t.shape) {
     case Shape::Triangle:
@@ -254,7 +234,8 @@ Scalar centroid_exact(const AggregatedSet<Scalar>& set, Scalar min, Scalar max, 
                       const ExactCentroidScratch& capacity) noexcept {
   const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
   const std::size_t count = set.count;
-  const bool need_crossings = set.aggregation == Aggregation::Maximum;
+  const bool need_crossings = set.aggregation == SNorm::Maximum;
+  if (set.aggregation != SNorm::Maximum && set.aggregation != SNorm::UnboundedSum) return nan;
   if (capacity.breakpoints_capacity < 6 * count + 2 || capacity.lines_capacity < 2 * count ||
       (need_crossings && count > 1 && capacity.crossings_capacity < count * (count - 1) / 2))
     return nan;
@@ -263,8 +244,10 @@ Scalar centroid_exact(const AggregatedSet<Scalar>& set, Scalar min, Scalar max, 
   breakpoints[n++] = max;
   for (std::size_t k = 0; k < count; ++k) {
     const Activation<Scalar>& a = set.activations[k];
-    if (!is_piecewise_linear(*a.term)) return nan;
-    n += defuzzify_detail::term_breakpoints(*a.term, a.degree, set.implication, min, max,
+    if (!is_piecewise_linear(*a.term) ||
+        (a.implication != TNorm::Minimum && a.implication != TNorm::Product))
+      return nan;
+    n += defuzzify_detail::term_breakpoints(*a.term, a.degree, a.implication, min, max,
                                             breakpoints + n);
   }
   std::sort(breakpoints, breakpoints + n);
@@ -289,8 +272,8 @@ Scalar centroid_exact(const AggregatedSet<Scalar>& set, Scalar min, Scalar max, 
     Scalar sum1 = Scalar(0);
     for (std::size_t k = 0; k < count; ++k) {
       const Activation<Scalar>& a = set.activations[k];
-      const Scalar f1 = implicate(set.implication, (*a.term)(q1), a.degree);
-      const Scalar f3 = implicate(set.implication, (*a.term)(q3), a.degree);
+      const Scalar f1 = apply(a.implication, (*a.term)(q1), a.degree);
+      const Scalar f3 = apply(a.implication, (*a.term)(q3), a.degree);
       const Scalar half = (f3 - f1) / Scalar(2);
       lines[2 * k] = f1 - half;
       lines[2 * k + 1] = f3 + half;

@@ -1,26 +1,35 @@
 // A run-time-sized fuzzy inference engine with a capacity fixed at compile time: the form a rule
-// base loaded from a MATLAB .fis or fuzzylite .fll file takes (see fuzzypid/io/rule_file.hpp and
-// docs/rule_files.md).
+// base loaded from a MATLAB .fis, fuzzylite .fll or IEC 61131-7 .fcl file takes (see
+// fuzzypid/rulefile/rule_file.hpp and docs/rule_files.md).
 //
-// Capacity (kMax* below): 8 inputs, 8 outputs, 16 terms per variable, 512 rules, names of up to
-// 31 bytes. A rule holds at most one proposition per input (MATLAB's rule model), so it has at
-// most 8 antecedents, joined all by AND or all by OR, and concludes on any subset of the outputs.
+// Capacity is the template parameter `Cap` (EngineCapacity<...>): inputs, outputs, terms per
+// variable, rules, rule blocks, antecedent tokens and conclusions of all rules, points of Discrete
+// terms. DefaultCapacity holds 8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 rule
+// blocks; SmallCapacity is the paper's shape (2 inputs, 3 outputs, 7 terms, 49 rules) for
+// microcontrollers. Memory: docs/rule_files.md (and sizeof in tests/unit/test_engine.cpp).
 //
-// Per evaluation:
-//   mu_it         = term t of input i at x_i (x_i clamped to the range if lock_range)
-//   rule strength = weight * AND/OR-fold of the antecedents in input order (NOT: 1 - mu)
-//   Mamdani output (integral defuzzifier): activations (term, strength) of the rules concluding on
-//     it, shaped by the implication and aggregated (defuzzify.hpp); Maximum keeps one activation
-//     per term (its largest strength, exact because min/prod are monotone), Sum one per rule;
-//     then centroid (sampled or exact), bisector, mean/smallest/largest of maximum.
-//   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per firing rule;
+// Per evaluation (fuzzylite 6's semantics, its tolerance macheps set to 0):
+//   mu_it          = term t of input i at x_i (x_i clamped to the range if lock_range)
+//   proposition    = hedges applied right to left to mu_it ("x is very not A" = very(not(mu_A)));
+//                    a proposition whose last hedge is `any` is 1 before the other hedges
+//   antecedent     = the rule's expression of propositions joined by `and` (its block's
+//                    conjunction) and `or` (its block's disjunction); `and` binds tighter, as in
+//                    fuzzylite, and parentheses group
+//   rule strength  = weight * antecedent; a rule with strength > 0 fires
+//   conclusions    = in rule order, each conclusion's hedges are applied (right to left) to the
+//                    running degree, which is then the degree of that conclusion (fuzzylite's
+//                    Consequent::modify)
+//   Mamdani output: activations (term, degree, the block's implication), aggregated by the
+//     output's s-norm (folded from 0 in rule order), then centroid (sampled or exact), bisector,
+//     mean/smallest/largest of maximum. With Maximum aggregation and a Minimum/Product implication
+//     shared by all blocks, one activation per term holds the largest degree (exact, as both are
+//     monotone).
+//   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
 //     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
-// The semantics are fuzzylite 6's (its tolerance macheps set to 0), which agree with MATLAB's
-// for everything here except the sampling of the integral defuzzifiers (see the docs).
-//
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
-// allocates nothing. An output whose aggregated set is empty takes the output's default value,
-// or 0 with Status::NoRuleFired when the default is NaN (fuzzylite's "default: nan").
+// allocates nothing. An output no rule concluded on takes its default value, or 0 with
+// Status::NoRuleFired when the default is NaN (fuzzylite's "default: nan"); an output whose
+// defuzzification has no area is 0 with NoRuleFired too (fuzzylite gives NaN).
 #pragma once
 
 #include <array>
@@ -30,18 +39,43 @@
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
+#include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
 namespace fuzzypid::fuzzy {
 
-inline constexpr std::size_t kMaxInputs = 8;
-inline constexpr std::size_t kMaxOutputs = 8;
-inline constexpr std::size_t kMaxTerms = 16;
-inline constexpr std::size_t kMaxRules = 512;
-inline constexpr std::size_t kMaxNameLength = 31;
+// The compile-time capacity of an engine model.
+template <std::size_t Inputs, std::size_t Outputs, std::size_t Terms, std::size_t Rules,
+          std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points>
+struct EngineCapacity {
+  static_assert(Inputs >= 1 && Inputs <= 255 && Outputs >= 1 && Outputs <= 255,
+                "inputs and outputs: 1..255");
+  static_assert(Terms >= 1 && Terms <= 255, "terms per variable: 1..255");
+  static_assert(Rules >= 1 && Blocks >= 1 && Tokens >= 1 && Conclusions >= 1, "empty capacity");
+  static constexpr std::size_t inputs = Inputs;
+  static constexpr std::size_t outputs = Outputs;
+  static constexpr std::size_t terms = Terms;            // per variable
+  static constexpr std::size_t rules = Rules;            // in all blocks
+  static constexpr std::size_t blocks = Blocks;          // rule blocks
+  static constexpr std::size_t tokens = Tokens;          // antecedent tokens of all rules
+  static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
+  static constexpr std::size_t points = Points;          // (x, y) pairs of all Discrete terms
+  static constexpr std::size_t rule_tokens = 63;         // tokens of one antecedent
+};
 
-// A NUL-terminated name of at most kMaxNameLength bytes.
+using DefaultCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
+using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
+
+// The default capacity under short names.
+inline constexpr std::size_t kMaxInputs = DefaultCapacity::inputs;
+inline constexpr std::size_t kMaxOutputs = DefaultCapacity::outputs;
+inline constexpr std::size_t kMaxTerms = DefaultCapacity::terms;
+inline constexpr std::size_t kMaxRules = DefaultCapacity::rules;
+inline constexpr std::size_t kMaxNameLength = 31;
+inline constexpr std::size_t kMaxHedges = 4;  // per proposition
+
+// A NUL-terminated name of at most kMaxNameLength bytes (any bytes but NUL).
 using Name = std::array<char, kMaxNameLength + 1>;
 
 // Copies `length` bytes of `text` into `name`; false (name unchanged) when too long.
@@ -53,41 +87,15 @@ inline bool set_name(Name& name, const char* text, std::size_t length) noexcept 
   return true;
 }
 
-enum class TNorm : std::uint8_t { None, Minimum, Product };
-enum class SNorm : std::uint8_t { None, Maximum, ProbabilisticSum };
-
-enum class Defuzzifier : std::uint8_t {
-  Centroid,           // integral; sampled, or exact for piecewise-linear terms
-  Bisector,           // integral, sampled
-  MeanOfMaximum,      // integral, sampled
-  SmallestOfMaximum,  // integral, sampled
-  LargestOfMaximum,   // integral, sampled
-  WeightedAverage,    // Sugeno
-  WeightedSum,        // Sugeno
-};
-
-constexpr bool is_sugeno(Defuzzifier d) noexcept {
-  return d == Defuzzifier::WeightedAverage || d == Defuzzifier::WeightedSum;
-}
-
-template <class Scalar>
-constexpr Scalar apply(TNorm op, Scalar a, Scalar b) noexcept {
-  return op == TNorm::Minimum ? detail::min(a, b) : a * b;
-}
-template <class Scalar>
-constexpr Scalar apply(SNorm op, Scalar a, Scalar b) noexcept {
-  return op == SNorm::Maximum ? detail::max(a, b) : a + b - a * b;
-}
-
-template <class Scalar>
+template <class Scalar, class Cap = DefaultCapacity>
 struct InputSpec {
   Name name{};
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
   bool lock_range = false;  // clamp the input into [min, max] before fuzzifying
-  std::size_t num_terms = 0;
-  std::array<Term<Scalar>, kMaxTerms> terms{};
-  std::array<Name, kMaxTerms> term_names{};
+  std::size_t num_terms = 0;  // 0 allowed: an input no rule uses
+  std::array<Term<Scalar>, Cap::terms> terms{};
+  std::array<Name, Cap::terms> term_names{};
 };
 
 enum class OutputTermKind : std::uint8_t {
@@ -96,14 +104,14 @@ enum class OutputTermKind : std::uint8_t {
   Linear,      // z = sum_i coefficients[i] x_i + coefficients[num_inputs]
 };
 
-template <class Scalar>
+template <class Scalar, class Cap = DefaultCapacity>
 struct OutputTerm {
   OutputTermKind kind = OutputTermKind::Membership;
   Term<Scalar> membership{};
-  std::array<Scalar, kMaxInputs + 1> coefficients{};
+  std::array<Scalar, Cap::inputs + 1> coefficients{};
 };
 
-template <class Scalar>
+template <class Scalar, class Cap = DefaultCapacity>
 struct OutputSpec {
   Name name{};
   Scalar min = Scalar(0);
@@ -113,240 +121,441 @@ struct OutputSpec {
   Defuzzifier defuzzifier = Defuzzifier::Centroid;
   int resolution = 100;         // samples of the integral defuzzifiers
   bool exact_centroid = false;  // Centroid in closed form instead of sampled
-  Aggregation aggregation = Aggregation::Maximum;
+  SNorm aggregation = SNorm::Maximum;
   std::size_t num_terms = 0;
-  std::array<OutputTerm<Scalar>, kMaxTerms> terms{};
-  std::array<Name, kMaxTerms> term_names{};
+  std::array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
+  std::array<Name, Cap::terms> term_names{};
+};
+
+// One element of an antecedent in postfix order: a proposition pushes its degree, And/Or pop two
+// degrees and push their conjunction/disjunction.
+struct Token {
+  enum class Kind : std::uint8_t { Proposition, And, Or };
+  static constexpr std::uint8_t kAnyTerm = 0xFF;  // "x is any": no term
+  Kind kind = Kind::Proposition;
+  std::uint8_t input = 0;
+  std::uint8_t term = 0;  // index into the input's terms, or kAnyTerm
+  std::uint8_t num_hedges = 0;
+  std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
+};
+
+// "output is [hedges] term".
+struct Conclusion {
+  std::uint8_t output = 0;
+  std::uint8_t term = 0;
+  std::uint8_t num_hedges = 0;
+  std::array<Hedge, kMaxHedges> hedges{};
 };
 
 template <class Scalar>
 struct Rule {
-  // antecedent[i]: 0 = input i not used, k > 0 = "is term k-1", k < 0 = "is not term -k-1".
-  std::array<std::int8_t, kMaxInputs> antecedent{};
-  // consequent[o]: 0 = output o not concluded, k > 0 = "is term k-1".
-  std::array<std::int8_t, kMaxOutputs> consequent{};
+  std::uint32_t first_token = 0;  // antecedent: tokens[first_token .. + num_tokens), postfix
+  std::uint32_t num_tokens = 0;
+  std::uint32_t first_conclusion = 0;  // conclusions[first_conclusion .. + num_conclusions)
+  std::uint32_t num_conclusions = 0;
+  std::uint32_t block = 0;
   Scalar weight = Scalar(1);
-  bool disjunction = false;  // antecedents joined by OR instead of AND
 };
 
-// Why a model failed validation (index = the variable, term or rule concerned).
+// The operators of a rule block. A block without a conjunction (disjunction) may not use `and`
+// (`or`); one without implication may not conclude on a Mamdani output.
+struct RuleBlock {
+  Name name{};
+  TNorm conjunction = TNorm::Minimum;
+  SNorm disjunction = SNorm::Maximum;
+  TNorm implication = TNorm::Minimum;
+  bool has_conjunction = true;
+  bool has_disjunction = true;
+  bool has_implication = true;
+};
+
+// Why a model failed validation: what is wrong, and which input, output or rule (index) it
+// concerns.
 struct ModelError {
+  enum class Where : std::uint8_t { Model, Input, Output, Rule };
   const char* message = nullptr;  // nullptr when valid
   std::size_t index = 0;
+  Where where = Where::Model;
   explicit operator bool() const noexcept { return message != nullptr; }
 };
 
-template <class Scalar>
+template <class Scalar, class Cap = DefaultCapacity>
 struct EngineModel {
   FUZZYPID_ASSERT_SCALAR(Scalar);
+  using Capacity = Cap;
 
   Name name{};
   std::size_t num_inputs = 0;
   std::size_t num_outputs = 0;
   std::size_t num_rules = 0;
-  std::array<InputSpec<Scalar>, kMaxInputs> inputs{};
-  std::array<OutputSpec<Scalar>, kMaxOutputs> outputs{};
-  std::array<Rule<Scalar>, kMaxRules> rules{};
-  TNorm conjunction = TNorm::Minimum;
-  SNorm disjunction = SNorm::Maximum;
-  TNorm implication = TNorm::Minimum;  // Mamdani outputs only
+  std::size_t num_blocks = 1;
+  std::size_t num_tokens = 0;
+  std::size_t num_conclusions = 0;
+  std::size_t num_points = 0;
+  std::array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
+  std::array<OutputSpec<Scalar, Cap>, Cap::outputs> outputs{};
+  std::array<Rule<Scalar>, Cap::rules> rules{};
+  std::array<RuleBlock, Cap::blocks> blocks{};
+  std::array<Token, Cap::tokens> tokens{};
+  std::array<Conclusion, Cap::conclusions> conclusions{};
+  std::array<Scalar, 2 * Cap::points> points{};  // (x, y) pairs of the Discrete terms
 
-  // Everything evaluate() relies on; the importers check the same things with line numbers.
+  // Appends a rule to block `block` from its postfix antecedent and its conclusions; false (model
+  // unchanged) when a capacity would be exceeded.
+  bool add_rule(const Token* antecedent, std::size_t n_tokens, const Conclusion* then,
+                std::size_t n_conclusions, Scalar weight = Scalar(1),
+                std::size_t block = 0) noexcept {
+    if (num_rules == Cap::rules || n_tokens > Cap::rule_tokens ||
+        num_tokens + n_tokens > Cap::tokens || num_conclusions + n_conclusions > Cap::conclusions)
+      return false;
+    Rule<Scalar>& r = rules[num_rules++];
+    r.first_token = static_cast<std::uint32_t>(num_tokens);
+    r.num_tokens = static_cast<std::uint32_t>(n_tokens);
+    r.first_conclusion = static_cast<std::uint32_t>(num_conclusions);
+    r.num_conclusions = static_cast<std::uint32_t>(n_conclusions);
+    r.block = static_cast<std::uint32_t>(block);
+    r.weight = weight;
+    for (std::size_t k = 0; k < n_tokens; ++k)
+      tokens[num_tokens++] = antecedent[k];
+    for (std::size_t k = 0; k < n_conclusions; ++k)
+      conclusions[num_conclusions++] = then[k];
+    return true;
+  }
+
+  // The largest number of terms of any input / output, and of tokens of any rule.
+  std::size_t max_input_terms() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < num_inputs; ++i)
+      n = detail::max(n, inputs[i].num_terms);
+    return n;
+  }
+  std::size_t max_output_terms() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t o = 0; o < num_outputs; ++o)
+      n = detail::max(n, outputs[o].num_terms);
+    return n;
+  }
+  std::size_t max_rule_tokens() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t r = 0; r < num_rules; ++r)
+      n = detail::max(n, static_cast<std::size_t>(rules[r].num_tokens));
+    return n;
+  }
+
+  // True when every block shares one implication, Minimum or Product: Maximum aggregation then
+  // keeps one activation per output term.
+  bool merges_activations() const noexcept {
+    for (std::size_t b = 0; b < num_blocks; ++b)
+      if (blocks[b].implication != blocks[0].implication ||
+          (blocks[b].implication != TNorm::Minimum && blocks[b].implication != TNorm::Product))
+        return false;
+    return true;
+  }
+
+  // Everything evaluate() relies on; the readers check the same things with line numbers first
+  // and call this last.
   ModelError validate() const noexcept {
-    if (num_inputs < 1 || num_inputs > kMaxInputs) return {"number of inputs out of 1..8", 0};
-    if (num_outputs < 1 || num_outputs > kMaxOutputs) return {"number of outputs out of 1..8", 0};
-    if (num_rules > kMaxRules) return {"more than 512 rules", 0};
+    if (num_inputs < 1 || num_inputs > Cap::inputs) return {"number of inputs out of capacity", 0};
+    if (num_outputs < 1 || num_outputs > Cap::outputs)
+      return {"number of outputs out of capacity", 0};
+    if (num_rules > Cap::rules) return {"more rules than the capacity", 0};
+    if (num_blocks < 1 || num_blocks > Cap::blocks) return {"number of rule blocks out of capacity", 0};
+    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions ||
+        num_points > Cap::points)
+      return {"rule or point storage out of capacity", 0};
     const auto range_ok = [](Scalar lo, Scalar hi) {
       return detail::is_finite(lo) && detail::is_finite(hi) && lo < hi;
     };
+    const auto term_ok = [&](const Term<Scalar>& t) {
+      if (!t.valid()) return false;
+      if (t.shape != Shape::Discrete) return true;
+      if (static_cast<std::size_t>(t.first) + t.count > num_points) return false;
+      for (std::size_t k = 0; k < t.count; ++k) {
+        const Scalar x = points[2 * (t.first + k)];
+        const Scalar y = points[2 * (t.first + k) + 1];
+        if (!detail::is_finite(x) || !detail::is_finite(y)) return false;
+        if (k > 0 && !(points[2 * (t.first + k - 1)] < x)) return false;
+      }
+      return true;
+    };
     for (std::size_t i = 0; i < num_inputs; ++i) {
       const auto& in = inputs[i];
-      if (!range_ok(in.min, in.max)) return {"input range must be finite with min < max", i};
-      if (in.num_terms < 1 || in.num_terms > kMaxTerms) return {"input terms out of 1..16", i};
+      // An input's range only matters for lock_range (FCL files may leave it -inf .. inf).
+      if (!(in.lock_range ? range_ok(in.min, in.max) : in.min < in.max))
+        return {"input range must be min < max (finite with lock-range)", i,
+                ModelError::Where::Input};
+      if (in.num_terms > Cap::terms) return {"more input terms than the capacity", i, ModelError::Where::Input};
       for (std::size_t t = 0; t < in.num_terms; ++t)
-        if (!in.terms[t].valid()) return {"invalid input term parameters", i};
+        if (!term_ok(in.terms[t])) return {"invalid input term parameters", i, ModelError::Where::Input};
     }
+    const bool merged = merges_activations();
     for (std::size_t o = 0; o < num_outputs; ++o) {
       const auto& out = outputs[o];
-      if (!range_ok(out.min, out.max)) return {"output range must be finite with min < max", o};
-      if (out.num_terms < 1 || out.num_terms > kMaxTerms) return {"output terms out of 1..16", o};
-      if (!is_sugeno(out.defuzzifier) && out.resolution < 1) return {"resolution must be >= 1", o};
-      if (!is_sugeno(out.defuzzifier) && implication == TNorm::None)
-        return {"a Mamdani output needs an implication operator", o};
+      const bool sugeno = is_sugeno(out.defuzzifier);
+      if (!(sugeno && !out.lock_range ? out.min < out.max : range_ok(out.min, out.max)))
+        return {"output range must be finite with min < max (Sugeno outputs without lock-range: "
+                "min < max)",
+                o, ModelError::Where::Output};
+      if (out.num_terms > Cap::terms) return {"more output terms than the capacity", o, ModelError::Where::Output};
+      if (!sugeno && (out.resolution < 1 || out.resolution > 100000000))
+        return {"resolution must be in 1..1e8", o, ModelError::Where::Output};
       if (out.default_value == out.default_value && !detail::is_finite(out.default_value))
-        return {"default value must be finite or NaN", o};
+        return {"default value must be finite or NaN", o, ModelError::Where::Output};
+      if (!sugeno && out.exact_centroid) {
+        if (out.defuzzifier != Defuzzifier::Centroid)
+          return {"the exact centroid applies to the centroid only", o, ModelError::Where::Output};
+        if (!(out.aggregation == SNorm::UnboundedSum ||
+              (out.aggregation == SNorm::Maximum && merged)))
+          return {"the exact centroid needs Maximum or UnboundedSum aggregation and one "
+                  "Minimum or Product implication",
+                  o, ModelError::Where::Output};
+      }
       for (std::size_t t = 0; t < out.num_terms; ++t) {
         const auto& term = out.terms[t];
         const bool membership = term.kind == OutputTermKind::Membership;
-        if (membership == is_sugeno(out.defuzzifier))
-          return {"Sugeno defuzzifiers need constant/linear terms, the others membership terms", o};
-        if (membership && !term.membership.valid()) return {"invalid output term parameters", o};
-        if (membership && out.defuzzifier == Defuzzifier::Centroid && out.exact_centroid &&
-            !is_piecewise_linear(term.membership))
-          return {"the exact centroid needs piecewise-linear terms", o};
+        if (membership == sugeno)
+          return {"Sugeno defuzzifiers need constant/linear terms, the others membership terms", o, ModelError::Where::Output};
+        if (membership && !term_ok(term.membership)) return {"invalid output term parameters", o, ModelError::Where::Output};
+        if (membership && out.exact_centroid && !is_piecewise_linear(term.membership))
+          return {"the exact centroid needs piecewise-linear terms of height 1", o, ModelError::Where::Output};
         if (!membership)
           for (std::size_t c = 0; c <= num_inputs; ++c)
             if (!detail::is_finite(term.coefficients[c]))
-              return {"non-finite output coefficient", o};
+              return {"non-finite output coefficient", o, ModelError::Where::Output};
       }
     }
     for (std::size_t r = 0; r < num_rules; ++r) {
       const auto& rule = rules[r];
       if (!(rule.weight >= Scalar(0) && rule.weight <= Scalar(1)))
-        return {"rule weight must be in [0, 1]", r};
-      std::size_t antecedents = 0;
-      for (std::size_t i = 0; i < kMaxInputs; ++i) {
-        const int a = rule.antecedent[i];
-        if (a == 0) continue;
-        const int t = a > 0 ? a : -a;
-        if (i >= num_inputs || t > static_cast<int>(inputs[i].num_terms))
-          return {"rule names an unknown input term", r};
-        ++antecedents;
+        return {"rule weight must be in [0, 1]", r, ModelError::Where::Rule};
+      if (rule.block >= num_blocks) return {"rule of an unknown block", r, ModelError::Where::Rule};
+      const RuleBlock& block = blocks[rule.block];
+      if (static_cast<std::size_t>(rule.first_token) + rule.num_tokens > num_tokens ||
+          rule.num_tokens > Cap::rule_tokens ||
+          static_cast<std::size_t>(rule.first_conclusion) + rule.num_conclusions > num_conclusions)
+        return {"rule refers to storage it does not own", r, ModelError::Where::Rule};
+      std::size_t depth = 0;
+      for (std::size_t k = 0; k < rule.num_tokens; ++k) {
+        const Token& tok = tokens[rule.first_token + k];
+        if (tok.kind == Token::Kind::Proposition) {
+          if (tok.input >= num_inputs || tok.num_hedges > kMaxHedges)
+            return {"rule names an unknown input", r, ModelError::Where::Rule};
+          const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
+          if (!any && tok.term >= inputs[tok.input].num_terms)
+            return {"rule names an unknown input term", r, ModelError::Where::Rule};
+          ++depth;
+        } else {
+          if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
+          if (tok.kind == Token::Kind::And ? !block.has_conjunction : !block.has_disjunction)
+            return {"rule uses 'and'/'or' but its block has no conjunction/disjunction", r, ModelError::Where::Rule};
+          --depth;
+        }
       }
-      if (antecedents == 0) return {"rule has no antecedent", r};
-      if (antecedents > 1 &&
-          (rule.disjunction ? disjunction == SNorm::None : conjunction == TNorm::None))
-        return {"rule needs a conjunction/disjunction operator that is none", r};
-      std::size_t consequents = 0;
-      for (std::size_t o = 0; o < kMaxOutputs; ++o) {
-        const int c = rule.consequent[o];
-        if (c == 0) continue;
-        if (o >= num_outputs || c < 0 || c > static_cast<int>(outputs[o].num_terms))
-          return {"rule names an unknown output term", r};
-        ++consequents;
+      if (depth != 1) return {"malformed antecedent", r, ModelError::Where::Rule};
+      if (rule.num_conclusions == 0) return {"rule has no consequent", r, ModelError::Where::Rule};
+      for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
+        const Conclusion& c = conclusions[rule.first_conclusion + k];
+        if (c.output >= num_outputs || c.term >= outputs[c.output].num_terms ||
+            c.num_hedges > kMaxHedges)
+          return {"rule names an unknown output term", r, ModelError::Where::Rule};
+        for (std::size_t j = 0; j < k; ++j)
+          if (conclusions[rule.first_conclusion + j].output == c.output)
+            return {"rule concludes twice on one output", r, ModelError::Where::Rule};
+        if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
+          return {"a Mamdani output needs an implication operator in the rule's block", r, ModelError::Where::Rule};
       }
-      if (consequents == 0) return {"rule has no consequent", r};
     }
     return {};
   }
 };
 
-// Scratch space of one evaluation, and what can be read back after it.
+// Scratch space of one evaluation as pointers and sizes, so that a fixed-size workspace (for
+// microcontrollers) and one sized to the loaded model (std::vector, set up once) share the code.
 template <class Scalar>
-struct EngineWorkspace {
-  std::array<std::array<Scalar, kMaxTerms>, kMaxInputs> membership{};  // mu[i][t] at the input
-  std::array<Scalar, kMaxInputs> input{};                              // inputs after locking
-  std::array<Scalar, kMaxRules> strength{};                            // rule firing strengths
-  std::array<Activation<Scalar>, kMaxRules> activations{};
-  std::array<Scalar, 6 * kMaxRules + 2> breakpoints{};
-  std::array<Scalar, 2 * kMaxRules> lines{};
-  std::array<Scalar, kMaxTerms*(kMaxTerms - 1) / 2> crossings{};
+struct WorkspaceView {
+  Scalar* membership = nullptr;  // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
+  std::size_t stride = 0;        // >= the largest number of input terms
+  Scalar* input = nullptr;       // [num_inputs]: inputs after locking
+  Scalar* strength = nullptr;    // [num_rules]: rule firing strengths
+  Scalar* stack = nullptr;       // [largest number of tokens of a rule]
+  Scalar* level = nullptr;       // [largest number of output terms]
+  Activation<Scalar>* activations = nullptr;
+  std::size_t activations_capacity = 0;  // >= max(num_rules, output terms)
+  Scalar* breakpoints = nullptr;         // exact centroid scratch (see defuzzify.hpp)
+  Scalar* lines = nullptr;
+  Scalar* crossings = nullptr;
+  ExactCentroidScratch exact{};
+
+  // True when the view is large enough for `model`.
+  template <class Model>
+  bool fits(const Model& model) const noexcept {
+    bool exact_needed = false;
+    for (std::size_t o = 0; o < model.num_outputs; ++o)
+      exact_needed = exact_needed || model.outputs[o].exact_centroid;
+    const std::size_t acts = detail::max(model.num_rules, model.max_output_terms());
+    const std::size_t terms = model.max_output_terms();
+    return membership != nullptr && input != nullptr && strength != nullptr && stack != nullptr &&
+           level != nullptr && activations != nullptr && stride >= model.max_input_terms() &&
+           activations_capacity >= acts &&
+           (!exact_needed ||
+            (exact.breakpoints_capacity >= 6 * acts + 2 && exact.lines_capacity >= 2 * acts &&
+             exact.crossings_capacity >= terms * (terms > 0 ? terms - 1 : 0) / 2));
+  }
 };
 
-// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
-// have passed validate(). Returns NonFiniteInput (outputs 0) for a NaN/inf input, NoRuleFired
-// when some output fell back to 0 because no rule fired for it, else Ok.
+// A workspace of fixed size for every model of capacity Cap (no heap; large for DefaultCapacity,
+// see docs/rule_files.md).
+template <class Scalar, class Cap = DefaultCapacity>
+struct EngineWorkspace {
+  static constexpr std::size_t kActs = Cap::rules > Cap::terms ? Cap::rules : Cap::terms;
+  std::array<Scalar, Cap::inputs * Cap::terms> membership{};
+  std::array<Scalar, Cap::inputs> input{};
+  std::array<Scalar, Cap::rules> strength{};
+  std::array<Scalar, Cap::rule_tokens> stack{};
+  std::array<Scalar, Cap::terms> level{};
+  std::array<Activation<Scalar>, kActs> activations{};
+  std::array<Scalar, 6 * kActs + 2> breakpoints{};
+  std::array<Scalar, 2 * kActs> lines{};
+  std::array<Scalar, Cap::terms*(Cap::terms - 1) / 2 + 1> crossings{};
+
+  WorkspaceView<Scalar> view() noexcept {
+    return {membership.data(), Cap::terms, input.data(), strength.data(), stack.data(),
+            level.data(), activations.data(), activations.size(), breakpoints.data(),
+            lines.data(), crossings.data(),
+            ExactCentroidScratch{breakpoints.size(), lines.size(), crossings.size()}};
+  }
+};
+
+namespace engine_detail {
+
 template <class Scalar>
-Status evaluate(const EngineModel<Scalar>& model, EngineWorkspace<Scalar>& ws, const Scalar* inputs,
-                Scalar* outputs) noexcept {
+Scalar hedge_right_to_left(const std::array<Hedge, kMaxHedges>& hedges, std::size_t n,
+                           Scalar x) noexcept {
+  for (std::size_t k = n; k-- > 0;)
+    x = apply(hedges[k], x);
+  return x;
+}
+
+template <class Scalar, class Model>
+Scalar proposition(const Model& model, const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
+  const std::size_t n = tok.num_hedges;
+  if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
+    return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
+  (void)model;
+  return hedge_right_to_left(tok.hedges, n, ws.membership[tok.input * ws.stride + tok.term]);
+}
+
+}  // namespace engine_detail
+
+// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
+// have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
+// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
+template <class Scalar, class Cap>
+Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
+                const Scalar* inputs, Scalar* outputs) noexcept {
   for (std::size_t o = 0; o < model.num_outputs; ++o)
     outputs[o] = Scalar(0);
   for (std::size_t i = 0; i < model.num_inputs; ++i)
     if (!detail::is_finite(inputs[i])) return Status::NonFiniteInput;
 
+  const Scalar* points = model.points.data();
   for (std::size_t i = 0; i < model.num_inputs; ++i) {
     const auto& in = model.inputs[i];
     const Scalar x = in.lock_range ? detail::clamp(inputs[i], in.min, in.max) : inputs[i];
     ws.input[i] = x;
     for (std::size_t t = 0; t < in.num_terms; ++t)
-      ws.membership[i][t] = in.terms[t](x);
+      ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
 
   for (std::size_t r = 0; r < model.num_rules; ++r) {
     const Rule<Scalar>& rule = model.rules[r];
-    bool first = true;
-    Scalar degree = Scalar(0);
-    for (std::size_t i = 0; i < model.num_inputs; ++i) {
-      const int a = rule.antecedent[i];
-      if (a == 0) continue;
-      const Scalar mu = a > 0 ? ws.membership[i][static_cast<std::size_t>(a - 1)]
-                              : Scalar(1) - ws.membership[i][static_cast<std::size_t>(-a - 1)];
-      if (first) {
-        degree = mu;
-        first = false;
+    const RuleBlock& block = model.blocks[rule.block];
+    std::size_t sp = 0;
+    for (std::size_t k = 0; k < rule.num_tokens; ++k) {
+      const Token& tok = model.tokens[rule.first_token + k];
+      if (tok.kind == Token::Kind::Proposition) {
+        ws.stack[sp++] = engine_detail::proposition(model, ws, tok);
       } else {
-        degree = rule.disjunction ? apply(model.disjunction, degree, mu)
-                                  : apply(model.conjunction, degree, mu);
+        const Scalar b = ws.stack[--sp];
+        const Scalar a = ws.stack[sp - 1];
+        ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
+                                                        : apply(block.disjunction, a, b);
       }
     }
-    ws.strength[r] = rule.weight * degree;
+    ws.strength[r] = rule.weight * ws.stack[0];
   }
 
+  const bool merged = model.merges_activations();
   Status status = Status::Ok;
   for (std::size_t o = 0; o < model.num_outputs; ++o) {
-    const OutputSpec<Scalar>& out = model.outputs[o];
+    const OutputSpec<Scalar, Cap>& out = model.outputs[o];
+    const bool sugeno = is_sugeno(out.defuzzifier);
+    const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
     bool fired = false;
-    if (is_sugeno(out.defuzzifier)) {
-      Scalar sum = Scalar(0);
-      Scalar weights = Scalar(0);
-      for (std::size_t r = 0; r < model.num_rules; ++r) {
-        const int c = model.rules[r].consequent[o];
-        const Scalar w = ws.strength[r];
-        if (c == 0 || !(w > Scalar(0))) continue;
-        const OutputTerm<Scalar>& term = out.terms[static_cast<std::size_t>(c - 1)];
-        Scalar z = term.coefficients[0];
-        if (term.kind == OutputTermKind::Linear) {
-          z = Scalar(0);
-          for (std::size_t i = 0; i < model.num_inputs; ++i)
-            z += term.coefficients[i] * ws.input[i];
-          z += term.coefficients[model.num_inputs];
-        }
-        sum += w * z;
-        weights += w;
+    Scalar sum = Scalar(0);
+    Scalar weights = Scalar(0);
+    std::size_t n = 0;
+    if (merge)
+      for (std::size_t t = 0; t < out.num_terms; ++t)
+        ws.level[t] = Scalar(0);
+    for (std::size_t r = 0; r < model.num_rules; ++r) {
+      const Rule<Scalar>& rule = model.rules[r];
+      if (!(ws.strength[r] > Scalar(0))) continue;
+      Scalar degree = ws.strength[r];
+      for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
+        const Conclusion& c = model.conclusions[rule.first_conclusion + k];
+        degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
+        if (c.output != o) continue;
         fired = true;
-      }
-      if (fired) y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
-    } else {
-      std::size_t n = 0;
-      if (out.aggregation == Aggregation::Maximum) {
-        std::array<Scalar, kMaxTerms> level{};
-        for (std::size_t r = 0; r < model.num_rules; ++r) {
-          const int c = model.rules[r].consequent[o];
-          if (c != 0) {
-            Scalar& l = level[static_cast<std::size_t>(c - 1)];
-            l = detail::max(l, ws.strength[r]);
+        const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
+        if (sugeno) {
+          Scalar z = term.coefficients[0];
+          if (term.kind == OutputTermKind::Linear) {
+            z = Scalar(0);
+            for (std::size_t i = 0; i < model.num_inputs; ++i)
+              z += term.coefficients[i] * ws.input[i];
+            z += term.coefficients[model.num_inputs];
           }
-        }
-        for (std::size_t t = 0; t < out.num_terms; ++t)
-          if (level[t] > Scalar(0)) ws.activations[n++] = {&out.terms[t].membership, level[t]};
-      } else {
-        for (std::size_t r = 0; r < model.num_rules; ++r) {
-          const int c = model.rules[r].consequent[o];
-          if (c != 0 && ws.strength[r] > Scalar(0))
-            ws.activations[n++] = {&out.terms[static_cast<std::size_t>(c - 1)].membership,
-                                   ws.strength[r]};
+          sum += degree * z;
+          weights += degree;
+        } else if (merge) {
+          ws.level[c.term] = detail::max(ws.level[c.term], degree);
+        } else {
+          ws.activations[n++] = {&term.membership, degree, model.blocks[rule.block].implication};
         }
       }
-      fired = n > 0;
-      if (fired) {
-        const AggregatedSet<Scalar> set{
-            ws.activations.data(), n,
-            model.implication == TNorm::Minimum ? Implication::Minimum : Implication::Product,
-            out.aggregation};
-        switch (out.defuzzifier) {
-          case Defuzzifier::Centroid:
-            y = out.exact_centroid
-                    ? centroid_exact(set, out.min, out.max, ws.breakpoints.data(), ws.lines.data(),
-                                     ws.crossings.data(),
-                                     {ws.breakpoints.size(), ws.lines.size(), ws.crossings.size()})
-                    : centroid_sampled(set, out.min, out.max, out.resolution);
-            break;
-          case Defuzzifier::Bisector:
-            y = bisector_sampled(set, out.min, out.max, out.resolution);
-            break;
-          case Defuzzifier::MeanOfMaximum:
-            y = of_maximum_sampled(MaximumKind::Mean, set, out.min, out.max, out.resolution);
-            break;
-          case Defuzzifier::SmallestOfMaximum:
-            y = of_maximum_sampled(MaximumKind::Smallest, set, out.min, out.max, out.resolution);
-            break;
-          case Defuzzifier::LargestOfMaximum:
-            y = of_maximum_sampled(MaximumKind::Largest, set, out.min, out.max, out.resolution);
-            break;
-          default:
-            break;
-        }
+    }
+    if (fired && sugeno) {
+      y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
+    } else if (fired) {
+      if (merge)
+        for (std::size_t t = 0; t < out.num_terms; ++t)
+          if (ws.level[t] > Scalar(0))
+            ws.activations[n++] = {&out.terms[t].membership, ws.level[t],
+                                   model.blocks[0].implication};
+      const AggregatedSet<Scalar> set{ws.activations, n, out.aggregation, points};
+      switch (out.defuzzifier) {
+        case Defuzzifier::Centroid:
+          y = out.exact_centroid
+                  ? centroid_exact(set, out.min, out.max, ws.breakpoints, ws.lines, ws.crossings,
+                                   ws.exact)
+                  : centroid_sampled(set, out.min, out.max, out.resolution);
+          break;
+        case Defuzzifier::Bisector:
+          y = bisector_sampled(set, out.min, out.max, out.resolution);
+          break;
+        case Defuzzifier::MeanOfMaximum:
+          y = of_maximum_sampled(MaximumKind::Mean, set, out.min, out.max, out.resolution);
+          break;
+        case Defuzzifier::SmallestOfMaximum:
+          y = of_maximum_sampled(MaximumKind::Smallest, set, out.min, out.max, out.resolution);
+          break;
+        case Defuzzifier::LargestOfMaximum:
+          y = of_maximum_sampled(MaximumKind::Largest, set, out.min, out.max, out.resolution);
+          break;
+        default:
+          break;
       }
     }
     if (!fired) y = out.default_value;
@@ -361,12 +570,12 @@ Status evaluate(const EngineModel<Scalar>& model, EngineWorkspace<Scalar>& ws, c
   return status;
 }
 
-// A model with its own workspace. Large (~93 kB for double): create it once, e.g. on the heap at
-// start-up.
-template <class Scalar>
+// A model with its own fixed-size workspace. Large for DefaultCapacity (docs/rule_files.md):
+// create it once, e.g. on the heap at start-up.
+template <class Scalar, class Cap = DefaultCapacity>
 class Engine {
  public:
-  using Model = EngineModel<Scalar>;
+  using Model = EngineModel<Scalar, Cap>;
 
   Engine() noexcept = default;
   // An invalid model leaves the engine unconfigured: evaluate() returns InvalidConfig.
@@ -382,7 +591,7 @@ class Engine {
   // Writes num_outputs() values; see fuzzy::evaluate.
   Status evaluate(const Scalar* inputs, Scalar* outputs) noexcept {
     if (!configured_) return Status::InvalidConfig;
-    return fuzzy::evaluate(model_, ws_, inputs, outputs);
+    return fuzzy::evaluate(model_, ws_.view(), inputs, outputs);
   }
 
   const Model& model() const noexcept { return model_; }
@@ -390,64 +599,12 @@ class Engine {
   std::size_t num_outputs() const noexcept { return model_.num_outputs; }
   // Firing strength of rule r in the last evaluation (weight included).
   Scalar rule_strength(std::size_t r) const noexcept { return ws_.strength[r]; }
-  const EngineWorkspace<Scalar>& workspace() const noexcept { return ws_; }
+  const EngineWorkspace<Scalar, Cap>& workspace() const noexcept { return ws_; }
 
  private:
   Model model_{};
-  EngineWorkspace<Scalar> ws_{};
+  EngineWorkspace<Scalar, Cap> ws_{};
   bool configured_ = false;
-};
-
-// The result FuzzyPid expects from its supervisor: outputs (dKp, dKi, dKd) and a status.
-template <class Scalar>
-struct SupervisorResult {
-  std::array<Scalar, 3> output{};
-  Status status = Status::Ok;
-};
-
-// Adapts a loaded model with two inputs (e, ec, in this order) and three outputs (dKp, dKi, dKd)
-// to control::FuzzyPid's System interface. It refers to the model (which must outlive it) and
-// owns a workspace, so it is not thread-safe: give each controller its own.
-template <class Scalar>
-class EngineSupervisor {
- public:
-  using Result = SupervisorResult<Scalar>;
-
-  EngineSupervisor() noexcept = default;
-  explicit EngineSupervisor(const EngineModel<Scalar>* model) noexcept
-      : model_(model),
-        valid_(model != nullptr && model->num_inputs == 2 && model->num_outputs == 3 &&
-               !model->validate()) {}
-
-  // True when the model is present, valid and has the 2 inputs and 3 outputs FuzzyPid needs.
-  bool valid() const noexcept { return valid_; }
-
-  // The supervisor concept of control/supervisor.hpp: the caller's workspace instead of ws_.
-  using Workspace = EngineWorkspace<Scalar>;
-  Workspace make_workspace() const noexcept { return {}; }
-  [[nodiscard]] Status infer(Scalar e, Scalar ec, Workspace& ws,
-                             std::array<Scalar, 3>& delta) const noexcept {
-    delta = {};
-    if (!valid_) return Status::InvalidConfig;
-    const Scalar in[2] = {e, ec};
-    return fuzzy::evaluate(*model_, ws, in, delta.data());
-  }
-
-  Result infer(Scalar e, Scalar ec) const noexcept {
-    Result r;
-    if (!valid_) {
-      r.status = Status::InvalidConfig;
-      return r;
-    }
-    const Scalar in[2] = {e, ec};
-    r.status = fuzzy::evaluate(*model_, ws_, in, r.output.data());
-    return r;
-  }
-
- private:
-  const EngineModel<Scalar>* model_ = nullptr;
-  bool valid_ = false;
-  mutable EngineWorkspace<Scalar> ws_{};
 };
 
 }  // namespace fuzzypid::fuzzy

@@ -1,0 +1,21 @@
+cmake_minimum_required(VERSION 3.16)
+# ctest script: configure, build and run one downstream project.
+#   CONSUMER_DIR  the project          WORK_DIR  its build tree (recreated)
+#   CONFIGURE_ARGS  extra -D arguments (;-list)   RUN_ARGS  arguments of the consumer (;-list)
+include(${CMAKE_CURRENT_LIST_DIR}/script_arguments.cmake)
+fuzzypid_script_arguments(REQUIRED CONSUMER_DIR WORK_DIR LISTS CONFIGURE_ARGS RUN_ARGS)
+file(REMOVE_RECURSE ${WORK_DIR})
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR} -G Ninja
+                        -DCMAKE_BUILD_TYPE=Release ${CONFIGURE_ARGS}
+                RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "consumer configure failed (${rc})")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR} --target consumer RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "consumer build failed (${rc})")
+endif()
+execute_process(COMMAND ${WORK_DIR}/consumer ${RUN_ARGS} RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "consumer run failed (${rc})")
+endif()
