@@ -230,6 +230,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
       "as a controller file (docs/tuning.md). Progress goes to stderr.");
   std::vector<std::string> family_names;
+  family_names.reserve(cf::kFamilyNames.size());
   for (const auto& e : cf::kFamilyNames)
     family_names.emplace_back(e.name);
   cmd->add_option("--family", t->family_name,
