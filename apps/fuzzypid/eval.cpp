@@ -16,8 +16,8 @@
 #include "csv.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/status.hpp"
 
 namespace fuzzypid::cli {
@@ -77,7 +77,7 @@ int eval_rule_file(const EvalOptions& o) {
   } else if (!o.fll.empty()) {
     loaded = rulefile::load_fll(o.fll, *model, error);
   } else {
-    loaded = rulefile::load_rule_file(o.fcl, *model, error);
+    loaded = rulefile::load_fcl(o.fcl, *model, error);
   }
   if (!loaded) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.to_string().c_str());

@@ -164,6 +164,19 @@ ROWS
 ' --fll "$data/gap.fll"
     [ "$code" -eq 0 ] || fail "rows that fire: exit code $code: $(cat "$work/err")"
     ;;
+  fcl_option_reads_fcl)
+    # --fcl reads IEC 61131-7 text whatever the file is called, and only that.
+    cp tests/rulefiles/corpus/fcl_motor_speed_pi.fcl "$work/motor.txt"
+    run 'e,de
+0.1,-0.2
+' --fcl "$work/motor.txt"
+    [ "$code" -eq 0 ] || fail "--fcl: exit code $code: $(cat "$work/err")"
+    [ "$(head -n 1 "$work/out")" = "e,de,du" ] || fail "--fcl header: $(cat "$work/out")"
+    [ "$(wc -l <"$work/out")" -eq 2 ] || fail "--fcl rows: $(cat "$work/out")"
+    run '0,0
+' --fcl rulebases/paper.fis
+    [ "$code" -eq 1 ] || fail "--fcl on a .fis file: exit code $code, expected 1"
+    ;;
   rule_file_options_exclude_each_other)
     run '0,0
 ' --fis rulebases/paper.fis --fll rulebases/paper.fll

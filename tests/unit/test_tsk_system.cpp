@@ -346,11 +346,21 @@ TEST(LinguisticVariable, UniformLocateIsAPartitionOfUnityEqualToTheTriangles) {
   expect_partition_of_unity<float, 5>(76);
 }
 
-TEST(TskSystem, ValidAcceptsMinimumOrProductWithEitherTskDefuzzifier) {
+TEST(TskSystem, ValidAcceptsOnlyMinimumOrProductWithEitherTskDefuzzifier) {
   auto s = paper::make_system<double>(Conjunction::Product);
   EXPECT_TRUE(s.valid());
   s.defuzzifier = TskDefuzzifier::WeightedSum;
   EXPECT_TRUE(s.valid());
+  for (const auto other :
+       {Conjunction::BoundedDifference, Conjunction::DrasticProduct, Conjunction::EinsteinProduct,
+        Conjunction::HamacherProduct, Conjunction::NilpotentMinimum}) {
+    auto t = paper::make_system<double>();
+    t.conjunction = other;
+    EXPECT_FALSE(t.valid()) << fuzzypid::fuzzy::to_string(other);
+  }
+  auto u = paper::make_system<double>();
+  u.defuzzifier = fuzzypid::fuzzy::Defuzzifier::Centroid;
+  EXPECT_FALSE(u.valid());
 }
 
 }  // namespace

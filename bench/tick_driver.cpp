@@ -1,0 +1,92 @@
+// Runs N 6-joint ticks (or N inferences) on the benchmarks' own inputs, for instruction counts
+// that do not depend on machine load:
+//
+//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bin/fuzzypid_tick_driver fuzzy
+//   1000 valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bin/fuzzypid_tick_driver
+//   fuzzy 101000
+//
+// (instructions per tick = difference of the two totals / 100,000; kinds: fuzzy, pid, infer).
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "bench_inputs.hpp"
+#include "fuzzypid/paper.hpp"
+#include "fuzzypid/pid/pid.hpp"
+
+namespace {
+
+using Input = fuzzypid::control::JointInput<double, 6>;
+
+// The tick table and configuration of bench_controller.cpp.
+Input g_table[fuzzypid::bench::kTableSize];
+
+fuzzypid::pid::Config<double> pid_config() {
+  fuzzypid::pid::Config<double> c;
+  c.gains = fuzzypid::paper::kNominalGains<double>;
+  c.derivative_source = fuzzypid::pid::DerivativeSource::Rates;
+  return c;
+}
+
+template <class Controller>
+[[gnu::noinline]] double run(Controller& controller, long n) {
+  double sum = 0.0;
+  for (long k = 0; k < n; ++k) {
+    const auto out =
+        controller.step(g_table[static_cast<std::size_t>(k) & fuzzypid::bench::kTableMask], 0.05);
+    sum += out.torque_nm[0] + static_cast<double>(out.status);
+  }
+  return sum;
+}
+
+[[gnu::noinline]] double infer(long n) {
+  const auto& system = fuzzypid::paper::kSystem<double>;
+  auto workspace = system.make_workspace();
+  const auto table = fuzzypid::bench::make_error_table();
+  double sum = 0.0;
+  for (long k = 0; k < n; ++k) {
+    const auto& p = table[static_cast<std::size_t>(k) & fuzzypid::bench::kTableMask];
+    std::array<double, 3> delta;
+    const fuzzypid::Status s = system.infer(p.e, p.ec, workspace, delta);
+    sum += delta[0] + delta[1] + delta[2] + static_cast<double>(s);
+  }
+  return sum;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3 || std::atol(argv[2]) < 1) {
+    std::fprintf(stderr, "usage: fuzzypid_tick_driver fuzzy|pid|infer COUNT\n");
+    return 2;
+  }
+  const long n = std::atol(argv[2]);
+  fuzzypid::bench::SplitMix64 rng(7);
+  for (auto& t : g_table) {
+    for (std::size_t j = 0; j < 6; ++j) {
+      t.desired_position_rad[j] = rng.uniform(-1.5, 1.5);
+      t.desired_velocity_rad_s[j] = rng.uniform(-0.5, 0.5);
+      t.measured_position_rad[j] = t.desired_position_rad[j] + rng.uniform(-0.35, 0.35);
+      t.measured_velocity_rad_s[j] = t.desired_velocity_rad_s[j] + rng.uniform(-0.35, 0.35);
+    }
+  }
+  double sum = 0.0;
+  if (std::strcmp(argv[1], "fuzzy") == 0) {
+    auto config = fuzzypid::paper::paper_config<double>();
+    config.pid = pid_config();
+    fuzzypid::paper::JointController<double, 6> controller(
+        fuzzypid::paper::FuzzyPid<double>(&fuzzypid::paper::kSystem<double>, config));
+    sum = run(controller, n);
+  } else if (std::strcmp(argv[1], "pid") == 0) {
+    fuzzypid::control::JointController<double, 6, fuzzypid::pid::Pid<double>> controller{
+        fuzzypid::pid::Pid<double>(pid_config())};
+    sum = run(controller, n);
+  } else if (std::strcmp(argv[1], "infer") == 0) {
+    sum = infer(n);
+  } else {
+    std::fprintf(stderr, "usage: fuzzypid_tick_driver fuzzy|pid|infer COUNT\n");
+    return 2;
+  }
+  std::printf("%.17g\n", sum);
+  return 0;
+}
