@@ -102,7 +102,7 @@ stage_soak() {
 stage_main() {
   bash scripts/run-main.sh
   local f
-  for f in out/metrics.csv out/trajectory.csv; do
+  for f in out/ab/metrics.csv out/ab/trajectory.csv out/sweep-payload/sweep.csv; do
     [ -s "${f}" ] || { echo "scripts/run-main.sh did not write ${f}" >&2; return 1; }
   done
 }

@@ -11,12 +11,14 @@ cd "$(dirname "$0")/.."
 budget="${BUDGET:-16000}"
 seeds="${SEEDS:-5}"
 threads="${THREADS:-$(nproc)}"
+bash scripts/install-deps.sh
+# shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$(nproc)" --target fuzzypid_cli sim_ab
+# Each run prints its evaluations, wall time and evaluations per second.
 for family in pid scheduled fuzzy; do
-  /usr/bin/time -f "${family}: %e s wall" build/bin/fuzzypid tune --family "${family}" \
-    --conditions tuning/robust.toml --set training --budget "${budget}" --seed 1 \
-    --threads "${threads}" --out "controllers/tuned_${family}.toml"
+  build/bin/fuzzypid tune --family "${family}" --conditions tuning/robust.toml --set training \
+    --budget "${budget}" --seed 1 --threads "${threads}" --out "controllers/tuned_${family}.toml"
 done
 if [ "${SKIP_SEEDS:-0}" = 1 ]; then exit 0; fi
 mkdir -p out/seeds

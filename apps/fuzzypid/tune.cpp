@@ -4,6 +4,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -155,6 +156,16 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 2;
   }
+  if (!result->controller.supervisor.rule_file.empty()) {
+    // The base's rule file, named relative to the folder of the file written.
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path target =
+        fs::absolute(fs::path(base_file).parent_path() / result->controller.supervisor.rule_file);
+    const fs::path relative = fs::relative(target, fs::absolute(fs::path(out).parent_path()), ec);
+    result->controller.supervisor.rule_file =
+        ec || relative.empty() ? target.generic_string() : relative.generic_string();
+  }
   result->controller.tuning->conditions = conditions;
   result->controller.tuning->set = set;
   result->controller.description =
@@ -189,6 +200,13 @@ int run_export_header(const ExportOptions& o) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
     return 1;
   }
+  if (!spec.supervisor.rule_file.empty()) {
+    std::fprintf(stderr,
+                 "fuzzypid export-header: %s: a rule file (%s) cannot be exported as a header; "
+                 "only the built-in tables can\n",
+                 in.c_str(), spec.supervisor.rule_file.c_str());
+    return 1;
+  }
   const std::string text = cf::export_header(spec, ns, in);
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
@@ -212,6 +230,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
       "as a controller file (docs/tuning.md). Progress goes to stderr.");
   std::vector<std::string> family_names;
+  family_names.reserve(cf::kFamilyNames.size());
   for (const auto& e : cf::kFamilyNames)
     family_names.emplace_back(e.name);
   cmd->add_option("--family", t->family_name,

@@ -6,7 +6,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/controller_file/toml_reader.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
 
 namespace fuzzypid::controller_file {
 
@@ -37,6 +39,26 @@ std::string quoted(const std::string& s) {
     }
   }
   return out + "\"";
+}
+
+// The rule base named by `written` (relative to the controller file's folder), loaded and checked
+// for the two inputs and three outputs FuzzyPid needs.
+std::shared_ptr<const fuzzy::EngineModel<double>> load_rule_model(const TableReader& where,
+                                                                  const toml::node& node,
+                                                                  const std::string& written) {
+  namespace fs = std::filesystem;
+  if (written.empty()) where.fail(node, "rule_file must name a .fis, .fll or .fcl file");
+  const fs::path resolved = fs::path(where.file()).parent_path() / written;
+  auto model = std::make_shared<rulefile::Model>();
+  rulefile::LoadError error;
+  if (!rulefile::load_rule_file(resolved.string(), *model, error))
+    where.fail(node, "cannot load the rule file: " + error.to_string());
+  if (!control::EngineSupervisor<double>(model.get()).valid())
+    where.fail(node,
+               "the rule file must have two inputs (e, ec) and three outputs (dKp, dKi, "
+               "dKd): " +
+                   resolved.string());
+  return model;
 }
 
 ControllerSpec read_spec(const toml::table& root, const std::string& file) {
@@ -71,9 +93,17 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     if (s.family == Family::Fuzzy) {
       s.supervisor.gain_update =
           sup->choice("gain_update", kGainUpdateNames, control::GainUpdate::Absolute);
-      s.supervisor.rule_base = sup->choice("rule_base", kRuleBaseNames, RuleBase::PaperPrinted);
-      s.supervisor.conjunction =
-          sup->choice("conjunction", kConjunctionNames, fuzzy::Conjunction::Minimum);
+      if (sup->has("rule_file")) {
+        const toml::node& node = *sup->raw().get("rule_file");
+        if (sup->has("rule_base") || sup->has("conjunction"))
+          sup->fail(node, "rule_file replaces the built-in tables: no rule_base or conjunction");
+        s.supervisor.rule_file = sup->text("rule_file");
+        s.supervisor.rule_model = load_rule_model(*sup, node, s.supervisor.rule_file);
+      } else {
+        s.supervisor.rule_base = sup->choice("rule_base", kRuleBaseNames, RuleBase::PaperPrinted);
+        s.supervisor.conjunction =
+            sup->choice("conjunction", kConjunctionNames, fuzzy::Conjunction::Minimum);
+      }
     }
     for (const char* k : {"error_scale", "error_rate_scale"})
       if (!(sup->number(k) > 0.0)) sup->fail(*sup->raw().get(k), std::string(k) + " must be > 0");
@@ -195,6 +225,8 @@ std::string validate(const ControllerSpec& s) {
         return "the scheduled family's output_scale (gain ratios) must be > 0";
     }
   }
+  if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
+    return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
   const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
   const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
   for (int k = 0; k < 3; ++k)
@@ -256,8 +288,12 @@ std::string to_toml(const ControllerSpec& s) {
                                        : "  # Sp, Si, Sd\n";
     if (s.family == Family::Fuzzy) {
       o += "gain_update = " + quoted(name_of(kGainUpdateNames, sup.gain_update)) + "\n";
-      o += "rule_base = " + quoted(to_string(sup.rule_base)) + "\n";
-      o += "conjunction = " + quoted(name_of(kConjunctionNames, sup.conjunction)) + "\n";
+      if (!sup.rule_file.empty()) {
+        o += "rule_file = " + quoted(sup.rule_file) + "  # relative to this file's folder\n";
+      } else {
+        o += "rule_base = " + quoted(to_string(sup.rule_base)) + "\n";
+        o += "conjunction = " + quoted(name_of(kConjunctionNames, sup.conjunction)) + "\n";
+      }
     }
   }
   o += "\n[bounds]  # on the retuned gains\n";

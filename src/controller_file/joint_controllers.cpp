@@ -69,6 +69,30 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
       return out;
     }
     case Family::Fuzzy: {
+      if (spec.supervisor.rule_model != nullptr) {
+        // A rule file: the engine supervisor on the loaded model (both shared by the joints).
+        auto engine = std::make_unique<const control::EngineSupervisor<double>>(
+            spec.supervisor.rule_model.get());
+        if (!engine->valid()) {
+          error = "the rule file's model is not a valid supervisor (2 inputs, 3 outputs)";
+          return std::nullopt;
+        }
+        using Joint = control::FuzzyPid<double, control::EngineSupervisor<double>>;
+        std::array<Joint, kJoints> joints;
+        for (std::size_t i = 0; i < kJoints; ++i) {
+          const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+          if (!fc.valid()) {
+            error = "invalid fuzzy PID configuration";
+            return std::nullopt;
+          }
+          joints[i] = Joint(engine.get(), fc);
+        }
+        JointControllers out(spec, nullptr, nullptr);
+        out.rule_model_ = spec.supervisor.rule_model;
+        out.engine_ = std::move(engine);
+        out.joints_ = EngineJoints(joints);
+        return out;
+      }
       auto tables = std::make_unique<const paper::System<double>>(paper::make_system<double>(
           spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
                                            ? paper::Tables::Corrected

@@ -152,6 +152,10 @@ ControllerSpec to_spec(Family family, const std::vector<double>& x, const Contro
     s.supervisor.output_scale = {p(5), p(6), p(7)};
   }
   if (family == Family::Scheduled) s.supervisor.gain_update = control::GainUpdate::Absolute;
+  if (family != Family::Fuzzy) {  // a rule file only means something to the fuzzy family
+    s.supervisor.rule_file.clear();
+    s.supervisor.rule_model.reset();
+  }
   return s;
 }
 

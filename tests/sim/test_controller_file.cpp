@@ -205,6 +205,31 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+TEST(ControllerFile, ARuleFileIsResolvedFromTheFilesFolderAndWrittenBackAsGiven) {
+  const std::string path = FUZZYPID_SOURCE_DIR "/tests/sim/data/engine_fuzzy.toml";
+  cf::ControllerSpec spec;
+  cf::Error error;
+  ASSERT_TRUE(cf::load(path, spec, error)) << error.to_string();
+  EXPECT_EQ(spec.supervisor.rule_file, "../../../rulebases/paper.fll");
+  ASSERT_NE(spec.supervisor.rule_model, nullptr);
+  EXPECT_EQ(spec.supervisor.rule_model->num_inputs, 2u);
+  // Written back and read again from the same folder: the same text.
+  const std::string text = cf::to_toml(spec);
+  cf::ControllerSpec back;
+  ASSERT_TRUE(cf::parse(text, path, back, error)) << error.to_string();
+  EXPECT_EQ(cf::to_toml(back), text);
+}
+
+TEST(ControllerFile, AMissingRuleFileIsAnErrorAtItsKey) {
+  cf::ControllerSpec spec;
+  cf::Error error;
+  ASSERT_FALSE(
+      cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_missing_rule_file.toml", spec, error));
+  EXPECT_EQ(error.line, 14);
+  EXPECT_EQ(error.column, 13);
+  EXPECT_NE(error.message.find("missing.fll"), std::string::npos) << error.to_string();
+}
+
 TEST(ControllerFile, AValidFileIsAccepted) {
   cf::ControllerSpec spec;
   cf::Error error;

@@ -1,7 +1,8 @@
 // Controller files: one deployable controller of the six joints as TOML (docs/tuning.md).
 //
 // A file names the family (pid, scheduled, fuzzy), its gains and scales in stated units, the gain
-// bounds, the PID options, the rule base (fuzzy only) and, when it was tuned, how: conditions
+// bounds, the PID options, the rule base (fuzzy only: the paper's tables, or a .fis/.fll/.fcl file
+// loaded with fuzzypid::rulefile) and, when it was tuned, how: conditions
 // file, set, optimiser, budget, seed, objective weights and search box. load() reads one with
 // `file:line:column` errors (parsed by toml++); to_toml() writes it back so that loading the text
 // gives the same ControllerSpec and writing that gives the same text (numbers at %.17g).
@@ -13,12 +14,14 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
@@ -145,6 +148,11 @@ struct Supervisor {
   control::GainUpdate gain_update = control::GainUpdate::Absolute;  // fuzzy only
   RuleBase rule_base = RuleBase::PaperPrinted;                      // fuzzy only
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;     // fuzzy only
+  // fuzzy only: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs e, ec; 3
+  // outputs dKp, dKi, dKd), as written in the file (relative to the file's folder), and the model
+  // load() read from it (shared, immutable).
+  std::string rule_file;
+  std::shared_ptr<const fuzzy::EngineModel<double>> rule_model;
 };
 
 struct PidOptions {

@@ -11,6 +11,7 @@
 #include <string>
 #include <variant>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
@@ -28,6 +29,9 @@ using Command = control::JointOutput<double, kJoints>;
 using PidJoints = control::JointController<double, kJoints, pid::Pid<double>>;
 using FuzzyJoints =
     control::JointController<double, kJoints, control::FuzzyPid<double, paper::System<double>>>;
+using EngineJoints =
+    control::JointController<double, kJoints,
+                             control::FuzzyPid<double, control::EngineSupervisor<double>>>;
 using ScheduledJoints =
     control::JointController<double, kJoints,
                              control::FuzzyPid<double, control::GainSchedule<double>>>;
@@ -53,6 +57,7 @@ class JointControllers {
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
     if (auto* p = std::get_if<PidJoints>(&joints_)) return p->step(in, dt_s);
     if (auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->step(in, dt_s);
+    if (auto* r = std::get_if<EngineJoints>(&joints_)) return r->step(in, dt_s);
     return std::get_if<ScheduledJoints>(&joints_)->step(in, dt_s);
   }
 
@@ -60,6 +65,7 @@ class JointControllers {
   pid::Gains<double> gains(std::size_t i) const noexcept {
     if (const auto* p = std::get_if<PidJoints>(&joints_)) return p->joint(i).gains();
     if (const auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->joint(i).gains();
+    if (const auto* r = std::get_if<EngineJoints>(&joints_)) return r->joint(i).gains();
     return std::get_if<ScheduledJoints>(&joints_)->joint(i).gains();
   }
   // The same in the file's units (per-tick when the file's form is per-tick).
@@ -78,7 +84,9 @@ class JointControllers {
   // The shared supervisors (on the heap: their addresses survive moves of this object).
   std::unique_ptr<const paper::System<double>> tables_;
   std::unique_ptr<const control::GainSchedule<double>> schedule_;
-  std::variant<PidJoints, FuzzyJoints, ScheduledJoints> joints_;
+  std::shared_ptr<const fuzzy::EngineModel<double>> rule_model_;
+  std::unique_ptr<const control::EngineSupervisor<double>> engine_;
+  std::variant<PidJoints, FuzzyJoints, ScheduledJoints, EngineJoints> joints_;
 };
 
 }  // namespace fuzzypid::controller_file
