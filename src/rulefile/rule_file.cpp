@@ -1,8 +1,6 @@
 // File access, format dispatch and the shared model check of the rule-file readers.
 #include "fuzzypid/rulefile/rule_file.hpp"
-
-#include <fstream>
-#include <sstream>
+#include "fuzzypid_support/bounded_read.hpp"
 
 #include "check.hpp"
 #include "text.hpp"
@@ -47,15 +45,16 @@ bool check_model(const Model& model, const SourceLines& lines, LoadError& error)
 
 namespace {
 
+// A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger, or a
+// device that never ends (/dev/zero), is refused before it can exhaust memory.
+constexpr std::size_t kMaxRuleFileBytes = std::size_t{16} << 20;
+
 bool read_file(const std::string& path, std::string& text, LoadError& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = LoadError{path, 0, "cannot open file"};
+  std::string reason;
+  if (!support::read_file_bounded(path, kMaxRuleFileBytes, text, reason)) {
+    error = LoadError{path, 0, reason};
     return false;
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  text = buffer.str();
   return true;
 }
 

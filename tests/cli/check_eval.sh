@@ -185,6 +185,12 @@ ROWS
 ' --fll "$data/gap.fll" --and prod
     [ "$code" -eq 2 ] || fail "--fll with --and: exit code $code, expected 2"
     ;;
+  rule_file_read_is_bounded)
+    run '0,0
+' --fis /dev/zero
+    [ "$code" -eq 1 ] || fail "--fis /dev/zero: exit code $code, expected 1"
+    grep -q "is larger than" "$work/err" || fail "no size message: $(cat "$work/err")"
+    ;;
   *)
     fail "unknown case"
     ;;

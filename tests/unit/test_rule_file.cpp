@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -551,7 +552,8 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
        replace(good, "WeightedAverage TakagiSugeno", "WeightedAverage Inverse"), "Inverse",
        "unsupported weighted defuzzifier type 'Inverse'"},
       {"takagi-sugeno over membership terms",
-       replace(replace(good, "N3 Constant -0.03", "N3 Ramp 0 1"), "P3 Constant 0.03", "P3 Ramp 1 0"),
+       replace(replace(good, "N3 Constant -0.03", "N3 Ramp 0 1"), "P3 Constant 0.03",
+               "P3 Ramp 1 0"),
        "OutputVariable: dKp", "TakagiSugeno weighted defuzzifier over membership terms"},
       {"unknown activation", replace(good, "activation: General", "activation: Random"),
        "activation: Random", "unsupported activation 'Random'"},
@@ -628,12 +630,36 @@ TEST(RuleFile, LoadRuleFileReportsMissingFilesAndUnknownExtensions) {
   Model* model = new Model;
   LoadError error;
   EXPECT_FALSE(fuzzypid::rulefile::load_rule_file("/nonexistent/x.fis", *model, error));
-  EXPECT_EQ(error.to_string(), "/nonexistent/x.fis: cannot open file");
+  EXPECT_EQ(error.to_string().rfind("/nonexistent/x.fis: cannot open '/nonexistent/x.fis'", 0), 0u)
+      << error.to_string();
   EXPECT_FALSE(fuzzypid::rulefile::load_rule_file("rules.txt", *model, error));
   EXPECT_NE(error.message.find("extension"), std::string::npos);
   EXPECT_TRUE(
       fuzzypid::rulefile::load_rule_file(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
       << error.to_string();
+  delete model;
+}
+
+// A device that never ends or an oversized file is refused after a bounded read (16 MiB), never
+// read until memory runs out; a directory is refused by name.
+TEST(RuleFile, LoadReadsAtMostABoundedSize) {
+  Model* model = new Model;
+  LoadError error;
+  EXPECT_FALSE(fuzzypid::rulefile::load_fis("/dev/zero", *model, error));
+  EXPECT_NE(error.message.find("is larger than 16777216 bytes"), std::string::npos)
+      << error.to_string();
+  EXPECT_FALSE(fuzzypid::rulefile::load_fll("/", *model, error));
+  EXPECT_NE(error.message.find("is a directory"), std::string::npos) << error.to_string();
+
+  const std::string big = ::testing::TempDir() + "fuzzypid_oversized.fcl";
+  std::FILE* f = std::fopen(big.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  ASSERT_EQ(std::fseek(f, 16L << 20, SEEK_SET), 0);  // 16 MiB of zeros, then one more byte
+  ASSERT_EQ(std::fputc('x', f), 'x');
+  ASSERT_EQ(std::fclose(f), 0);
+  EXPECT_FALSE(fuzzypid::rulefile::load_rule_file(big, *model, error));
+  EXPECT_NE(error.message.find("is larger than"), std::string::npos) << error.to_string();
+  std::remove(big.c_str());
   delete model;
 }
 
