@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 
 namespace fuzzypid::sim_ab {
@@ -174,7 +175,8 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
       },
       "Gaussian measurement noise on angles (rad) and velocities (rad/s)");
   app.add_option_function<std::uint64_t>(
-      "--seed", [&o](std::uint64_t s) { o.seed = s; }, "measurement-noise seed (default 1)");
+         "--seed", [&o](std::uint64_t s) { o.seed = s; }, "measurement-noise seed (default 1)")
+      ->check(cli::unsigned_integer());
   app.add_flag("--reverse", o.reverse, "follow the path B -> A");
 
   // The paper's default controllers.

@@ -1,8 +1,7 @@
 #include "fuzzypid/controller_file/toml_reader.hpp"
+#include "fuzzypid_support/bounded_read.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace fuzzypid::controller_file {
 
@@ -33,12 +32,14 @@ toml::table parse_toml(std::string_view text, const std::string& source) {
 }
 
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ReadError{Error{path, 0, 0, "cannot open the file"}};
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw ReadError{Error{path, 0, 0, "cannot read the file"}};
-  return s.str();
+  // Controller and condition files are a few kB; a larger file, or a device that never ends
+  // (/dev/zero), is refused before it can exhaust memory.
+  constexpr std::size_t kMaxBytes = std::size_t{1} << 20;
+  std::string text;
+  std::string reason;
+  if (!support::read_file_bounded(path, kMaxBytes, text, reason))
+    throw ReadError{Error{path, 0, 0, reason}};
+  return text;
 }
 
 void TableReader::fail(const toml::node& node, const std::string& message) const {

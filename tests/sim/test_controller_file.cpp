@@ -245,4 +245,16 @@ TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
   EXPECT_NE(error.to_string().find("/nonexistent/controller.toml"), std::string::npos);
 }
 
+// A device that never ends is refused after a bounded read (1 MiB), never read until memory runs
+// out; so is a directory.
+TEST(ControllerFile, AFileIsReadWithABoundedSize) {
+  cf::ControllerSpec spec;
+  cf::Error error;
+  EXPECT_FALSE(cf::load("/dev/zero", spec, error));
+  EXPECT_NE(error.message.find("is larger than 1048576 bytes"), std::string::npos)
+      << error.to_string();
+  EXPECT_FALSE(cf::load("/", spec, error));
+  EXPECT_NE(error.message.find("is a directory"), std::string::npos) << error.to_string();
+}
+
 }  // namespace
