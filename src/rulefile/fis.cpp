@@ -63,6 +63,10 @@ class Scanner {
     const std::size_t end = s_.find('\'', k_ + 1);
     if (end == std::string_view::npos) return false;
     out = std::string(s_.substr(k_ + 1, end - k_ - 1));
+    // Control characters (NUL, line breaks, ...) are no part of a name any writer produces, and
+    // no format could write them back: refuse them here.
+    for (const char c : out)
+      if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') return false;
     k_ = end + 1;
     return true;
   }
