@@ -766,6 +766,20 @@ TEST(RuleFileFis, NamesKeepTheirCharactersAndAreSanitisedForFll) {
       << fll;
 }
 
+// A name with a control character (here a NUL, as the fuzzer found) could not be written back by
+// any format: it is refused with the line, not loaded.
+TEST(RuleFileFis, NamesWithControlCharactersAreRefused) {
+  std::string text = corpus("octave_names_with_spaces_utf8.fis");
+  const std::size_t at = text.find("Name='");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 6, 1, '\0');
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  EXPECT_FALSE(fuzzypid::rulefile::parse_fis(text, "nul.fis", *model, error));
+  EXPECT_GT(error.line, 0) << error.to_string();
+  EXPECT_NE(error.message.find("quoted string"), std::string::npos) << error.to_string();
+}
+
 TEST(RuleFileFis, ZeroPaddedMatlab1xListsAndUnusedInputsLoad) {
   const auto padded = load_text("padded.fis", corpus("matlab1x_tank_padded.fis"));
   ASSERT_TRUE(padded);
