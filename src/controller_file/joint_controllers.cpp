@@ -40,6 +40,29 @@ control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, dou
   return fc;
 }
 
+namespace {
+
+// The six joints of a supervised family on `supervisor` (shared, not owned), each with the spec's
+// configuration and its own output limit; nullopt with `error` set when a configuration is
+// invalid. `what` names the family in that error.
+template <class Supervisor>
+std::optional<std::array<control::FuzzyPid<double, Supervisor>, kJoints>> supervised_joints(
+    const ControllerSpec& spec, const Supervisor* supervisor, const Vector& output_limit,
+    const char* what, std::string& error) {
+  std::array<control::FuzzyPid<double, Supervisor>, kJoints> joints;
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+    if (!fc.valid()) {
+      error = std::string("invalid ") + what + " configuration";
+      return std::nullopt;
+    }
+    joints[i] = control::FuzzyPid<double, Supervisor>(supervisor, fc);
+  }
+  return joints;
+}
+
+}  // namespace
+
 std::optional<JointControllers> JointControllers::create(const ControllerSpec& spec,
                                                          const Vector& output_limit,
                                                          std::string& error) {
@@ -77,54 +100,30 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
           error = "the rule file's model is not a valid supervisor (2 inputs, 3 outputs)";
           return std::nullopt;
         }
-        using Joint = control::FuzzyPid<double, control::EngineSupervisor<double>>;
-        std::array<Joint, kJoints> joints;
-        for (std::size_t i = 0; i < kJoints; ++i) {
-          const auto fc = fuzzy_pid_config(spec, output_limit[i]);
-          if (!fc.valid()) {
-            error = "invalid fuzzy PID configuration";
-            return std::nullopt;
-          }
-          joints[i] = Joint(engine.get(), fc);
-        }
+        auto joints = supervised_joints(spec, engine.get(), output_limit, "fuzzy PID", error);
+        if (!joints) return std::nullopt;
         JointControllers out(spec, nullptr, nullptr);
         out.rule_model_ = spec.supervisor.rule_model;
         out.engine_ = std::move(engine);
-        out.joints_ = EngineJoints(joints);
+        out.joints_ = EngineJoints(*joints);
         return out;
       }
       auto tables = std::make_unique<const paper::System<double>>(paper::make_system<double>(
           spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
                                            ? paper::Tables::Corrected
                                            : paper::Tables::Printed));
-      using Joint = control::FuzzyPid<double, paper::System<double>>;
-      std::array<Joint, kJoints> joints;
-      for (std::size_t i = 0; i < kJoints; ++i) {
-        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
-        if (!fc.valid()) {
-          error = "invalid fuzzy PID configuration";
-          return std::nullopt;
-        }
-        joints[i] = Joint(tables.get(), fc);
-      }
+      auto joints = supervised_joints(spec, tables.get(), output_limit, "fuzzy PID", error);
+      if (!joints) return std::nullopt;
       JointControllers out(spec, std::move(tables), nullptr);
-      out.joints_ = FuzzyJoints(joints);
+      out.joints_ = FuzzyJoints(*joints);
       return out;
     }
     case Family::Scheduled: {
       auto schedule = std::make_unique<const control::GainSchedule<double>>();
-      using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
-      std::array<Joint, kJoints> joints;
-      for (std::size_t i = 0; i < kJoints; ++i) {
-        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
-        if (!fc.valid()) {
-          error = "invalid scheduled PID configuration";
-          return std::nullopt;
-        }
-        joints[i] = Joint(schedule.get(), fc);
-      }
+      auto joints = supervised_joints(spec, schedule.get(), output_limit, "scheduled PID", error);
+      if (!joints) return std::nullopt;
       JointControllers out(spec, nullptr, std::move(schedule));
-      out.joints_ = ScheduledJoints(joints);
+      out.joints_ = ScheduledJoints(*joints);
       return out;
     }
   }

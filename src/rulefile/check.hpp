@@ -1,6 +1,6 @@
-// The one semantic check of a loaded model, shared by the three readers: fuzzy::EngineModel's
-// validate(), with its finding placed on the line of the variable or rule concerned (private to
-// fuzzypid::rulefile).
+// The one semantic check of a model, shared by the three readers and the three writers:
+// fuzzy::EngineModel's validate(), with a reader's finding placed on the line of the variable or
+// rule concerned (private to fuzzypid::rulefile).
 #pragma once
 
 #include <string>
@@ -17,6 +17,10 @@ struct SourceLines {
 
 // Validates `model`; on failure fills `error` (its file already set) and returns false.
 bool check_model(const Model& model, const SourceLines& lines, LoadError& error);
+
+// Validates a model about to be written; on failure sets `error` ("invalid model: ...") and
+// returns false.
+bool check_export(const Model& model, std::string& error);
 
 // Variable and rule limits of the capacity, as messages name them.
 inline std::string capacity_text() {

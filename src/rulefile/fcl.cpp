@@ -488,11 +488,7 @@ bool parse_fcl(std::string_view text, const std::string& source, Model& model, L
 }
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {
-  const fuzzy::ModelError e = m.validate();
-  if (e) {
-    error = std::string("invalid model: ") + e.message;
-    return false;
-  }
+  if (!check_export(m, error)) return false;
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   const auto range = [](double lo, double hi) {

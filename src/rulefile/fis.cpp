@@ -658,11 +658,7 @@ bool parse_fis(std::string_view text, const std::string& source, Model& model, L
 }
 
 bool to_fis(const Model& m, std::string& out, std::string& error) {
-  const fuzzy::ModelError e = m.validate();
-  if (e) {
-    error = std::string("invalid model: ") + e.message;
-    return false;
-  }
+  if (!check_export(m, error)) return false;
   if (m.num_blocks != 1) {
     error = ".fis has one rule block, the model has " + std::to_string(m.num_blocks);
     return false;

@@ -450,11 +450,7 @@ bool parse_fll(std::string_view text, const std::string& source, Model& model, L
 }
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {
-  const fuzzy::ModelError e = m.validate();
-  if (e) {
-    error = std::string("invalid model: ") + e.message;
-    return false;
-  }
+  if (!check_export(m, error)) return false;
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";

@@ -43,6 +43,12 @@ bool check_model(const Model& model, const SourceLines& lines, LoadError& error)
   return false;
 }
 
+bool check_export(const Model& model, std::string& error) {
+  const fuzzy::ModelError e = model.validate();
+  if (e) error = std::string("invalid model: ") + e.message;
+  return !e;
+}
+
 namespace {
 
 // A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger, or a
