@@ -6,6 +6,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/paper.hpp"
+#include "fuzzypid/pid/pid.hpp"
+
 namespace fuzzypid::bench {
 
 // Table length: a power of two so the index wraps with a mask.
@@ -45,6 +49,34 @@ inline std::array<ErrorPair, kTableSize> make_error_table(std::uint64_t seed = 4
   for (auto& p : table)
     p = {rng.uniform(-0.35, 0.35), rng.uniform(-0.35, 0.35)};
   return table;
+}
+
+// One 6-joint tick's input per entry: tracking errors of up to +-0.35 rad and +-0.35 rad/s around
+// a moving reference, so the fuzzy supervisor sees inputs across its whole universe and slightly
+// outside it.
+using TickInput = control::JointInput<double, 6>;
+
+inline std::array<TickInput, kTableSize> make_tick_table() {
+  std::array<TickInput, kTableSize> table{};
+  SplitMix64 rng(7);
+  for (auto& t : table) {
+    for (std::size_t j = 0; j < 6; ++j) {
+      t.desired_position_rad[j] = rng.uniform(-1.5, 1.5);
+      t.desired_velocity_rad_s[j] = rng.uniform(-0.5, 0.5);
+      t.measured_position_rad[j] = t.desired_position_rad[j] + rng.uniform(-0.35, 0.35);
+      t.measured_velocity_rad_s[j] = t.desired_velocity_rad_s[j] + rng.uniform(-0.35, 0.35);
+    }
+  }
+  return table;
+}
+
+// The PID of the tick benchmarks: the paper's gains (section 5.2) with the derivative taken from
+// the measured rates (Eq. 2).
+inline pid::Config<double> tick_pid_config() {
+  pid::Config<double> c;
+  c.gains = paper::kNominalGains<double>;
+  c.derivative_source = pid::DerivativeSource::Rates;
+  return c;
 }
 
 }  // namespace fuzzypid::bench

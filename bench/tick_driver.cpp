@@ -16,17 +16,10 @@
 
 namespace {
 
-using Input = fuzzypid::control::JointInput<double, 6>;
+using fuzzypid::bench::tick_pid_config;
 
-// The tick table and configuration of bench_controller.cpp.
-Input g_table[fuzzypid::bench::kTableSize];
-
-fuzzypid::pid::Config<double> pid_config() {
-  fuzzypid::pid::Config<double> c;
-  c.gains = fuzzypid::paper::kNominalGains<double>;
-  c.derivative_source = fuzzypid::pid::DerivativeSource::Rates;
-  return c;
-}
+// The tick table of bench_controller.cpp.
+const auto g_table = fuzzypid::bench::make_tick_table();
 
 template <class Controller>
 [[gnu::noinline]] double run(Controller& controller, long n) {
@@ -61,25 +54,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   const long n = std::atol(argv[2]);
-  fuzzypid::bench::SplitMix64 rng(7);
-  for (auto& t : g_table) {
-    for (std::size_t j = 0; j < 6; ++j) {
-      t.desired_position_rad[j] = rng.uniform(-1.5, 1.5);
-      t.desired_velocity_rad_s[j] = rng.uniform(-0.5, 0.5);
-      t.measured_position_rad[j] = t.desired_position_rad[j] + rng.uniform(-0.35, 0.35);
-      t.measured_velocity_rad_s[j] = t.desired_velocity_rad_s[j] + rng.uniform(-0.35, 0.35);
-    }
-  }
   double sum = 0.0;
   if (std::strcmp(argv[1], "fuzzy") == 0) {
     auto config = fuzzypid::paper::paper_config<double>();
-    config.pid = pid_config();
+    config.pid = tick_pid_config();
     fuzzypid::paper::JointController<double, 6> controller(
         fuzzypid::paper::FuzzyPid<double>(&fuzzypid::paper::kSystem<double>, config));
     sum = run(controller, n);
   } else if (std::strcmp(argv[1], "pid") == 0) {
     fuzzypid::control::JointController<double, 6, fuzzypid::pid::Pid<double>> controller{
-        fuzzypid::pid::Pid<double>(pid_config())};
+        fuzzypid::pid::Pid<double>(tick_pid_config())};
     sum = run(controller, n);
   } else if (std::strcmp(argv[1], "infer") == 0) {
     sum = infer(n);

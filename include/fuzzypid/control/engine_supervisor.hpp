@@ -49,22 +49,7 @@ struct DynamicWorkspace {
     }
   }
 
-  WorkspaceView<Scalar> view() noexcept {
-    return {membership.data(),
-            stride,
-            input.data(),
-            strength.data(),
-            order.data(),
-            heap.data(),
-            stack.data(),
-            level.data(),
-            activations.data(),
-            activations.size(),
-            breakpoints.data(),
-            lines.data(),
-            crossings.data(),
-            ExactCentroidScratch{breakpoints.size(), lines.size(), crossings.size()}};
-  }
+  WorkspaceView<Scalar> view() noexcept { return view_of(*this, stride); }
 };
 
 }  // namespace fuzzypid::fuzzy

@@ -464,6 +464,27 @@ struct WorkspaceView {
   }
 };
 
+// The view of a workspace that holds the buffers by the view's names as contiguous containers
+// (EngineWorkspace, control::DynamicWorkspace); `stride` as in WorkspaceView.
+template <class Workspace>
+auto view_of(Workspace& w, std::size_t stride) noexcept
+    -> WorkspaceView<typename decltype(Workspace::stack)::value_type> {
+  return {w.membership.data(),
+          stride,
+          w.input.data(),
+          w.strength.data(),
+          w.order.data(),
+          w.heap.data(),
+          w.stack.data(),
+          w.level.data(),
+          w.activations.data(),
+          w.activations.size(),
+          w.breakpoints.data(),
+          w.lines.data(),
+          w.crossings.data(),
+          ExactCentroidScratch{w.breakpoints.size(), w.lines.size(), w.crossings.size()}};
+}
+
 // A workspace of fixed size for every model of capacity Cap (no heap; large for DefaultCapacity,
 // see docs/rule_files.md).
 template <class Scalar, class Cap = DefaultCapacity>
@@ -481,22 +502,7 @@ struct EngineWorkspace {
   std::array<Scalar, 2 * kActs> lines{};
   std::array<Scalar, Cap::terms*(Cap::terms - 1) / 2 + 1> crossings{};
 
-  WorkspaceView<Scalar> view() noexcept {
-    return {membership.data(),
-            Cap::terms,
-            input.data(),
-            strength.data(),
-            order.data(),
-            heap.data(),
-            stack.data(),
-            level.data(),
-            activations.data(),
-            activations.size(),
-            breakpoints.data(),
-            lines.data(),
-            crossings.data(),
-            ExactCentroidScratch{breakpoints.size(), lines.size(), crossings.size()}};
-  }
+  WorkspaceView<Scalar> view() noexcept { return view_of(*this, Cap::terms); }
 };
 
 namespace engine_detail {
