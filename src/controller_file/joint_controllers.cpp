@@ -53,11 +53,30 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
       return std::nullopt;
     }
   }
+  std::array<control::FuzzyPidConfig<double>, kJoints> configs;
+  for (std::size_t i = 0; i < kJoints; ++i)
+    configs[i] = fuzzy_pid_config(spec, output_limit[i]);
+  return build(spec, configs, error);
+}
+
+std::optional<JointControllers> JointControllers::create(
+    const ControllerSpec& spec, const std::array<control::FuzzyPidConfig<double>, kJoints>& configs,
+    std::string& error) {
+  if (std::string bad = validate(spec); !bad.empty()) {
+    error = std::move(bad);
+    return std::nullopt;
+  }
+  return build(spec, configs, error);
+}
+
+std::optional<JointControllers> JointControllers::build(
+    const ControllerSpec& spec, const std::array<control::FuzzyPidConfig<double>, kJoints>& configs,
+    std::string& error) {
   switch (spec.family) {
     case Family::Pid: {
       std::array<pid::Pid<double>, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
-        const pid::Config<double> c = pid_config(spec, output_limit[i]);
+        const pid::Config<double>& c = configs[i].pid;
         if (!c.valid()) {
           error = "invalid PID configuration";
           return std::nullopt;
@@ -80,7 +99,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
         using Joint = control::FuzzyPid<double, control::EngineSupervisor<double>>;
         std::array<Joint, kJoints> joints;
         for (std::size_t i = 0; i < kJoints; ++i) {
-          const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+          const control::FuzzyPidConfig<double>& fc = configs[i];
           if (!fc.valid()) {
             error = "invalid fuzzy PID configuration";
             return std::nullopt;
@@ -100,7 +119,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
       using Joint = control::FuzzyPid<double, paper::System<double>>;
       std::array<Joint, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
-        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+        const control::FuzzyPidConfig<double>& fc = configs[i];
         if (!fc.valid()) {
           error = "invalid fuzzy PID configuration";
           return std::nullopt;
@@ -116,7 +135,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
       using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
       std::array<Joint, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
-        const auto fc = fuzzy_pid_config(spec, output_limit[i]);
+        const control::FuzzyPidConfig<double>& fc = configs[i];
         if (!fc.valid()) {
           error = "invalid scheduled PID configuration";
           return std::nullopt;
