@@ -5,6 +5,7 @@
 #   csv            the command-line tools' CSV reader
 #   urdf           the URDF loader (robot::RobotModel::load)
 #   sim_ab_args    sim_ab's command-line parser
+#   rt_loop_args   rt_loop's command-line parser
 #   controller_file  the controller-file loader (TOML)
 #   FUZZ_SECONDS   time per target (default 30)
 #   FUZZ_TARGETS   space-separated subset of the names above (default: all)
@@ -13,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
-targets="${FUZZ_TARGETS:-fis fll fcl csv urdf sim_ab_args controller_file}"
+targets="${FUZZ_TARGETS:-fis fll fcl csv urdf sim_ab_args rt_loop_args controller_file}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DFUZZYPID_BUILD_FUZZERS=ON -DFUZZYPID_BUILD_TESTS=OFF -DFUZZYPID_BUILD_APPS=OFF \
   -DFUZZYPID_BUILD_BENCH=OFF -DFUZZYPID_WITH_ROBOT=ON >/dev/null
@@ -29,7 +30,7 @@ for name in ${targets}; do
   echo "fuzz_${name}: ${seconds} s"
   max_len=8192
   if [ "${name}" = urdf ]; then max_len=16384; fi
-  if [ "${name}" = sim_ab_args ]; then max_len=512; fi
+  if [ "${name}" = sim_ab_args ] || [ "${name}" = rt_loop_args ]; then max_len=512; fi
   # New inputs go to the work corpus; the checked-in seeds are only read. Artifacts (crash-*,
   # leak-*, timeout-*) land in build-fuzz/.
   status=0

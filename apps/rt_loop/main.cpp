@@ -40,7 +40,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +57,7 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/status.hpp"
 #include "histogram.hpp"
+#include "options.hpp"
 #include "output_files.hpp"
 // Counts every allocation of this process (replaces the global operator new/delete).
 #include "fuzzypid_support/counting_new.hpp"
@@ -69,103 +69,12 @@ namespace robot = fuzzypid::robot;
 namespace sim = fuzzypid::sim;
 namespace cf = fuzzypid::controller_file;
 
-constexpr const char* kTool = "rt_loop";
-// With --csv every tick is buffered; this caps the buffer at 24 bytes x 50M = 1.2 GB.
-constexpr std::uint64_t kMaxCsvTicks = 50'000'000;
-// The controller period's range, s: the path of 5 s is sampled at dt, so 0.1 ms is 50,001 samples.
-constexpr double kMinDtS = 1e-4;
-constexpr double kMaxDtS = 1.0;
+using fuzzypid::rt_loop::kTool;
+using fuzzypid::rt_loop::Options;
 
 volatile std::sig_atomic_t g_stop = 0;
 extern "C" void on_sigint(int) {
   g_stop = 1;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Options.
-
-struct Options {
-  double period_ms = 50.0;
-  std::optional<double> dt_s;          // default: the period (50 ms when free-running)
-  std::optional<std::uint64_t> ticks;  // default: one pass of the path
-  std::string controller = "fuzzy";    // pid, fuzzy or a controller file (*.toml)
-  std::string csv;
-  std::optional<int> fifo_priority;
-  bool lock_memory = false;
-  std::optional<int> cpu;
-  bool loop_path = false;
-  bool require_rt = false;
-  std::optional<std::uint64_t> max_overruns;
-
-  double controller_dt_s() const {
-    if (dt_s) return *dt_s;
-    return period_ms > 0.0 ? period_ms / 1000.0 : 0.05;
-  }
-};
-
-// Parses the command line into `o`; nullopt to run, else the exit code (0 after --help).
-std::optional<int> parse_options(int argc, char** argv, Options& o) {
-  CLI::App app(
-      "The 6-joint controller against the simulated ER50-C20 in a fixed-period loop, with its "
-      "timing measured (docs/performance.md). Ctrl-C stops at the next tick and prints the "
-      "summary.\nExit codes: 0 success, 1 a run-time failure (controller or plant fault, "
-      "allocation in the loop, too many overruns, a refused setting under --require-rt, a write "
-      "error), 2 bad usage.",
-      kTool);
-  app.add_option("--period-ms", o.period_ms, "tick period, ms (default 50; 0 = free-running)")
-      ->check(cli::finite_in(0.0, 60'000.0))
-      ->option_text("MS");
-  app.add_option("--dt", o.dt_s,
-                 "controller period, s (default: the tick period; 0.05 when free-running)")
-      ->check(cli::finite_in(kMinDtS, kMaxDtS))
-      ->option_text("S");
-  app.add_option("--ticks", o.ticks, "ticks to run (default: one pass of the path)")
-      ->check(cli::unsigned_in(1, std::numeric_limits<std::uint64_t>::max()))
-      ->option_text("N");
-  app.add_option("--controller", o.controller,
-                 "the paper's fixed PID (pid) or fuzzy PID (fuzzy), or a controller file "
-                 "(*.toml, docs/tuning.md) (default fuzzy)")
-      ->check([](const std::string& s) -> std::string {
-        const bool file = s.size() > 5 && s.compare(s.size() - 5, 5, ".toml") == 0;
-        return s == "pid" || s == "fuzzy" || file ? ""
-                                                  : "'" + s + "' is not pid, fuzzy or a .toml file";
-      })
-      ->option_text("pid|fuzzy|FILE");
-  app.add_flag("--loop", o.loop_path, "restart the path at its end (else hold its last point)");
-  app.add_option("--csv", o.csv,
-                 "write tick,wakeup_latency_ns,period_error_ns,compute_ns after the run")
-      ->option_text("FILE");
-  const int lo = sched_get_priority_min(SCHED_FIFO);
-  const int hi = sched_get_priority_max(SCHED_FIFO);
-  app.add_option("--fifo", o.fifo_priority, "SCHED_FIFO at priority PRIO")
-      ->check(cli::unsigned_in(static_cast<std::uint64_t>(lo), static_cast<std::uint64_t>(hi)))
-      ->option_text("PRIO");
-  app.add_flag("--lock-memory", o.lock_memory, "mlockall(MCL_CURRENT | MCL_FUTURE)");
-  const long configured = sysconf(_SC_NPROCESSORS_CONF);
-  const long last_cpu = std::min<long>(configured, CPU_SETSIZE) - 1;
-  app.add_option("--cpu", o.cpu, "pin to CPU K")
-      ->check(cli::unsigned_in(0, static_cast<std::uint64_t>(last_cpu < 0 ? 0 : last_cpu)))
-      ->option_text("K");
-  app.add_flag("--require-rt", o.require_rt,
-               "a refused --fifo, --lock-memory or --cpu is an error (else a warning)");
-  app.add_option("--max-overruns", o.max_overruns,
-                 "exit 1 when more than N ticks overran (default: any number)")
-      ->check(cli::unsigned_integer())
-      ->option_text("N");
-  if (const auto code = cli::parse(app, argc, argv)) return code;
-  if (!o.dt_s && o.period_ms > 0.0 && o.period_ms / 1000.0 < kMinDtS) {
-    std::fprintf(stderr,
-                 "%s: --period-ms %g is below the shortest controller period (%g ms); "
-                 "give --dt\n",
-                 kTool, o.period_ms, kMinDtS * 1000.0);
-    return cli::kExitUsage;
-  }
-  if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks) {
-    std::fprintf(stderr, "%s: --csv buffers every tick in memory: at most %llu ticks\n", kTool,
-                 static_cast<unsigned long long>(kMaxCsvTicks));
-    return cli::kExitUsage;
-  }
-  return std::nullopt;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -347,7 +256,7 @@ robot::CartesianPathSpec path_spec(double dt_s) {
 
 int run(int argc, char** argv) {
   Options o;
-  if (const auto code = parse_options(argc, argv, o)) return *code;
+  if (const auto code = fuzzypid::rt_loop::parse(argc, argv, o)) return *code;
 
   // --- Model, path, closed loop and outputs (allocating; all before the loop).
   robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());

@@ -42,21 +42,21 @@ control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, dou
 
 namespace {
 
-// The six joints of a supervised family on `supervisor` (shared, not owned), each with the spec's
-// configuration and its own output limit; nullopt with `error` set when a configuration is
-// invalid. `what` names the family in that error.
+// The six joints of a supervised family on `supervisor` (shared, not owned), joint i with
+// configs[i]; nullopt with `error` set when a configuration is invalid. `what` names the family
+// in that error.
 template <class Supervisor>
 std::optional<std::array<control::FuzzyPid<double, Supervisor>, kJoints>> supervised_joints(
-    const ControllerSpec& spec, const Supervisor* supervisor, const Vector& output_limit,
-    const char* what, std::string& error) {
+    const Supervisor* supervisor,
+    const std::array<control::FuzzyPidConfig<double>, kJoints>& configs, const char* what,
+    std::string& error) {
   std::array<control::FuzzyPid<double, Supervisor>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
-    const auto fc = fuzzy_pid_config(spec, output_limit[i]);
-    if (!fc.valid()) {
+    if (!configs[i].valid()) {
       error = std::string("invalid ") + what + " configuration";
       return std::nullopt;
     }
-    joints[i] = control::FuzzyPid<double, Supervisor>(supervisor, fc);
+    joints[i] = control::FuzzyPid<double, Supervisor>(supervisor, configs[i]);
   }
   return joints;
 }
@@ -76,11 +76,30 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
       return std::nullopt;
     }
   }
+  std::array<control::FuzzyPidConfig<double>, kJoints> configs;
+  for (std::size_t i = 0; i < kJoints; ++i)
+    configs[i] = fuzzy_pid_config(spec, output_limit[i]);
+  return build(spec, configs, error);
+}
+
+std::optional<JointControllers> JointControllers::create(
+    const ControllerSpec& spec, const std::array<control::FuzzyPidConfig<double>, kJoints>& configs,
+    std::string& error) {
+  if (std::string bad = validate(spec); !bad.empty()) {
+    error = std::move(bad);
+    return std::nullopt;
+  }
+  return build(spec, configs, error);
+}
+
+std::optional<JointControllers> JointControllers::build(
+    const ControllerSpec& spec, const std::array<control::FuzzyPidConfig<double>, kJoints>& configs,
+    std::string& error) {
   switch (spec.family) {
     case Family::Pid: {
       std::array<pid::Pid<double>, kJoints> joints;
       for (std::size_t i = 0; i < kJoints; ++i) {
-        const pid::Config<double> c = pid_config(spec, output_limit[i]);
+        const pid::Config<double>& c = configs[i].pid;
         if (!c.valid()) {
           error = "invalid PID configuration";
           return std::nullopt;
@@ -100,7 +119,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
           error = "the rule file's model is not a valid supervisor (2 inputs, 3 outputs)";
           return std::nullopt;
         }
-        auto joints = supervised_joints(spec, engine.get(), output_limit, "fuzzy PID", error);
+        auto joints = supervised_joints(engine.get(), configs, "fuzzy PID", error);
         if (!joints) return std::nullopt;
         JointControllers out(spec, nullptr, nullptr);
         out.rule_model_ = spec.supervisor.rule_model;
@@ -112,7 +131,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
           spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
                                            ? paper::Tables::Corrected
                                            : paper::Tables::Printed));
-      auto joints = supervised_joints(spec, tables.get(), output_limit, "fuzzy PID", error);
+      auto joints = supervised_joints(tables.get(), configs, "fuzzy PID", error);
       if (!joints) return std::nullopt;
       JointControllers out(spec, std::move(tables), nullptr);
       out.joints_ = FuzzyJoints(*joints);
@@ -120,7 +139,7 @@ std::optional<JointControllers> JointControllers::create(const ControllerSpec& s
     }
     case Family::Scheduled: {
       auto schedule = std::make_unique<const control::GainSchedule<double>>();
-      auto joints = supervised_joints(spec, schedule.get(), output_limit, "scheduled PID", error);
+      auto joints = supervised_joints(schedule.get(), configs, "scheduled PID", error);
       if (!joints) return std::nullopt;
       JointControllers out(spec, nullptr, std::move(schedule));
       out.joints_ = ScheduledJoints(*joints);

@@ -1,11 +1,15 @@
 // The closed loop (fuzzypid/sim/closed_loop.hpp) and conditions: a controller file run through
 // sim::Experiment equals the same controller built by hand, tick by tick and bit for bit; the tick
-// allocates nothing; conditions change what they name.
+// allocates nothing; each kind of injected fault does what it names, on its joint only, and a
+// default injection nothing; conditions change what they name.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +17,7 @@
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller_file/joint_controllers.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
@@ -166,8 +171,331 @@ TEST_F(ClosedLoopTest, ATickAllocatesNothing) {
     const auto before = support::allocation_count();
     for (std::size_t k = 0; k < loop->samples(); ++k)
       (void)loop->tick(k);
+    // Every injection, the cyclic path and a plant reset.
+    sim::TickInjection injection;
+    injection.reference_offset_rad.fill(0.1);
+    injection.measured_position_offset_rad.fill(1e-3);
+    injection.measured_velocity_rad_s[2] = std::numeric_limits<double>::quiet_NaN();
+    injection.controller_dt_s = 0.045;
+    injection.plant_dt_s = 0.055;
+    injection.disturbance_torque_nm.fill(1.0);
+    for (std::uint64_t t = 0; t < 3 * loop->samples(); ++t)
+      (void)loop->tick(loop->cyclic_sample(t), injection);
+    loop->reset_plant(experiment_->path().position_rad.front(), robot::JointVector{});
     EXPECT_EQ(support::allocation_count(), before);
   }
+}
+
+// Fault injection (sim::TickInjection), reset_plant and the cyclic path.
+
+// Every value of two tick results has the same bits.
+void expect_same_tick(const sim::TickResult& a, const sim::TickResult& b, std::size_t k) {
+  EXPECT_TRUE(same_bits(a.t_s, b.t_s)) << "tick " << k;
+  EXPECT_EQ(a.plant, b.plant) << "tick " << k;
+  EXPECT_EQ(a.command.status, b.command.status) << "tick " << k;
+  for (std::size_t i = 0; i < kJ; ++i) {
+    EXPECT_TRUE(same_bits(a.theta_d[i], b.theta_d[i])) << "tick " << k << " joint " << i;
+    EXPECT_TRUE(same_bits(a.theta_d_dot[i], b.theta_d_dot[i])) << "tick " << k << " joint " << i;
+    EXPECT_TRUE(same_bits(a.theta[i], b.theta[i])) << "tick " << k << " joint " << i;
+    EXPECT_TRUE(same_bits(a.theta_dot[i], b.theta_dot[i])) << "tick " << k << " joint " << i;
+    EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i]))
+        << "tick " << k << " joint " << i;
+    EXPECT_EQ(a.command.joint_status[i], b.command.joint_status[i]) << "tick " << k;
+    EXPECT_TRUE(same_bits(a.torque_nm[i], b.torque_nm[i])) << "tick " << k << " joint " << i;
+  }
+}
+
+// Noise, contact pulses and an initial error, so that every injected path carries a value.
+sim::Condition busy_condition() {
+  sim::Condition cond;
+  cond.name = "busy";
+  cond.noise_position_rad = 1e-4;
+  cond.noise_velocity_rad_s = 1e-3;
+  cond.contact_rad_s2 = 0.5;
+  cond.seed = 3;
+  cond.initial_error_rad = 0.04;
+  return cond;
+}
+
+TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
+  for (const cf::ControllerSpec& spec : {cf::paper_pid(), cf::paper_fuzzy()}) {
+    std::string error;
+    auto plain = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
+    auto injected = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
+    ASSERT_TRUE(plain && injected) << error;
+    // Zero offsets written out (as a caller filling the struct would) change nothing either.
+    sim::TickInjection zero;
+    zero.reference_offset_rad.fill(0.0);
+    zero.measured_position_offset_rad.fill(0.0);
+    zero.measured_velocity_offset_rad_s.fill(0.0);
+    zero.disturbance_torque_nm.fill(0.0);
+    const std::size_t n = plain->samples();
+    for (std::size_t k = 0; k < n; ++k) {
+      const bool advance = k + 1 < n;
+      const sim::TickResult a = plain->tick(k, advance);
+      const sim::TickResult b =
+          injected->tick(injected->sample(k), k % 2 == 0 ? sim::TickInjection{} : zero, advance);
+      expect_same_tick(a, b, k);
+      for (std::size_t i = 0; i < kJ; ++i) {
+        const pid::Gains<double> ga = plain->controller().gains(i);
+        const pid::Gains<double> gb = injected->controller().gains(i);
+        ASSERT_TRUE(same_bits(ga.kp, gb.kp) && same_bits(ga.ki, gb.ki) && same_bits(ga.kd, gb.kd))
+            << "tick " << k << " joint " << i;
+        ASSERT_TRUE(same_bits(plain->controller().pid(i).integral(),
+                              injected->controller().pid(i).integral()));
+      }
+    }
+    for (std::size_t i = 0; i < kJ; ++i) {
+      EXPECT_TRUE(same_bits(plain->plant().position()[i], injected->plant().position()[i]));
+      EXPECT_TRUE(same_bits(plain->plant().velocity()[i], injected->plant().velocity()[i]));
+    }
+  }
+}
+
+TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
+  std::string error;
+  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  ASSERT_TRUE(loop) << error;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto faulted_joints = [&](const sim::TickResult& r) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < kJ; ++i)
+      if (is_fault(r.command.joint_status[i])) out.push_back(i);
+    return out;
+  };
+  const auto expect_fault_on = [&](const sim::TickResult& r, std::size_t joint) {
+    EXPECT_EQ(faulted_joints(r), std::vector<std::size_t>{joint});
+    EXPECT_EQ(r.command.joint_status[joint], Status::NonFiniteInput);
+    EXPECT_EQ(r.plant, robot::PlantStatus::Ok);  // the other joints are controlled as usual
+  };
+  std::size_t k = 0;
+  (void)loop->tick(k++);
+
+  sim::TickInjection nan_position;  // joint 3 reads NaN
+  nan_position.measured_position_rad[2] = nan;
+  const robot::JointVector true_position = loop->plant().position();
+  const sim::TickResult r1 = loop->tick(loop->sample(k++), nan_position);
+  expect_fault_on(r1, 2);
+  EXPECT_EQ(r1.theta, true_position);  // the plant's own state is not what the sensor read
+
+  sim::TickInjection inf_velocity;  // joint 6's velocity reads -inf
+  inf_velocity.measured_velocity_rad_s[5] = -inf;
+  expect_fault_on(loop->tick(loop->sample(k++), inf_velocity), 5);
+
+  sim::TickInjection offset;  // joint 1's position sensor adds +inf
+  offset.measured_position_offset_rad[0] = inf;
+  expect_fault_on(loop->tick(loop->sample(k++), offset), 0);
+
+  // A finite bias is no fault: it moves the command of its joint alone.
+  auto twin = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  auto biased = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  ASSERT_TRUE(twin && biased) << error;
+  sim::TickInjection bias;
+  bias.measured_position_offset_rad[3] = 0.01;
+  const sim::TickResult a = twin->tick(0);
+  const sim::TickResult b = biased->tick(biased->sample(0), bias);
+  EXPECT_TRUE(faulted_joints(b).empty());
+  for (std::size_t i = 0; i < kJ; ++i) {
+    if (i == 3) {
+      EXPECT_LT(b.command.torque_nm[i], a.command.torque_nm[i]);  // reads ahead: pushes less
+    } else {
+      EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i])) << i;
+    }
+  }
+}
+
+// Fixed PID, K = (4, 0.001 / 0.05, 100 x 0.05) continuous: only the integral term, Ki e dt,
+// sees dt on the first tick.
+TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePathsInterval) {
+  std::string error;
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto skewed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  ASSERT_TRUE(plain && skewed) << error;
+  sim::TickInjection clock;
+  clock.controller_dt_s = 0.1;
+  const sim::TickResult a = plain->tick(0);
+  const sim::TickResult b = skewed->tick(skewed->sample(0), clock);
+  const double ki = 0.001 / 0.05;
+  for (std::size_t i = 0; i < kJ; ++i) {
+    const double e = a.theta_d[i] - a.theta[i];
+    EXPECT_NEAR(b.command.torque_nm[i] - a.command.torque_nm[i], ki * e * (0.1 - 0.05), 1e-15);
+    EXPECT_NE(b.command.torque_nm[i], a.command.torque_nm[i]);
+  }
+  const double interval = plain->sample(0).dt_s;
+  EXPECT_EQ(interval, experiment_->path().time_s[1] - experiment_->path().time_s[0]);
+  EXPECT_EQ(plain->plant().time_s(), interval);
+  EXPECT_EQ(skewed->plant().time_s(), interval);
+
+  // A bad dt faults every joint; the plant still advances, under the held commands.
+  for (double bad : {0.0, -0.05, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    sim::TickInjection broken;
+    broken.controller_dt_s = bad;
+    const double before = skewed->plant().time_s();
+    const sim::TickResult r = skewed->tick(skewed->sample(1), broken);
+    for (std::size_t i = 0; i < kJ; ++i) {
+      EXPECT_EQ(r.command.joint_status[i], Status::InvalidTimeStep) << bad;
+      EXPECT_EQ(r.command.torque_nm[i], b.command.torque_nm[i]) << bad;
+    }
+    EXPECT_EQ(r.plant, robot::PlantStatus::Ok);
+    EXPECT_EQ(skewed->plant().time_s(), before + skewed->sample(1).dt_s);
+  }
+}
+
+TEST_F(ClosedLoopTest, APlantDtAdvancesThePlantByItAndLeavesTheControllerAlone) {
+  std::string error;
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_fuzzy(), error);
+  auto late = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_fuzzy(), error);
+  ASSERT_TRUE(plain && late) << error;
+  sim::TickInjection jitter;
+  jitter.plant_dt_s = 0.07;
+  const sim::TickResult a = plain->tick(0);
+  const sim::TickResult b = late->tick(late->sample(0), jitter);
+  expect_same_tick(a, b, 0);  // all of it happens before the plant step
+  EXPECT_EQ(late->plant().time_s(), 0.07);
+  for (std::size_t i = 0; i < kJ; ++i)
+    EXPECT_GT(std::fabs(late->plant().velocity()[i]), std::fabs(plain->plant().velocity()[i]));
+}
+
+TEST_F(ClosedLoopTest, ResetPlantPutsThePlantAtTheGivenState) {
+  std::string error;
+  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  ASSERT_TRUE(loop) << error;
+  for (std::size_t k = 0; k < 10; ++k)
+    (void)loop->tick(k);
+  const robot::JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
+  const robot::JointVector qd = {0.01, 0.02, -0.03, 0.04, -0.05, 0.06};
+  loop->reset_plant(q, qd);
+  EXPECT_EQ(loop->plant().position(), q);
+  EXPECT_EQ(loop->plant().velocity(), qd);
+  EXPECT_EQ(loop->plant().time_s(), 0.0);
+  const sim::TickResult r = loop->tick(10);
+  EXPECT_EQ(r.theta, q);
+  EXPECT_EQ(r.theta_dot, qd);
+}
+
+// Fixed PID: the first tick's command is Kp e + Ki e dt + Kd ec, so a reference offset d moves it
+// by (Kp + Ki dt) d on its joint alone.
+TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
+  std::string error;
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto jumped = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  ASSERT_TRUE(plain && jumped) << error;
+  sim::TickInjection jump;
+  jump.reference_offset_rad[1] = 0.1;
+  const sim::TickResult a = plain->tick(0);
+  const sim::TickResult b = jumped->tick(jumped->sample(0), jump);
+  EXPECT_EQ(b.theta_d[1], a.theta_d[1] + 0.1);
+  EXPECT_NEAR(b.command.torque_nm[1] - a.command.torque_nm[1], (4.0 + 0.001) * 0.1, 1e-12);
+  for (std::size_t i = 0; i < kJ; ++i) {
+    EXPECT_TRUE(same_bits(a.theta_d_dot[i], b.theta_d_dot[i]));
+    if (i == 1) continue;
+    EXPECT_TRUE(same_bits(a.theta_d[i], b.theta_d[i])) << i;
+    EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i])) << i;
+  }
+}
+
+// Decoupled plant, no damping, J_i held over the tick: a torque d adds d / J_i x dt to the
+// velocity of its joint and nothing to the others.
+TEST_F(ClosedLoopTest, AnInjectedDisturbanceTorqueAcceleratesItsJointOnly) {
+  std::string error;
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto pushed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  ASSERT_TRUE(plain && pushed) << error;
+  sim::TickInjection push;
+  push.disturbance_torque_nm[0] = 50.0;
+  const sim::TickResult a = plain->tick(0);
+  const sim::TickResult b = pushed->tick(pushed->sample(0), push);
+  expect_same_tick(a, b, 0);
+  const double dt = plain->sample(0).dt_s;
+  const double j0 = pushed->plant().inertia()[0];
+  EXPECT_NEAR(pushed->plant().velocity()[0] - plain->plant().velocity()[0], 50.0 / j0 * dt, 1e-12);
+  EXPECT_GT(pushed->plant().velocity()[0] - plain->plant().velocity()[0], 0.0);
+  for (std::size_t i = 1; i < kJ; ++i) {
+    EXPECT_TRUE(same_bits(plain->plant().velocity()[i], pushed->plant().velocity()[i])) << i;
+    EXPECT_TRUE(same_bits(plain->plant().position()[i], pushed->plant().position()[i])) << i;
+  }
+}
+
+TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
+  std::string error;
+  auto loop = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  ASSERT_TRUE(loop) << error;
+  const std::size_t n = loop->samples();
+  const std::uint64_t cycle = 2 * (n - 1);
+  for (std::uint64_t t = 0; t + 1 < n; ++t) {  // the first leg is the path itself
+    const sim::PathSample c = loop->cyclic_sample(t);
+    const sim::PathSample s = loop->sample(t);
+    EXPECT_TRUE(same_bits(c.t_s, s.t_s)) << t;
+    EXPECT_TRUE(same_bits(c.dt_s, s.dt_s)) << t;
+    EXPECT_EQ(c.theta_d, s.theta_d) << t;
+    EXPECT_EQ(c.theta_d_dot, s.theta_d_dot) << t;
+  }
+  for (std::uint64_t t = n - 1; t < 3 * cycle; ++t) {
+    const std::uint64_t phase = t % cycle;
+    const bool back = phase >= n - 1;
+    const sim::PathSample c = loop->cyclic_sample(t);
+    const sim::PathSample s = loop->sample(static_cast<std::size_t>(back ? cycle - phase : phase));
+    EXPECT_EQ(c.theta_d, s.theta_d) << t;
+    for (std::size_t i = 0; i < kJ; ++i)
+      EXPECT_EQ(c.theta_d_dot[i], back ? -s.theta_d_dot[i] : s.theta_d_dot[i]) << t;
+    EXPECT_NEAR(c.t_s, static_cast<double>(t) * loop->tick_s(), 1e-9) << t;
+    EXPECT_NEAR(c.dt_s, loop->tick_s(), 1e-9) << t;
+  }
+  // B is reached once per cycle, A at every cycle's start.
+  EXPECT_EQ(loop->cyclic_sample(n - 1).theta_d, experiment_->path().position_rad.back());
+  EXPECT_EQ(loop->cyclic_sample(cycle).theta_d, experiment_->path().position_rad.front());
+  EXPECT_EQ(loop->cyclic_sample(5 * cycle + 7).theta_d, experiment_->path().position_rad[7]);
+}
+
+// What a file cannot say (a gain update per joint, an integral limit): the joints run the
+// configurations they were given, and the spec's own configurations run like the spec.
+TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
+  const cf::ControllerSpec spec = cf::paper_fuzzy();
+  const sim::Condition cond = busy_condition();
+  const robot::JointVector limit = experiment_->output_limit(cond, spec.units.gains);
+  std::array<control::FuzzyPidConfig<double>, kJ> configs;
+  for (std::size_t i = 0; i < kJ; ++i)
+    configs[i] = cf::fuzzy_pid_config(spec, limit[i]);
+  std::string error;
+  auto from_spec = sim::ClosedLoop::create(*experiment_, cond, spec, error);
+  auto same = cf::JointControllers::create(spec, configs, error);
+  ASSERT_TRUE(from_spec && same) << error;
+  auto same_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*same), error);
+  ASSERT_TRUE(same_loop) << error;
+
+  for (std::size_t i = 3; i < kJ; ++i) {
+    configs[i].gain_update = control::GainUpdate::Incremental;
+    configs[i].pid.integral_min = -0.5;
+    configs[i].pid.integral_max = 0.5;
+  }
+  auto mixed = cf::JointControllers::create(spec, configs, error);
+  ASSERT_TRUE(mixed) << error;
+  auto mixed_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*mixed), error);
+  ASSERT_TRUE(mixed_loop) << error;
+  EXPECT_EQ(mixed_loop->controller().pid(4).config().integral_max, 0.5);
+  EXPECT_EQ(mixed_loop->controller().pid(1).config().integral_max,
+            std::numeric_limits<double>::infinity());
+
+  // Tick 0 runs K0 + S dK everywhere; at tick 1 the incremental joints add to tick 0's gains.
+  for (std::size_t k = 0; k < 2; ++k) {
+    expect_same_tick(from_spec->tick(k), same_loop->tick(k), k);
+    (void)mixed_loop->tick(k);
+  }
+  for (std::size_t i = 0; i < kJ; ++i) {
+    const pid::Gains<double> g = from_spec->controller().gains(i);
+    const pid::Gains<double> m = mixed_loop->controller().gains(i);
+    if (i < 3) {
+      EXPECT_TRUE(same_bits(g.kp, m.kp) && same_bits(g.ki, m.ki) && same_bits(g.kd, m.kd)) << i;
+    } else {
+      EXPECT_NE(g.kp, m.kp) << i;
+    }
+  }
+
+  configs[4].pid.integral_min = 1.0;  // above its integral_max of 0.5
+  EXPECT_FALSE(cf::JointControllers::create(spec, configs, error));
+  EXPECT_FALSE(error.empty());
 }
 
 TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {

@@ -2,23 +2,25 @@
 // deliberate abuse, checking after every tick the invariants a controller left running unattended
 // must keep.
 //
-// The loop follows the section 6 path (A -> B -> A ..., 101 samples each way, closed-form IK)
-// with the pieces of the A/B simulation's closed loop (sim::Experiment, sim::ClosedLoop,
-// docs/reproduction.md): the paper's fuzzy PID as its controller file describes it (per-tick gains
-// converted once by controller_file::fuzzy_pid_config), torque_i = J^_i u_i from
-// Experiment::torque_from_command, and the plant of a condition whose actuator limit is
-// 5 rad/s² x J^_i (so that the paper's weak gains do saturate it). On top of that configuration
-// the integral is limited to the output range and the gains to [0, 3 K0]; joints 1-3 use the
-// paper's absolute gain update (K = K0 + dK, Eq. 6), joints 4-6 the incremental one (K += dK every
-// tick), which drifts until the gain bounds stop it: both clamps are exercised. The soak steps
-// controller and plant itself rather than calling ClosedLoop::tick, because the abuse below
-// reaches between them (corrupted measurements, another dt for the controller than for the plant,
-// setpoint jumps, disturbances, plant resets).
+// The loop is the A/B simulation's closed loop, sim::ClosedLoop (docs/reproduction.md), ticked
+// on the section 6 path played back and forth (A -> B -> A ..., 101 samples each way, closed-form
+// IK; ClosedLoop::cyclic_sample): the paper's fuzzy PID as its controller file describes it
+// (per-tick gains converted once by controller_file::fuzzy_pid_config), torque_i = J^_i u_i, and
+// the plant of a condition whose actuator limit is 5 rad/s² x J^_i (so that the paper's weak gains
+// do saturate it). On top of that configuration the integral is limited to the output range and
+// the gains to [0, 3 K0]; joints 1-3 use the paper's absolute gain update (K = K0 + dK, Eq. 6),
+// joints 4-6 the incremental one (K += dK every tick), which drifts until the gain bounds stop it:
+// both clamps are exercised. A file cannot say that, so the controller is built with one
+// configuration per joint (JointControllers::create) and handed to ClosedLoop::create. The abuse
+// reaches between path, controller and plant through the tick's sim::TickInjection (setpoint
+// jumps, corrupted measurements, the controller's and the plant's dt, disturbances) and
+// ClosedLoop::reset_plant; nothing else steps the controller or the plant.
 //
 // Abuse, drawn from sim::Random (the project's one seeded generator: the same run for a seed with
 // every standard library):
-//   - dt jitter of +/-20 % around 50 ms on every tick, and about one tick in 1,000 a bad dt
-//     (0, negative, NaN or +inf) given to the controller (the plant then advances 50 ms);
+//   - dt jitter of +/-20 % around 50 ms on every tick (the time the plant advances and the dt the
+//     controller is given), and about one tick in 1,000 a bad dt (0, negative, NaN or +inf) given
+//     to the controller (the plant still advances the jittered time);
 //   - about one tick in 500 a NaN, +/-inf or huge (+/-1e300) measured position or velocity on
 //     one joint;
 //   - disturbance torque pulses of 0.5-10 s, up to 2 rad/s² x J^_i (one in ten up to 1.5x the
@@ -48,16 +50,16 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cli.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller_file/joint_controllers.hpp"
-#include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/closed_loop.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
@@ -81,9 +83,6 @@ constexpr double kAccelLimit = 5.0;  // rad/s², the condition's actuator limit 
 // Beyond these the plant is considered lost to the abuse and put back on the path.
 constexpr double kMaxErrorRad = 20.0;
 constexpr double kMaxSpeedRadS = 50.0;
-
-using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
-using Controller = control::JointController<double, kJoints, Fuzzy>;
 
 struct Options {
   std::uint64_t ticks = 10'000'000;
@@ -129,27 +128,23 @@ pid::Gains<double> gain_max_of(const pid::Gains<double>& k0) {
   return {3.0 * k0.kp, 3.0 * k0.ki, 3.0 * k0.kd};
 }
 
+// The soak's closed loop and the bounds it is checked against. The loop points into the
+// experiment, which must outlive it.
 struct Soak {
-  sim::Experiment experiment;
-  robot::JointPlant plant;
-  Controller controller;
-  robot::JointVector u_max{};  // controller output limit, rad/s² (actuator limit / J^_i)
+  sim::ClosedLoop loop;
+  robot::JointVector nominal_inertia{};  // J^_i, kg·m²
+  robot::JointVector u_max{};            // controller output limit, rad/s² (actuator limit / J^_i)
   pid::Gains<double> gain_min{};
   pid::Gains<double> gain_max{};  // continuous SI form
 };
 
-std::optional<Soak> build(std::string& error) {
-  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
-  if (!loaded.model) {
-    error = "cannot load the URDF: " + loaded.error;
-    return std::nullopt;
-  }
+std::optional<sim::Experiment> make_experiment(const robot::RobotModel& model, std::string& error) {
   sim::ExperimentOptions options;  // the A/B simulation's defaults: per-tick paper gains
   options.tick_s = kTickS;
-  auto experiment =
-      sim::Experiment::create(*loaded.model, robot::paper_path_spec(), options, error);
-  if (!experiment) return std::nullopt;
+  return sim::Experiment::create(model, robot::paper_path_spec(), options, error);
+}
 
+std::optional<Soak> build(const sim::Experiment& experiment, std::string& error) {
   // The paper scenario with an actuator limit of kAccelLimit x J^_i (as the sim's "saturation"
   // scenario limits it, there to 0.1): the URDF effort limits allow ~100 rad/s², which the
   // paper's Kp = 4 /s² never reaches.
@@ -157,33 +152,24 @@ std::optional<Soak> build(std::string& error) {
   condition.torque_limit_rad_s2 = kAccelLimit;
   // The paper's fuzzy PID as sim_ab runs it, with gain bounds [0, 3 K0] (in the file's per-tick
   // units, converted with the gains).
-  cf::ControllerSpec spec = sim::default_controller(options, cf::Family::Fuzzy);
+  cf::ControllerSpec spec = sim::default_controller(experiment.options(), cf::Family::Fuzzy);
   spec.gain_min = {0.0, 0.0, 0.0};
   spec.gain_max = gain_max_of(spec.gains);
-  const robot::JointVector u_max = experiment->output_limit(condition, spec.units.gains);
-  std::array<Fuzzy, kJoints> joints;
-  pid::Gains<double> gain_max{};
+  const robot::JointVector u_max = experiment.output_limit(condition, spec.units.gains);
+  std::array<control::FuzzyPidConfig<double>, kJoints> configs;
   for (std::size_t i = 0; i < kJoints; ++i) {
-    control::FuzzyPidConfig<double> c = cf::fuzzy_pid_config(spec, u_max[i]);
-    c.pid.integral_min = -u_max[i];
-    c.pid.integral_max = u_max[i];
-    c.gain_update = i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
-    gain_max = c.gain_max;
-    // The default options' supervisor (min conjunction, printed tables) is paper::kSystem.
-    joints[i] = Fuzzy(&fuzzypid::paper::kSystem<double>, fuzzypid::paper::paper_config<double>());
-    if (joints[i].configure(c) != Status::Ok) {
-      error = "invalid controller configuration";
-      return std::nullopt;
-    }
+    configs[i] = cf::fuzzy_pid_config(spec, u_max[i]);
+    configs[i].pid.integral_min = -u_max[i];
+    configs[i].pid.integral_max = u_max[i];
+    configs[i].gain_update =
+        i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
   }
-  robot::JointPlant plant(experiment->model(), experiment->plant_config(condition));
-  if (!plant.valid()) {
-    error = "invalid plant configuration";
-    return std::nullopt;
-  }
-  Soak soak{std::move(*experiment), std::move(plant), Controller(joints), u_max,
-            {0.0, 0.0, 0.0},        gain_max};
-  return soak;
+  auto controller = cf::JointControllers::create(spec, configs, error);
+  if (!controller) return std::nullopt;
+  auto loop = sim::ClosedLoop::create(experiment, condition, std::move(*controller), error);
+  if (!loop) return std::nullopt;
+  return Soak{std::move(*loop), experiment.nominal_inertia(), u_max, configs[0].gain_min,
+              configs[0].gain_max};
 }
 
 // Running figures of the soak, printed as the last line.
@@ -223,11 +209,8 @@ bool all_finite(const robot::JointVector& v) {
 // Runs the soak; returns the first invariant breach (a static string) or nullptr.
 const char* run(Soak& s, const Options& o, Counters& c) {
   Random rng(o.seed);
-  const robot::JointPathResult& path = s.experiment.path();
-  const std::size_t samples = path.position_rad.size();
-  const std::size_t period = 2 * (samples - 1);  // A -> B -> A
-
-  s.plant.reset(path.position_rad.front(), robot::JointVector{});
+  sim::ClosedLoop& loop = s.loop;
+  loop.reset_plant(loop.path().position_rad.front(), robot::JointVector{});
 
   // Abuse schedule: remaining ticks of the current pulse / jump and their values.
   std::uint64_t pulse_left = 0;
@@ -238,15 +221,9 @@ const char* run(Soak& s, const Options& o, Counters& c) {
 
   for (std::uint64_t tick = 0; tick < o.ticks; ++tick) {
     // Reference: the path played forwards then backwards, plus any setpoint jump.
-    const std::size_t phase = tick % period;
-    const bool back = phase >= samples - 1;
-    const std::size_t k = back ? period - phase : phase;
-    robot::JointVector ref = path.position_rad[k];
-    robot::JointVector ref_rate = path.velocity_rad_s[k];
-    for (std::size_t i = 0; i < kJoints; ++i) {
-      if (back) ref_rate[i] = -ref_rate[i];
-      ref[i] += jump[i];
-    }
+    const sim::PathSample sample = loop.cyclic_sample(tick);
+    sim::TickInjection injection;
+    injection.reference_offset_rad = jump;
 
     if (jump_left > 0) {
       --jump_left;
@@ -270,17 +247,15 @@ const char* run(Soak& s, const Options& o, Counters& c) {
       // actuator limit, which the controller cannot hold.
       const bool beyond = rng.chance(0.1);
       for (std::size_t i = 0; i < kJoints; ++i) {
-        const double amplitude =
-            (beyond ? 1.5 * s.u_max[i] : 2.0) * s.experiment.nominal_inertia()[i];
+        const double amplitude = (beyond ? 1.5 * s.u_max[i] : 2.0) * s.nominal_inertia[i];
         pulse[i] = rng.uniform(-amplitude, amplitude);
       }
     } else {
       pulse.fill(0.0);
     }
+    injection.disturbance_torque_nm = pulse;
 
     // Measurements, possibly corrupted on one joint.
-    robot::JointVector q = s.plant.position();
-    robot::JointVector qd = s.plant.velocity();
     std::size_t bad_joint = kJoints;  // none
     if (rng.chance(1.0 / 500)) {
       const std::size_t j = rng.below(kJoints);
@@ -290,74 +265,70 @@ const char* run(Soak& s, const Options& o, Counters& c) {
                            : kind == 2 ? -std::numeric_limits<double>::infinity()
                            : kind == 3 ? kHuge
                                        : -kHuge;
-      (rng.chance(0.5) ? q : qd)[j] = value;
+      (rng.chance(0.5) ? injection.measured_position_rad : injection.measured_velocity_rad_s)[j] =
+          value;
       ++c.injected_measurements;
       if (!std::isfinite(value)) bad_joint = j;
     }
 
     // The clock: jittered, occasionally nonsense for the controller only.
     const double dt = kTickS * rng.uniform(0.8, 1.2);
-    double dt_controller = dt;
+    injection.plant_dt_s = dt;
+    injection.controller_dt_s = dt;
     bool bad_dt = false;
     if (rng.chance(1.0 / 1'000)) {
       const std::uint64_t kind = rng.below(4);
-      dt_controller = kind == 0   ? 0.0
-                      : kind == 1 ? -dt
-                      : kind == 2 ? std::numeric_limits<double>::quiet_NaN()
-                                  : std::numeric_limits<double>::infinity();
+      injection.controller_dt_s = kind == 0   ? 0.0
+                                  : kind == 1 ? -dt
+                                  : kind == 2 ? std::numeric_limits<double>::quiet_NaN()
+                                              : std::numeric_limits<double>::infinity();
       bad_dt = true;
       ++c.injected_bad_dt;
     }
 
-    control::JointInput<double, kJoints> in;
-    in.desired_position_rad = ref;
-    in.desired_velocity_rad_s = ref_rate;
-    in.measured_position_rad = q;
-    in.measured_velocity_rad_s = qd;
-    const auto command = s.controller.step(in, dt_controller);
+    const sim::TickResult r = loop.tick(sample, injection);
 
+    const cf::JointControllers& controller = loop.controller();
     for (std::size_t i = 0; i < kJoints; ++i) {
-      const Status st = command.joint_status[i];
+      const Status st = r.command.joint_status[i];
       if (fuzzypid::is_fault(st)) ++c.faults;
       if (bad_dt && st != Status::InvalidTimeStep)
         return "bad dt not reported as invalid_time_step";
       if (!bad_dt && i == bad_joint && st != Status::NonFiniteInput)
         return "NaN/inf measurement not reported as non_finite_input";
-      const double u = command.torque_nm[i];
+      const double u = r.command.torque_nm[i];
       if (!std::isfinite(u)) {
         ++c.nonfinite;
         return "non-finite command";
       }
       if (std::fabs(u) > s.u_max[i]) return "command outside the output limits";
-      const Fuzzy& joint = s.controller.joint(i);
-      const pid::Gains<double>& g = joint.gains();
+      const pid::Gains<double> g = controller.gains(i);
       if (!g.finite() || g.kp < s.gain_min.kp || g.kp > s.gain_max.kp || g.ki < s.gain_min.ki ||
           g.ki > s.gain_max.ki || g.kd < s.gain_min.kd || g.kd > s.gain_max.kd)
         return "gain outside its bounds";
-      const double integral = joint.pid().integral();
+      const double integral = controller.pid(i).integral();
       if (!std::isfinite(integral) || std::fabs(integral) > s.u_max[i])
         return "integral outside its limits";
       c.max_abs_integral = std::fmax(c.max_abs_integral, std::fabs(integral));
       c.max_abs_gain = std::fmax(c.max_abs_gain, std::fmax(g.kp, std::fmax(g.ki, g.kd)));
     }
-    const robot::JointVector torque = s.experiment.torque_from_command(command.torque_nm);
 
     bool saturated = false;
     for (std::size_t i = 0; i < kJoints; ++i)
-      saturated = saturated || s.controller.joint(i).pid().saturated();
+      saturated = saturated || controller.pid(i).saturated();
     if (saturated) ++c.saturated_ticks;
 
-    const robot::PlantStatus ps = s.plant.step(torque, dt, pulse);
-    if (ps == robot::PlantStatus::InvalidInput) return "the plant rejected a finite torque";
-    if (!all_finite(s.plant.position()) || !all_finite(s.plant.velocity()))
+    const robot::JointPlant& plant = loop.plant();
+    if (r.plant == robot::PlantStatus::InvalidInput) return "the plant rejected a finite torque";
+    if (!all_finite(plant.position()) || !all_finite(plant.velocity()))
       return "non-finite plant state";
-    bool lost = ps == robot::PlantStatus::NumericalError;
+    bool lost = r.plant == robot::PlantStatus::NumericalError;
     for (std::size_t i = 0; i < kJoints; ++i) {
-      lost = lost || std::fabs(s.plant.position()[i] - ref[i]) > kMaxErrorRad ||
-             std::fabs(s.plant.velocity()[i]) > kMaxSpeedRadS;
+      lost = lost || std::fabs(plant.position()[i] - r.theta_d[i]) > kMaxErrorRad ||
+             std::fabs(plant.velocity()[i]) > kMaxSpeedRadS;
     }
     if (lost) {
-      s.plant.reset(path.position_rad[k], robot::JointVector{});
+      loop.reset_plant(sample.theta_d, robot::JointVector{});
       ++c.plant_resets;
     }
 
@@ -373,7 +344,12 @@ int run_soak(int argc, char** argv) {
   if (const auto code = parse_options(argc, argv, o)) return *code;
 
   std::string error;
-  std::optional<Soak> soak = build(error);
+  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
+  if (!loaded.model) error = "cannot load the URDF: " + loaded.error;
+  // The loop points into the experiment: both stay here until the end.
+  const std::optional<sim::Experiment> experiment =
+      loaded.model ? make_experiment(*loaded.model, error) : std::nullopt;
+  std::optional<Soak> soak = experiment ? build(*experiment, error) : std::nullopt;
   if (!soak) {
     std::fprintf(stderr, "fuzzypid_soak: %s\n", error.c_str());
     return cli::kExitFailure;

@@ -51,6 +51,14 @@ class JointControllers {
   [[nodiscard]] static std::optional<JointControllers> create(const ControllerSpec& spec,
                                                               const Vector& output_limit,
                                                               std::string& error);
+  // The spec's family and supervisor (tables, rule file or schedule) with one configuration per
+  // joint in place of the ones the spec gives, for what a file cannot say: e.g. a gain update or
+  // an integral limit that differs between joints. Start from fuzzy_pid_config(spec, limit_i);
+  // the pid family uses configs[i].pid only. spec() is then where the joints started from, not
+  // their numbers. Returns nullopt with `error` set for an invalid spec or configuration.
+  [[nodiscard]] static std::optional<JointControllers> create(
+      const ControllerSpec& spec,
+      const std::array<control::FuzzyPidConfig<double>, kJoints>& configs, std::string& error);
 
   // One tick of all joints (see control::JointController::step); the outputs (torque_nm) are
   // in the controller's units (rad/s² with acceleration units).
@@ -72,10 +80,22 @@ class JointControllers {
   pid::Gains<double> file_gains(std::size_t i) const noexcept {
     return from_continuous(gains(i), spec_.units.form, spec_.units.tick_s);
   }
+  // The inner PID of joint i (its integral, output and saturation after the last step).
+  const pid::Pid<double>& pid(std::size_t i) const noexcept {
+    if (const auto* p = std::get_if<PidJoints>(&joints_)) return p->joint(i);
+    if (const auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->joint(i).pid();
+    if (const auto* r = std::get_if<EngineJoints>(&joints_)) return r->joint(i).pid();
+    return std::get_if<ScheduledJoints>(&joints_)->joint(i).pid();
+  }
 
   const ControllerSpec& spec() const noexcept { return spec_; }
 
  private:
+  // The joints of a validated spec with these configurations.
+  static std::optional<JointControllers> build(
+      const ControllerSpec& spec,
+      const std::array<control::FuzzyPidConfig<double>, kJoints>& configs, std::string& error);
+
   JointControllers(const ControllerSpec& spec, std::unique_ptr<const paper::System<double>> tables,
                    std::unique_ptr<const control::GainSchedule<double>> schedule)
       : spec_(spec), tables_(std::move(tables)), schedule_(std::move(schedule)) {}

@@ -1,0 +1,56 @@
+// libFuzzer target for rt_loop's command-line parser (apps/rt_loop/options.cpp, the function
+// rt_loop's main() calls). The input is split at NUL bytes into argv[1..]. Accepted options must
+// leave what the loop relies on: a finite period in range, a controller dt the path can be sampled
+// at, a known controller, and at most kMaxCsvTicks ticks when every tick is buffered for --csv.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "../apps/rt_loop/options.hpp"
+
+namespace rt = fuzzypid::rt_loop;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > 4096) return 0;
+  std::vector<std::string> args{"rt_loop"};
+  std::string current;
+  for (std::size_t k = 0; k < size; ++k) {
+    if (data[k] == 0) {
+      args.push_back(current);
+      current.clear();
+    } else {
+      current.push_back(static_cast<char>(data[k]));
+    }
+  }
+  if (!current.empty()) args.push_back(current);
+  std::vector<const char*> argv;
+  for (const std::string& a : args)
+    argv.push_back(a.c_str());
+  argv.push_back(nullptr);
+
+  // --help and usage errors print; keep the fuzzer's output readable.
+  static std::FILE* const null_out = std::freopen("/dev/null", "w", stdout);
+  (void)null_out;
+  rt::Options o;
+  const auto code = rt::parse(static_cast<int>(args.size()), argv.data(), o);
+  if (code) {
+    if (*code != 0 && *code != 2) std::abort();  // --help or a usage error, nothing else
+    return 0;
+  }
+  if (!std::isfinite(o.period_ms) || o.period_ms < 0.0 || o.period_ms > rt::kMaxPeriodMs)
+    std::abort();
+  if (o.dt_s && !(*o.dt_s >= rt::kMinDtS && *o.dt_s <= rt::kMaxDtS)) std::abort();
+  const double dt = o.controller_dt_s();
+  if (!std::isfinite(dt) || dt < rt::kMinDtS) std::abort();
+  if (o.ticks && *o.ticks == 0) std::abort();
+  if (!o.csv.empty() && o.ticks && *o.ticks > rt::kMaxCsvTicks) std::abort();
+  const std::string& c = o.controller;
+  const bool file = c.size() > 5 && c.compare(c.size() - 5, 5, ".toml") == 0;
+  if (c != "pid" && c != "fuzzy" && !file) std::abort();
+  if (o.cpu && *o.cpu < 0) std::abort();
+  return 0;
+}
