@@ -1,7 +1,8 @@
 // libFuzzer target for rt_loop's command-line parser (apps/rt_loop/options.cpp, the function
 // rt_loop's main() calls). The input is split at NUL bytes into argv[1..]. Accepted options must
-// leave what the loop relies on: a finite period in range, a controller dt the path can be sampled
-// at, a known controller, and at most kMaxCsvTicks ticks when every tick is buffered for --csv.
+// leave what the loop relies on: a finite period in range, a controller dt in --dt's range
+// (given or derived from the period), a known controller, and at most kMaxCsvTicks ticks when
+// every tick is buffered for --csv.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -45,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::abort();
   if (o.dt_s && !(*o.dt_s >= rt::kMinDtS && *o.dt_s <= rt::kMaxDtS)) std::abort();
   const double dt = o.controller_dt_s();
-  if (!std::isfinite(dt) || dt < rt::kMinDtS) std::abort();
+  if (!(dt >= rt::kMinDtS && dt <= rt::kMaxDtS)) std::abort();
   if (o.ticks && *o.ticks == 0) std::abort();
   if (!o.csv.empty() && o.ticks && *o.ticks > rt::kMaxCsvTicks) std::abort();
   const std::string& c = o.controller;

@@ -147,9 +147,10 @@ LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks
         k == 0 || free_running ? 0 : std::llabs(woke - last_woke - period_ns);
     last_woke = woke;
 
-    const std::size_t i = o.loop_path ? static_cast<std::size_t>(k % samples)
-                                      : (k < samples ? static_cast<std::size_t>(k) : samples - 1);
-    const sim::TickResult t = loop.tick(i);
+    // --loop: A -> B -> A ... without a jump; else the path's last point is held.
+    const sim::TickResult t =
+        o.loop_path ? loop.tick(loop.cyclic_sample(k))
+                    : loop.tick(k < samples ? static_cast<std::size_t>(k) : samples - 1);
     if (fuzzypid::is_fault(t.command.status)) ++r.controller_fault_ticks;
     if (t.plant == robot::PlantStatus::InvalidInput ||
         t.plant == robot::PlantStatus::NumericalError)
@@ -318,7 +319,7 @@ int run(int argc, char** argv) {
       "samples over %.3f s%s\n",
       o.controller.c_str(), o.period_ms, o.period_ms == 0.0 ? " (free-running)" : "", dt_s * 1000.0,
       static_cast<unsigned long long>(ticks), loop->samples(), loop->path().time_s.back(),
-      o.loop_path ? " (looped)" : " (held at its end)");
+      o.loop_path ? " (played back and forth)" : " (held at its end)");
   std::printf("cpu: %s\nmemory: %s\nscheduler: %s\n", cpu_state.c_str(), lock_state.c_str(),
               fifo_state.c_str());
   std::fflush(stdout);

@@ -40,7 +40,8 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
                                                   : "'" + s + "' is not pid, fuzzy or a .toml file";
       })
       ->option_text("pid|fuzzy|FILE");
-  app.add_flag("--loop", o.loop_path, "restart the path at its end (else hold its last point)");
+  app.add_flag("--loop", o.loop_path,
+               "play the path back and forth, A -> B -> A ... (else hold its last point)");
   app.add_option("--csv", o.csv,
                  "write tick,wakeup_latency_ns,period_error_ns,compute_ns after the run")
       ->option_text("FILE");
@@ -62,11 +63,12 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
       ->check(cli::unsigned_integer())
       ->option_text("N");
   if (const auto code = cli::parse(app, argc, argv)) return code;
-  if (!o.dt_s && o.period_ms > 0.0 && o.period_ms / 1000.0 < kMinDtS) {
+  // Without --dt the controller period is the tick period: it must lie in --dt's range too.
+  if (!o.dt_s && o.period_ms > 0.0 &&
+      (o.period_ms / 1000.0 < kMinDtS || o.period_ms / 1000.0 > kMaxDtS)) {
     std::fprintf(stderr,
-                 "%s: --period-ms %g is below the shortest controller period (%g ms); "
-                 "give --dt\n",
-                 kTool, o.period_ms, kMinDtS * 1000.0);
+                 "%s: --period-ms %g is outside the controller periods %g-%g ms; give --dt\n",
+                 kTool, o.period_ms, kMinDtS * 1000.0, kMaxDtS * 1000.0);
     return cli::kExitUsage;
   }
   if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks) {

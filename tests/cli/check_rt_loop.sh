@@ -20,7 +20,8 @@ expect() {
 
 # Bad usage exits 2 (not 1, not a run).
 for args in "--ticks -1" "--ticks 18446744073709551616" "--period-ms nan" "--period-ms inf" \
-            "--dt 0" "--dt 2" "--controller lqr" "--max-overruns -3" "--bogus" "--period-ms 0.01"; do
+            "--dt 0" "--dt 2" "--controller lqr" "--max-overruns -3" "--bogus" "--period-ms 0.01" \
+            "--period-ms 20000"; do
   # shellcheck disable=SC2086
   expect 2 $args
   grep -q '^ticks_run' "$work/out" && fail "rt_loop $args ran"
@@ -39,6 +40,16 @@ for figure in 'ticks_run: 3 ticks' 'overruns: 0 ticks' 'compute_us: min' 'max_ab
 done
 expect 0 --period-ms 1 --ticks 5
 grep -q '^period_error_us: min' "$work/out" || fail "no period error: $(cat "$work/out")"
+
+# --loop plays the path back and forth: over three passes the largest error is that of one pass
+# (a restart from B straight back to A would add a jump of about 0.6 rad).
+expect 0 --period-ms 0 --controller fuzzy
+one=$(sed -n 's/^max_abs_error_rad: \([0-9.e+-]*\) rad$/\1/p' "$work/out")
+expect 0 --period-ms 0 --controller fuzzy --loop --ticks 303
+looped=$(sed -n 's/^max_abs_error_rad: \([0-9.e+-]*\) rad$/\1/p' "$work/out")
+[ -n "$one" ] && [ -n "$looped" ] || fail "no max_abs_error_rad: $(cat "$work/out")"
+awk -v a="$one" -v b="$looped" 'BEGIN { exit !(b <= 1.5 * a && b < 0.2) }' ||
+  fail "--loop: max error $looped rad against $one rad for one pass"
 
 # --csv to an unwritable place fails before the run; a complete file appears only at the end.
 expect 1 --period-ms 0 --ticks 1000 --csv "$work/missing/ticks.csv"
