@@ -5,8 +5,10 @@
 // FuzzyPid as bench_controller.cpp configures it (uniform 7-term partitions, minimum conjunction,
 // weighted average, absolute gain update, PID with the derivative from the measured rates, no
 // filter, conditional integration), with every configuration test compiled out, no fault
-// diagnosis and no per-joint status. It is not a controller to use: it is a floor for the library
-// tick. Two orders of the same operations:
+// diagnosis and no per-joint status; of the per-joint state it keeps what the library's
+// controller must keep for the next tick and for its user: the integral and this tick's gains
+// (Figs. 12-14). It is not a controller to use: it is a floor for the library tick. Two orders of
+// the same operations:
 //   per_joint  each joint from start to end in turn, as the library's tick runs;
 //   lanes      each step for all six joints before the next (locate all inputs, fire all blocks,
 //              one division per joint back to back, ...), so the joints' dependency chains
@@ -187,7 +189,7 @@ class SpecialisedTick {
   double e_inverse_step_, ec_inverse_step_;
   fp::control::FuzzyPidConfig<double> config_;
   std::array<double, kJoints> integral_{};
-  std::array<fp::pid::Gains<double>, kJoints> gains_{};
+  std::array<fp::pid::Gains<double>, kJoints> gains_{};  // this tick's gains, as FuzzyPid::gains()
 };
 
 template <bool kLanes>

@@ -6,38 +6,19 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include "../apps/rt_loop/options.hpp"
+#include "fuzz_args.hpp"
 
 namespace rt = fuzzypid::rt_loop;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > 4096) return 0;
-  std::vector<std::string> args{"rt_loop"};
-  std::string current;
-  for (std::size_t k = 0; k < size; ++k) {
-    if (data[k] == 0) {
-      args.push_back(current);
-      current.clear();
-    } else {
-      current.push_back(static_cast<char>(data[k]));
-    }
-  }
-  if (!current.empty()) args.push_back(current);
-  std::vector<const char*> argv;
-  for (const std::string& a : args)
-    argv.push_back(a.c_str());
-  argv.push_back(nullptr);
-
-  // --help and usage errors print; keep the fuzzer's output readable.
-  static std::FILE* const null_out = std::freopen("/dev/null", "w", stdout);
-  (void)null_out;
+  const fuzzypid::fuzz::CommandLine line("rt_loop", data, size);
   rt::Options o;
-  const auto code = rt::parse(static_cast<int>(args.size()), argv.data(), o);
+  const auto code = rt::parse(line.argc(), line.argv(), o);
   if (code) {
     if (*code != 0 && *code != 2) std::abort();  // --help or a usage error, nothing else
     return 0;

@@ -55,36 +55,26 @@ struct TuneOptions {
 };
 
 int run_tune(const TuneOptions& t) {
-  const std::string& family_name = t.family_name;
-  const std::string& conditions = t.conditions;
-  const std::string& set = t.set;
-  const std::string& out = t.out;
-  const std::string& base_file = t.base_file;
-  const std::uint64_t budget = t.budget, seed = t.seed, population = t.population;
-  const unsigned threads = t.threads;
-  const cf::Objective& objective = t.objective;
-  const std::vector<std::string>& boxes = t.boxes;
-  const bool quiet = t.quiet;
-  const cf::Family family = *cf::parse_enum(cf::kFamilyNames, family_name);
+  const cf::Family family = *cf::parse_enum(cf::kFamilyNames, t.family_name);
   tune::Options opt;
   opt.family = family;
-  opt.budget = budget;
-  opt.seed = seed;
-  opt.threads = threads;
-  opt.population = population;
-  opt.objective = objective;
+  opt.budget = t.budget;
+  opt.seed = t.seed;
+  opt.threads = t.threads;
+  opt.population = t.population;
+  opt.objective = t.objective;
   opt.base = cf::paper_pid();
   opt.base.description.clear();
-  if (!base_file.empty()) {
+  if (!t.base_file.empty()) {
     cf::Error err;
-    if (!cf::load(base_file, opt.base, err)) {
+    if (!cf::load(t.base_file, opt.base, err)) {
       std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
       return 1;
     }
     opt.base.tuning.reset();
   }
   opt.box = tune::default_box(family);
-  for (const std::string& text : boxes) {
+  for (const std::string& text : t.boxes) {
     cf::SearchBox b;
     if (!parse_box(text, b)) {
       std::fprintf(stderr, "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, MIN <= MAX)\n",
@@ -107,14 +97,14 @@ int run_tune(const TuneOptions& t) {
 
   sim::ConditionFile file;
   cf::Error err;
-  if (!sim::load_conditions(conditions, file, err)) {
+  if (!sim::load_conditions(t.conditions, file, err)) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
     return 1;
   }
-  const sim::ConditionSet* training = file.find(set);
+  const sim::ConditionSet* training = file.find(t.set);
   if (training == nullptr) {
-    std::fprintf(stderr, "fuzzypid tune: %s has no set '%s' (it has: %s)\n", conditions.c_str(),
-                 set.c_str(), file.set_names().c_str());
+    std::fprintf(stderr, "fuzzypid tune: %s has no set '%s' (it has: %s)\n", t.conditions.c_str(),
+                 t.set.c_str(), file.set_names().c_str());
     return 1;
   }
   const std::string urdf = robot::default_urdf_path();
@@ -133,12 +123,12 @@ int run_tune(const TuneOptions& t) {
     return 1;
   }
 
-  if (!quiet) {
+  if (!t.quiet) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 cf::to_string(family), training->conditions.size(), set.c_str(), budget, seed,
-                 threads);
+                 cf::to_string(family), training->conditions.size(), t.set.c_str(), t.budget,
+                 t.seed, t.threads);
     double last = -1.0;
     opt.progress = [last](const tune::Progress& p) mutable {
       if (p.elapsed_s - last < 2.0 && p.evaluations < p.budget) return;
@@ -161,16 +151,16 @@ int run_tune(const TuneOptions& t) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::path target =
-        fs::absolute(fs::path(base_file).parent_path() / result->controller.supervisor.rule_file);
-    const fs::path relative = fs::relative(target, fs::absolute(fs::path(out).parent_path()), ec);
+        fs::absolute(fs::path(t.base_file).parent_path() / result->controller.supervisor.rule_file);
+    const fs::path relative = fs::relative(target, fs::absolute(fs::path(t.out).parent_path()), ec);
     result->controller.supervisor.rule_file =
         ec || relative.empty() ? target.generic_string() : relative.generic_string();
   }
-  result->controller.tuning->conditions = conditions;
-  result->controller.tuning->set = set;
+  result->controller.tuning->conditions = t.conditions;
+  result->controller.tuning->set = t.set;
   result->controller.description =
-      "tuned " + std::string(cf::to_string(family)) + " on " + conditions + " [" + set + "]";
-  if (const std::string bad = cf::save(out, result->controller); !bad.empty()) {
+      "tuned " + std::string(cf::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
+  if (const std::string bad = cf::save(t.out, result->controller); !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
     return 1;
   }
@@ -179,10 +169,10 @@ int run_tune(const TuneOptions& t) {
               ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
               "penalty %.6g, %zu faulted runs) -> %s\n",
-              cf::to_string(family), result->evaluations, budget, result->wall_s, rate,
+              cf::to_string(family), result->evaluations, t.budget, result->wall_s, rate,
               rate * static_cast<double>(training->conditions.size()), result->cost.total,
               result->cost.itae, result->cost.overshoot_penalty, result->cost.faulted_runs,
-              out.c_str());
+              t.out.c_str());
   return 0;
 }
 

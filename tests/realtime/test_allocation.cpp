@@ -26,17 +26,6 @@ using fuzzypid::Status;
 using fuzzypid::control::JointController;
 using fuzzypid::control::JointInput;
 
-JointInput<double, 6> input(const std::array<double, 6>& qd, const std::array<double, 6>& vd,
-                            const std::array<double, 6>& q, const std::array<double, 6>& v,
-                            const std::array<double, 6>& ff = {}) {
-  JointInput<double, 6> in;
-  in.desired_position_rad = qd;
-  in.desired_velocity_rad_s = vd;
-  in.measured_position_rad = q;
-  in.measured_velocity_rad_s = v;
-  in.feed_forward_nm = ff;
-  return in;
-}
 using fuzzypid::support::allocation_count;
 
 constexpr int kTicks = 100000;
@@ -116,9 +105,10 @@ TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
   const std::size_t start = allocation_count();
   for (int k = 0; k < kTicks; ++k) {
     const std::size_t s = static_cast<std::size_t>(k) & (Trajectory::kSamples - 1);
-    const auto out = controller.step(input(trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
-                                           trajectory->v[s], k % 2 == 0 ? feed_forward : zero),
-                                     0.05);
+    const auto out = controller.step(
+        JointInput<double, 6>{trajectory->qd[s], trajectory->vd[s], trajectory->q[s],
+                              trajectory->v[s], k % 2 == 0 ? feed_forward : zero},
+        0.05);
     worst = fuzzypid::worst(worst, out.status);
     checksum += out.torque_nm[k % 6] + controller.joint(k % 6).gains().kd;
   }
@@ -137,8 +127,9 @@ TEST(Allocation, FaultyTicksNeverAllocateEither) {
   Status worst = Status::Ok;
   for (int k = 0; k < kTicks; ++k) {
     qd[0] = 1e-5 * k;
-    worst = fuzzypid::worst(worst,
-                            controller.step(input(qd, vd, q, v), k % 3 == 0 ? 0.0 : 0.05).status);
+    worst = fuzzypid::worst(
+        worst,
+        controller.step(JointInput<double, 6>{qd, vd, q, v}, k % 3 == 0 ? 0.0 : 0.05).status);
   }
   EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(fuzzypid::is_fault(worst));
@@ -162,8 +153,9 @@ TEST(Allocation, PidTicksNeverAllocate) {
     in.setpoint = trajectory->qd[s][0];
     in.measurement = trajectory->q[s][0];
     (void)pid.update(in, 0.001);
-    const auto out = joints.step(
-        input(trajectory->qd[s], trajectory->vd[s], trajectory->q[s], trajectory->v[s]), 0.001);
+    const auto out = joints.step(JointInput<double, 6>{trajectory->qd[s], trajectory->vd[s],
+                                                       trajectory->q[s], trajectory->v[s]},
+                                 0.001);
     checksum += pid.output() + out.torque_nm[5];
   }
   const std::size_t allocations = allocation_count() - start;
