@@ -22,6 +22,7 @@
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/tune.hpp"
+#include "robot_options.hpp"
 
 namespace fuzzypid::cli {
 
@@ -107,21 +108,18 @@ int run_tune(const TuneOptions& t) {
                  t.set.c_str(), file.set_names().c_str());
     return 1;
   }
-  const std::string urdf = robot::default_urdf_path();
-  robot::LoadResult loaded = robot::RobotModel::load(urdf);
-  if (!loaded.model) {
-    std::fprintf(stderr, "fuzzypid tune: cannot load %s: %s\n", urdf.c_str(), loaded.error.c_str());
-    return 1;
-  }
+  // Each training condition on its own robot and path (keys urdf, path, tick_ms, ...).
   sim::ExperimentOptions eo;
   eo.tick_s = opt.base.units.tick_s;
   std::string error;
-  const auto experiment =
-      sim::Experiment::create(*loaded.model, robot::paper_path_spec(), eo, error);
-  if (!experiment) {
+  const auto experiments = sim::ExperimentSet::create(training->conditions, eo, error);
+  if (!experiments) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
   }
+  if (!t.quiet)
+    for (std::size_t k = 0; k < experiments->size(); ++k)
+      print_robot_note("fuzzypid tune", experiments->experiment(k));
 
   if (!t.quiet) {
     std::fprintf(stderr,
@@ -141,7 +139,7 @@ int run_tune(const TuneOptions& t) {
                    p.evaluations, p.budget, p.best_cost, rate, eta);
     };
   }
-  auto result = tune::tune(*experiment, training->conditions, opt, error);
+  auto result = tune::tune(*experiments, training->conditions, opt, error);
   if (!result) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 2;
@@ -157,6 +155,16 @@ int run_tune(const TuneOptions& t) {
         ec || relative.empty() ? target.generic_string() : relative.generic_string();
   }
   result->controller.tuning->conditions = t.conditions;
+  for (std::size_t k = 0; k < experiments->size(); ++k) {
+    const sim::RobotSetup& setup = experiments->experiment(k).setup();
+    const auto add = [&](const char* kind, const std::string& file) {
+      for (const auto& f : result->controller.tuning->trained_on)
+        if (f.kind == kind && f.file == file) return;
+      result->controller.tuning->trained_on.push_back({kind, file, cf::file_hash(file)});
+    };
+    if (!setup.urdf.empty()) add("urdf", setup.urdf);
+    if (!setup.path.empty()) add("path", setup.path);
+  }
   result->controller.tuning->set = t.set;
   result->controller.description =
       "tuned " + std::string(cf::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";

@@ -246,37 +246,30 @@ bool apply_rt_settings(const Options& o, std::string& cpu_state, std::string& lo
   return ok;
 }
 
-// The section 6 path sampled at the controller period: ~5 s, duration an exact multiple of dt.
-robot::CartesianPathSpec path_spec(double dt_s) {
-  robot::CartesianPathSpec spec = robot::paper_path_spec();
-  const double duration = spec.duration_s;
-  spec.samples = static_cast<std::size_t>(std::llround(duration / dt_s)) + 1;
-  spec.duration_s = static_cast<double>(spec.samples - 1) * dt_s;
-  return spec;
-}
-
 int run(int argc, char** argv) {
   Options o;
   if (const auto code = fuzzypid::rt_loop::parse(argc, argv, o)) return *code;
 
   // --- Model, path, closed loop and outputs (allocating; all before the loop).
-  robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
-  if (!loaded.model) {
-    std::fprintf(stderr, "%s: cannot load the robot model: %s\n", kTool, loaded.error.c_str());
-    return cli::kExitFailure;
-  }
   const double dt_s = o.controller_dt_s();
-  // The A/B simulation's settings ("paper" scenario) with the controller period dt; the paper's
-  // per-tick gains keep referring to its 50 ms tick (see the file comment).
+  // The A/B simulation's settings ("paper" scenario) with the controller period dt and the robot
+  // options; the paper's per-tick gains keep referring to its 50 ms tick (see the file comment).
   sim::ExperimentOptions options;
   const double paper_tick_s = options.tick_s;
-  options.tick_s = dt_s;
+  sim::Condition condition = *sim::find_scenario("paper");
+  o.robot.apply(condition);
+  condition.robot.tick_s = dt_s;
+  if (const std::string bad = condition.validate(); !bad.empty()) {
+    std::fprintf(stderr, "%s: %s\n", kTool, bad.c_str());
+    return cli::kExitUsage;
+  }
   std::string error;
-  const auto experiment = sim::Experiment::create(*loaded.model, path_spec(dt_s), options, error);
+  const auto experiment = sim::Experiment::create(condition.robot, options, error);
   if (!experiment) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
     return cli::kExitFailure;
   }
+  cli::print_robot_note(kTool, *experiment);
   cf::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? cf::Family::Fuzzy : cf::Family::Pid);
   spec.units.tick_s = paper_tick_s;
@@ -287,7 +280,7 @@ int run(int argc, char** argv) {
       return cli::kExitFailure;
     }
   }
-  auto loop = sim::ClosedLoop::create(*experiment, *sim::find_scenario("paper"), spec, error);
+  auto loop = sim::ClosedLoop::create(*experiment, condition, spec, error);
   if (!loop) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());
     return cli::kExitFailure;

@@ -15,7 +15,8 @@ namespace fuzzypid::rt_loop {
 
 std::optional<int> parse(int argc, const char* const* argv, Options& o) {
   CLI::App app(
-      "The 6-joint controller against the simulated ER50-C20 in a fixed-period loop, with its "
+      "The 6-joint controller against the simulated arm (the ER50-C20, or --urdf with --path) in "
+      "a fixed-period loop, with its "
       "timing measured (docs/performance.md). Ctrl-C stops at the next tick and prints the "
       "summary.\nExit codes: 0 success, 1 a run-time failure (controller or plant fault, "
       "allocation in the loop, too many overruns, a refused setting under --require-rt, a write "
@@ -62,7 +63,21 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
                  "exit 1 when more than N ticks overran (default: any number)")
       ->check(cli::unsigned_integer())
       ->option_text("N");
+  cli::add_robot_options(app, o.robot, true);
   if (const auto code = cli::parse(app, argc, argv)) return code;
+  if (const std::string bad = cli::check_robot_options(o.robot); !bad.empty()) {
+    std::fprintf(stderr, "%s: %s (see --help)\n", kTool, bad.c_str());
+    return cli::kExitUsage;
+  }
+  // --tick-ms is the controller period; the loop's period follows it unless given.
+  if (o.robot.tick_given) {
+    if (o.dt_s) {
+      std::fprintf(stderr, "%s: --tick-ms and --dt both set the controller period\n", kTool);
+      return cli::kExitUsage;
+    }
+    o.dt_s = o.robot.setup.tick_s;
+    if (app.count("--period-ms") == 0) o.period_ms = o.robot.setup.tick_s * 1000.0;
+  }
   // Without --dt the controller period is the tick period: it must lie in --dt's range too.
   if (!o.dt_s && o.period_ms > 0.0 &&
       (o.period_ms / 1000.0 < kMinDtS || o.period_ms / 1000.0 > kMaxDtS)) {

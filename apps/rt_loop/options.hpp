@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "robot_options.hpp"
+
 namespace fuzzypid::rt_loop {
 
 inline constexpr const char* kTool = "rt_loop";
@@ -31,6 +33,7 @@ struct Options {
   bool loop_path = false;
   bool require_rt = false;
   std::optional<std::uint64_t> max_overruns;
+  cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
 
   double controller_dt_s() const {
     if (dt_s) return *dt_s;

@@ -26,6 +26,7 @@
 #include "fuzzypid/sim/metrics.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
+#include "robot_options.hpp"
 
 namespace {
 
@@ -102,19 +103,39 @@ Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m) {
   return s;
 }
 
-void write_settings(std::FILE* f, const sim_ab::Options& o, const std::string& urdf,
-                    const robot::CartesianPathSpec& spec, const sim::Experiment& ex,
+// What ran: every robot setup (URDF, links, path, tick, armature, nominal inertia) and every
+// controller.
+void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::ExperimentSet& experiments,
                     const std::vector<NamedController>& controllers) {
-  const auto& e = o.experiment;
-  std::fprintf(f, "urdf=%s\nstart_mm=%s,%s,%s\nend_mm=%s,%s,%s\nsamples=%zu\ntick_s=%s\n",
-               urdf.c_str(), fmt(spec.start_m.x() * 1e3).c_str(),
-               fmt(spec.start_m.y() * 1e3).c_str(), fmt(spec.start_m.z() * 1e3).c_str(),
-               fmt(spec.end_m.x() * 1e3).c_str(), fmt(spec.end_m.y() * 1e3).c_str(),
-               fmt(spec.end_m.z() * 1e3).c_str(), ex.ticks(), fmt(e.tick_s).c_str());
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    const sim::Experiment& ex = experiments.experiment(k);
+    const std::string prefix = k == 0 ? "" : "robot" + std::to_string(k + 1) + ".";
+    std::fprintf(f, "%surdf=%s\n%sbase_link=%s\n%stip_link=%s\n", prefix.c_str(),
+                 ex.urdf_file().c_str(), prefix.c_str(), ex.model().root_link().c_str(),
+                 prefix.c_str(), ex.model().tip_link().c_str());
+    if (ex.setup().path.empty()) {
+      const auto& first = ex.path().poses.front().position_m;
+      const auto& last = ex.path().poses.back().position_m;
+      std::fprintf(f, "%sstart_mm=%s,%s,%s\n%send_mm=%s,%s,%s\n", prefix.c_str(),
+                   fmt(first.x() * 1e3).c_str(), fmt(first.y() * 1e3).c_str(),
+                   fmt(first.z() * 1e3).c_str(), prefix.c_str(), fmt(last.x() * 1e3).c_str(),
+                   fmt(last.y() * 1e3).c_str(), fmt(last.z() * 1e3).c_str());
+    } else {
+      std::fprintf(f, "%spath=%s fnv1a64=%s\n", prefix.c_str(), ex.setup().path.c_str(),
+                   cf::file_hash(ex.setup().path).c_str());
+    }
+    std::fprintf(f, "%ssamples=%zu\n%stick_s=%s\n", prefix.c_str(), ex.ticks(), prefix.c_str(),
+                 fmt(ex.options().tick_s).c_str());
+    const auto& A = ex.armature_kgm2();
+    std::fprintf(f, "%sarmature_kgm2=%s,%s,%s,%s,%s,%s\n", prefix.c_str(), fmt(A[0]).c_str(),
+                 fmt(A[1]).c_str(), fmt(A[2]).c_str(), fmt(A[3]).c_str(), fmt(A[4]).c_str(),
+                 fmt(A[5]).c_str());
+    const auto& J = ex.nominal_inertia();
+    std::fprintf(f, "%snominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", prefix.c_str(),
+                 fmt(J[0]).c_str(), fmt(J[1]).c_str(), fmt(J[2]).c_str(), fmt(J[3]).c_str(),
+                 fmt(J[4]).c_str(), fmt(J[5]).c_str());
+  }
   if (!o.conditions_file.empty()) std::fprintf(f, "conditions=%s\n", o.conditions_file.c_str());
-  const auto& J = ex.nominal_inertia();
-  std::fprintf(f, "nominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", fmt(J[0]).c_str(), fmt(J[1]).c_str(),
-               fmt(J[2]).c_str(), fmt(J[3]).c_str(), fmt(J[4]).c_str(), fmt(J[5]).c_str());
   for (const auto& c : controllers) {
     const auto& s = c.spec;
     std::fprintf(f, "controller.%s=%s family=%s units=%s,%s gains=%s,%s,%s", c.name.c_str(),
@@ -130,26 +151,27 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const std::string& u
     if (s.family == cf::Family::Fuzzy)
       std::fprintf(f, " gain_update=%s rule_base=%s and=%s",
                    cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update),
-                   cf::to_string(s.supervisor.rule_base),
+                   s.supervisor.rule_file.empty() ? cf::to_string(s.supervisor.rule_base)
+                                                  : s.supervisor.rule_file.c_str(),
                    cf::name_of(cf::kConjunctionNames, s.supervisor.conjunction));
+    if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
     std::fprintf(f, " derivative=%s\n", cf::name_of(cf::kDerivativeSourceNames, s.pid.derivative));
   }
 }
 
-int run_sweep(const sim_ab::Options& o, const sim::Experiment& ex,
-              const std::vector<NamedController>& controllers, const std::string& urdf,
-              const robot::CartesianPathSpec& spec) {
+int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
+              const sim::Condition& base, const std::vector<NamedController>& controllers) {
+  const sim::Experiment& ex = experiments.of(0);
   const sim_ab::Sweep& sw = *o.sweep;
   Outputs outs;
   if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
   std::FILE* csv = outs[0].file;
-  write_settings(outs[1].file, o, urdf, spec, ex, controllers);
+  write_settings(outs[1].file, o, experiments, controllers);
   std::fprintf(outs[1].file, "sweep=%s=%s:%s:%d\novershoot_bound_pct=%s\nitae_ratio=%s\n",
                sw.parameter.c_str(), fmt(sw.lo).c_str(), fmt(sw.hi).c_str(), sw.count,
                fmt(o.overshoot_bound_pct).c_str(), fmt(o.itae_ratio_bound).c_str());
   std::fputs("controller,parameter,value,itae,max_overshoot_pct,faults,diverged,usable\n", csv);
-  const sim::Condition base = sim_ab::scenario_conditions(o).front();
-  const double tick = o.experiment.tick_s;
+  const double tick = ex.options().tick_s;
   if (!o.quiet)
     std::printf("%-22s %-14s %-28s %s\n", "controller", "parameter", "usable range",
                 "nominal ITAE");
@@ -255,11 +277,6 @@ int main(int argc, char** argv) {
         return 2;
       }
     }
-    if (c.spec.units.tick_s != o.experiment.tick_s && c.spec.units.form == cf::PidForm::PerTick)
-      std::fprintf(stderr,
-                   "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "
-                   "to continuous gains and run at the sim's %g s tick\n",
-                   path.c_str(), c.spec.units.tick_s, o.experiment.tick_s);
     controllers.push_back(std::move(c));
   }
   if (controllers.empty()) {
@@ -303,24 +320,29 @@ int main(int argc, char** argv) {
     }
   }
 
-  const std::string urdf = o.urdf.empty() ? robot::default_urdf_path() : o.urdf;
-  robot::LoadResult loaded = robot::RobotModel::load(urdf);
-  if (!loaded.model) {
-    std::fprintf(stderr, "sim_ab: cannot load %s: %s\n", urdf.c_str(), loaded.error.c_str());
-    return 1;
-  }
-  const robot::RobotModel& model = *loaded.model;
-
-  robot::CartesianPathSpec spec = robot::paper_path_spec();
-  if (o.start_mm) spec.start_m = *o.start_mm / 1000.0;
-  if (o.end_mm) spec.end_m = *o.end_mm / 1000.0;
+  // One experiment per robot setup (URDF, path, tick): built before any output is opened.
+  std::vector<sim::Condition> conditions;
+  conditions.reserve(runs.size());
+  for (const auto& r : runs)
+    conditions.push_back(r.condition);
   std::string error;
-  const auto experiment = sim::Experiment::create(model, spec, o.experiment, error);
-  if (!experiment) {
+  const auto experiments = sim::ExperimentSet::create(conditions, o.experiment, error);
+  if (!experiments) {
     std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
     return 1;
   }
-  if (o.sweep) return run_sweep(o, *experiment, controllers, urdf, spec);
+  for (std::size_t k = 0; k < experiments->size(); ++k) {
+    const sim::Experiment& ex = experiments->experiment(k);
+    if (!o.quiet) cli::print_robot_note("sim_ab", ex);
+    for (const auto& c : controllers)
+      if (c.spec.units.form == cf::PidForm::PerTick &&
+          std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
+        std::fprintf(stderr,
+                     "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "
+                     "to continuous gains and run at a %g s tick\n",
+                     c.name.c_str(), c.spec.units.tick_s, ex.options().tick_s);
+  }
+  if (o.sweep) return run_sweep(o, *experiments, runs.front().condition, controllers);
 
   Outputs outs;
   if (!open_outputs(
@@ -332,7 +354,7 @@ int main(int argc, char** argv) {
   std::FILE* metrics = outs[1].file;
   std::FILE* tip = outs[2].file;
   std::FILE* conds = outs[3].file;
-  write_settings(outs[4].file, o, urdf, spec, *experiment, controllers);
+  write_settings(outs[4].file, o, *experiments, controllers);
   std::fputs("scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd\n", traj);
   std::fputs(
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
@@ -358,14 +380,17 @@ int main(int argc, char** argv) {
                 "overshoot%", "settle_s", "max|e|>1s");
   std::size_t faulted_runs = 0;
   std::size_t done = 0;
-  for (const Run& run : runs) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const Run& run = runs[k];
+    const sim::Experiment& experiment = experiments->of(k);
+    const robot::RobotModel& model = experiment.model();
     ++done;
     const sim::Condition& cond = run.condition;
     if (!o.quiet && runs.size() > 1)
       std::fprintf(stderr, "sim_ab: [%zu/%zu] %s\n", done, runs.size(), cond.name.c_str());
     for (const NamedController& ctl : controllers) {
       const char* cname = ctl.name.c_str();
-      const sim::RunResult r = experiment->run(cond, ctl.spec);
+      const sim::RunResult r = experiment.run(cond, ctl.spec);
       if (!r.ok) {
         std::fprintf(stderr, "sim_ab: condition %s, controller %s: %s\n", cond.name.c_str(), cname,
                      r.error.c_str());
@@ -394,7 +419,7 @@ int main(int argc, char** argv) {
                      fmt(pd.y()).c_str(), fmt(pd.z()).c_str(), fmt(p.x()).c_str(),
                      fmt(p.y()).c_str(), fmt(p.z()).c_str());
       }
-      const auto m = sim::run_metrics(r.rows, o.experiment.tick_s);
+      const auto m = sim::run_metrics(r.rows, experiment.options().tick_s);
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
         std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu\n", cond.name.c_str(), cname,
                      i + 1, fmt(m[i].settling_time_s).c_str(), fmt(m[i].overshoot_pct).c_str(),

@@ -140,7 +140,7 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
       ->check(CLI::Range(1.0, 1e6));
   app.add_option("--out", o.out_dir, "output directory (default out)")
       ->check([](const std::string& s) { return s.empty() ? std::string("empty path") : ""; });
-  app.add_option("--urdf", o.urdf, "robot description (default: the bundled ER50-C20)");
+  cli::add_robot_options(app, o.robot, true);
   std::array<double, 3> start{}, end{};
   add_list(app, "--start", start, "path start X,Y,Z in mm (default the paper's A)", false,
            [&o, &start] { o.start_mm = Eigen::Vector3d(start[0], start[1], start[2]); });
@@ -222,6 +222,21 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
                  "options (--payload-scale ...) apply without it (see --help)\n");
     return ParseResult::UsageError;
   }
+  if (const std::string bad = cli::check_robot_options(o.robot); !bad.empty()) {
+    std::fprintf(stderr, "sim_ab: %s (see --help)\n", bad.c_str());
+    return ParseResult::UsageError;
+  }
+  if (!o.conditions_file.empty() && (o.robot.any() || o.start_mm || o.end_mm)) {
+    std::fprintf(stderr,
+                 "sim_ab: --conditions runs the file's conditions on the robots and paths they "
+                 "name (keys urdf, path, tick_ms, payload_kg, armature, dynamics, gravity); "
+                 "the robot options apply without it (see --help)\n");
+    return ParseResult::UsageError;
+  }
+  if (!o.robot.setup.path.empty() && (o.start_mm || o.end_mm)) {
+    std::fprintf(stderr, "sim_ab: --start and --end move the line A -> B; --path replaces it\n");
+    return ParseResult::UsageError;
+  }
   if (o.sweep && !o.conditions_file.empty()) {
     std::fprintf(stderr, "sim_ab: --sweep varies the --scenario condition, not a file's sets\n");
     return ParseResult::UsageError;
@@ -254,6 +269,9 @@ std::vector<sim::Condition> scenario_conditions(const Options& o) {
     }
     if (o.seed) c.seed = *o.seed;
     c.reverse = c.reverse || o.reverse;
+    o.robot.apply(c);
+    if (o.start_mm) c.robot.start_m = {{o.start_mm->x() / 1e3, o.start_mm->y() / 1e3, o.start_mm->z() / 1e3}};
+    if (o.end_mm) c.robot.end_m = {{o.end_mm->x() / 1e3, o.end_mm->y() / 1e3, o.end_mm->z() / 1e3}};
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "fuzzypid/sim/condition.hpp"
+#include "robot_options.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 
 namespace fuzzypid::sim_ab {
@@ -34,7 +35,7 @@ struct Options {
   double overshoot_bound_pct = 20.0;  // usable range of a sweep
   double itae_ratio_bound = 3.0;      // usable range: ITAE <= ratio x the nominal ITAE
   std::string out_dir = "out";
-  std::string urdf;
+  cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
   std::optional<Eigen::Vector3d> start_mm, end_mm;
   sim::ExperimentOptions experiment{};
   // Overrides applied to the conditions selected by --scenario.

@@ -142,6 +142,11 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     p->finish();
   }
 
+  if (auto ff = r.table("feedforward", false)) {
+    s.feedforward.gravity = ff->flag("gravity", false);
+    ff->finish();
+  }
+
   if (auto t = r.table("tuning", false)) {
     Tuning tu;
     tu.conditions = t->text("conditions");
@@ -177,6 +182,23 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
       br.finish();
       tu.box.push_back(b);
     }
+    if (const toml::array* files = t->array("trained_on", false)) {
+      for (const toml::node& entry : *files) {
+        const auto* ft = entry.as_table();
+        if (ft == nullptr)
+          t->fail(entry, "trained_on entries must be { kind = \"urdf|path\", file = \"...\", "
+                         "fnv1a64 = \"...\" }");
+        TableReader fr(*ft, file);
+        TrainedOn f;
+        f.kind = fr.text("kind");
+        if (f.kind != "urdf" && f.kind != "path")
+          fr.fail(*ft->get("kind"), "trained_on kind must be \"urdf\" or \"path\"");
+        f.file = fr.text("file");
+        f.fnv1a64 = fr.text("fnv1a64");
+        fr.finish();
+        tu.trained_on.push_back(f);
+      }
+    }
     t->finish();
     s.tuning = tu;
   }
@@ -185,6 +207,25 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
 }
 
 }  // namespace
+
+std::string file_hash(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return {};
+  std::uint64_t h = 14695981039346656037ull;
+  unsigned char buf[65536];
+  std::size_t n = 0;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0)
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= buf[i];
+      h *= 1099511628211ull;
+    }
+  const bool ok = std::ferror(f) == 0;
+  std::fclose(f);
+  if (!ok) return {};
+  char out[17];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
 
 std::string format_double(double v) {
   if (std::isnan(v)) return "nan";
@@ -304,6 +345,10 @@ std::string to_toml(const ControllerSpec& s) {
   o += "derivative_on = " + quoted(name_of(kDerivativeOnNames, s.pid.derivative_on)) + "\n";
   o += "anti_windup = " + quoted(name_of(kAntiWindupNames, s.pid.anti_windup)) + "\n";
   o += "derivative_filter_s = " + format_double(s.pid.derivative_filter_s) + "\n";
+  if (s.feedforward.gravity) {
+    o += "\n[feedforward]\n";
+    o += "gravity = true  # tau += g^(q_desired) of the nominal model\n";
+  }
   if (s.tuning) {
     const Tuning& t = *s.tuning;
     o += "\n[tuning]\n";
@@ -321,6 +366,13 @@ std::string to_toml(const ControllerSpec& s) {
       o += "  { name = " + quoted(b.name) + ", log10 = [" + format_double(b.log10_min) + ", " +
            format_double(b.log10_max) + "] },\n";
     o += "]\n";
+    if (!t.trained_on.empty()) {
+      o += "trained_on = [  # robot and path files of the training conditions\n";
+      for (const TrainedOn& f : t.trained_on)
+        o += "  { kind = " + quoted(f.kind) + ", file = " + quoted(f.file) +
+             ", fnv1a64 = " + quoted(f.fnv1a64) + " },\n";
+      o += "]\n";
+    }
     o += "\n[tuning.objective]\n";
     o += "overshoot_bound_pct = " + format_double(t.objective.overshoot_bound_pct) + "\n";
     o += "overshoot_weight = " + format_double(t.objective.overshoot_weight) + "\n";

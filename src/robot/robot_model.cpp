@@ -424,6 +424,26 @@ JointVector RobotModel::coriolis_torque(const JointVector& q,
   return from_kdl(impl_->tau);
 }
 
+RobotModel RobotModel::with_payload(double mass_kg) const {
+  ChainDescription desc = impl_->desc;
+  KDL::Chain chain;
+  const unsigned int n = desc.chain.getNrOfSegments();
+  for (unsigned int k = 0; k < n; ++k) {
+    KDL::Segment seg = desc.chain.getSegment(k);
+    if (k + 1 == n && mass_kg > 0.0) {
+      // The segment's inertia is expressed in its frame after the joint; its tip is at
+      // getFrameToTip() there.
+      const KDL::RigidBodyInertia point(mass_kg, seg.getFrameToTip().p,
+                                        KDL::RotationalInertia(0, 0, 0, 0, 0, 0));
+      seg = KDL::Segment(seg.getName(), seg.getJoint(), seg.getFrameToTip(),
+                         seg.getInertia() + point);
+    }
+    chain.addSegment(seg);
+  }
+  desc.chain = chain;
+  return RobotModel(std::make_unique<Impl>(std::move(desc)));
+}
+
 JointVector RobotModel::gravity_torque(const JointVector& q, double gravity_m_s2) const noexcept {
   to_kdl(q, impl_->q);
   impl_->dyn_solver.JntToGravity(impl_->q, impl_->tau);

@@ -1,5 +1,6 @@
 #include "fuzzypid/sim/closed_loop.hpp"
 
+#include <cmath>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -18,6 +19,13 @@ double shifted(double x, double offset) noexcept {
 // offset, or the injected reading instead.
 double reading(double measured, double offset, const std::optional<double>& replaced) noexcept {
   return replaced ? *replaced : shifted(measured, offset);
+}
+
+// x moved by a multiple of 2 pi into (-pi, pi].
+double wrapped(double x) noexcept {
+  constexpr double kPi = 3.14159265358979323846;
+  const double w = std::remainder(x, 2.0 * kPi);
+  return w <= -kPi ? w + 2.0 * kPi : w;
 }
 
 }  // namespace
@@ -61,12 +69,16 @@ ClosedLoop::ClosedLoop(const Experiment& experiment, const Condition& condition,
       path_(&path),
       condition_(condition),
       pulses_(condition.pulses()),
-      plant_(experiment.model(), experiment.plant_config(condition)),
+      plant_(experiment.plant_model(condition), experiment.plant_config(condition)),
       controller_(std::move(controller)),
       units_(controller_->spec().units.gains),
       tick_s_(experiment.options().tick_s),
       noise_(condition.seed) {
   plant_.reset(experiment.initial_position(path, condition), robot::JointVector{});
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+    continuous_[i] = std::isinf(experiment.model().lower_limits_rad()[i]) &&
+                     std::isinf(experiment.model().upper_limits_rad()[i]);
+  if (controller_->spec().feedforward.gravity) feedforward_model_.emplace(experiment.model());
 }
 
 PathSample ClosedLoop::sample(std::size_t k) const noexcept {
@@ -144,9 +156,20 @@ TickResult ClosedLoop::tick(const PathSample& sample, const TickInjection& injec
     in.measured_velocity_rad_s[i] =
         reading(in.measured_velocity_rad_s[i], injection.measured_velocity_offset_rad_s[i],
                 injection.measured_velocity_rad_s[i]);
+    if (continuous_[i] && std::isfinite(in.measured_position_rad[i]) &&
+        std::isfinite(r.theta_d[i])) {
+      const double measured = in.measured_position_rad[i];
+      r.theta_d[i] = measured + wrapped(r.theta_d[i] - measured);
+      in.desired_position_rad[i] = r.theta_d[i];
+    }
   }
   r.command = controller_->step(in, injection.controller_dt_s.value_or(tick_s_));
   r.torque_nm = experiment_->torque_from_command(r.command.torque_nm, units_);
+  if (feedforward_model_) {
+    const robot::JointVector g = feedforward_model_->gravity_torque(sample.theta_d);
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      r.torque_nm[i] += g[i];
+  }
   if (!advance) return r;
   robot::JointVector disturbance{};
   const double a = pulses_.at(r.t_s);

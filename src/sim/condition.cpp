@@ -28,6 +28,33 @@ std::string Condition::validate() const {
     return "noise standard deviations must be >= 0";
   if (!finite(initial_error_rad) || std::fabs(initial_error_rad) > 1.0)
     return "initial error must be finite and within +/-1 rad";
+  if (!finite(payload_kg) || payload_kg < 0.0 || payload_kg > kMaxPayloadKg)
+    return "payload mass must be within 0 .. 1e4 kg";
+  if (gravity && dynamics != robot::PlantCoupling::Coupled)
+    return "gravity needs the coupled dynamics (dynamics = coupled)";
+  return robot.validate();
+}
+
+bool RobotSetup::operator==(const RobotSetup& o) const noexcept {
+  return urdf == o.urdf && base_link == o.base_link && tip_link == o.tip_link && path == o.path &&
+         start_m == o.start_m && end_m == o.end_m && tick_s == o.tick_s &&
+         armature_kgm2 == o.armature_kgm2 && ik_seed_rad == o.ik_seed_rad;
+}
+
+std::string RobotSetup::validate() const {
+  if (!std::isfinite(tick_s) || tick_s < kMinTickS || tick_s > kMaxTickS)
+    return "tick must be within 0.1 .. 1000 ms";
+  if (armature_kgm2)
+    for (double a : *armature_kgm2)
+      if (!std::isfinite(a) || a < 0.0 || a > kMaxArmatureKgm2)
+        return "armature values must be within 0 .. 1e6 kg·m²";
+  for (const auto* p : {&start_m, &end_m})
+    if (*p)
+      for (double v : **p)
+        if (!std::isfinite(v) || std::fabs(v) > 1e3) return "path end points must be finite, m";
+  if (ik_seed_rad)
+    for (double v : *ik_seed_rad)
+      if (!std::isfinite(v) || std::fabs(v) > 100.0) return "IK seed must be finite, rad";
   return {};
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 
 #include "fuzzypid/controller_file/toml_reader.hpp"
@@ -13,6 +14,47 @@ namespace {
 
 using controller_file::ReadError;
 using controller_file::TableReader;
+
+// A file named in the condition file: relative names resolve against the file's folder.
+std::string resolve(const std::string& name, const std::string& condition_file) {
+  namespace fs = std::filesystem;
+  if (name.empty() || fs::path(name).is_absolute()) return name;
+  return (fs::path(condition_file).parent_path() / name).lexically_normal().string();
+}
+
+// The robot, path and plant keys (set tables and conditions alike).
+void read_robot(TableReader& r, Condition& c) {
+  RobotSetup& s = c.robot;
+  if (r.has("urdf")) s.urdf = resolve(r.text("urdf"), r.file());
+  s.base_link = r.text("base_link", s.base_link);
+  s.tip_link = r.text("tip_link", s.tip_link);
+  if (r.has("path")) s.path = resolve(r.text("path"), r.file());
+  if (r.has("tick_ms")) {
+    const double ms = r.number("tick_ms");
+    if (!(ms >= kMinTickS * 1e3 && ms <= kMaxTickS * 1e3))
+      r.fail(*r.raw().get("tick_ms"), "'tick_ms' must be within 0.1 .. 1000");
+    s.tick_s = ms * 1e-3;
+  }
+  if (r.has("armature")) {
+    const toml::array* a = r.array("armature", true);
+    if (a->size() != robot::kNumJoints)
+      r.fail(*a, "'armature' must list 6 values (kg·m²), found " + std::to_string(a->size()));
+    robot::JointVector v{};
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+      v[i] = controller_file::number_of(r, *a->get(i), "'armature[" + std::to_string(i) + "]'");
+      if (!(v[i] >= 0.0 && v[i] <= kMaxArmatureKgm2))
+        r.fail(*a->get(i), "'armature' values must be within 0 .. 1e6 kg·m²");
+    }
+    s.armature_kgm2 = v;
+  }
+  if (r.has("payload_kg")) {
+    c.payload_kg = r.number("payload_kg");
+    if (!(c.payload_kg >= 0.0 && c.payload_kg <= kMaxPayloadKg))
+      r.fail(*r.raw().get("payload_kg"), "'payload_kg' must be within 0 .. 1e4");
+  }
+  c.dynamics = r.choice("dynamics", kDynamicsNames, c.dynamics);
+  c.gravity = r.flag("gravity", c.gravity);
+}
 
 // The fields of a condition common to listed conditions and Monte-Carlo sets.
 void read_fields(TableReader& r, Condition& c) {
@@ -31,25 +73,31 @@ void read_fields(TableReader& r, Condition& c) {
   c.initial_error_rad = r.number("initial_error", c.initial_error_rad);
 }
 
-Condition read_condition(const toml::node& node, const std::string& file) {
+Condition read_condition(const toml::node& node, const std::string& file,
+                         const Condition& defaults) {
   const toml::table* t = node.as_table();
   if (t == nullptr)
     throw ReadError{controller_file::Error{file, static_cast<int>(node.source().begin.line),
                                            static_cast<int>(node.source().begin.column),
                                            "a condition must be a table"}};
   TableReader r(*t, file);
-  Condition c;
+  Condition c = defaults;
   const std::string base = r.text("scenario", std::string());
   if (!base.empty()) {
     const Condition* s = find_scenario(base);
     if (s == nullptr) r.fail(*t->get("scenario"), "unknown scenario '" + base + "'");
     c = *s;
+    c.robot = defaults.robot;
+    c.payload_kg = defaults.payload_kg;
+    c.dynamics = defaults.dynamics;
+    c.gravity = defaults.gravity;
   }
   c.name = r.text("name");
   if (c.name.empty() || c.name.find_first_of(",\n\r\"") != std::string::npos)
     r.fail(*t->get("name"), "a condition name must be non-empty, without commas or quotes");
   c.description = r.text("description", c.description);
   read_fields(r, c);
+  read_robot(r, c);
   r.finish();
   if (const std::string bad = c.validate(); !bad.empty())
     r.fail_here("condition " + c.name + ": " + bad);
@@ -69,7 +117,8 @@ std::pair<double, double> range(TableReader& r, const char* key, double lo, doub
   return {mn, mx};
 }
 
-void read_monte_carlo(TableReader& r, const std::string& set_name, ConditionSet& set) {
+void read_monte_carlo(TableReader& r, const std::string& set_name, const Condition& defaults,
+                      ConditionSet& set) {
   const std::uint64_t count = r.count("count");
   if (count == 0 || count > 10000) r.fail(*r.raw().get("count"), "'count' must be 1..10000");
   const std::uint64_t seed = r.count("seed");
@@ -77,7 +126,8 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, ConditionSet&
   if (!(payload.first > 0.0)) r.fail(*r.raw().get("payload_scale"), "payload_scale must be > 0");
   const auto friction = range(r, "friction", 0.0, 0.0);
   const auto initial = range(r, "initial_error", 0.05, 0.05);
-  Condition base;
+  Condition base = defaults;
+  read_robot(r, base);
   base.reverse = r.flag("reverse", false);
   base.contact_rad_s2 = r.number("contact", 0.0);
   base.torque_limit_rad_s2 = r.number("torque_limit", 0.0);
@@ -131,16 +181,18 @@ bool parse_conditions(std::string_view text, const std::string& source, Conditio
       ConditionSet set;
       set.name = name;
       set.description = st->text("description", std::string());
+      Condition defaults;
+      read_robot(*st, defaults);
       std::set<std::string> names;
       if (const toml::array* list = st->array("conditions", false)) {
         for (const toml::node& n : *list) {
-          Condition c = read_condition(n, source);
+          Condition c = read_condition(n, source, defaults);
           if (!names.insert(c.name).second)
             st->fail(n, "duplicate condition name '" + c.name + "'");
           set.conditions.push_back(std::move(c));
         }
       }
-      if (auto mc = st->table("monte_carlo", false)) read_monte_carlo(*mc, name, set);
+      if (auto mc = st->table("monte_carlo", false)) read_monte_carlo(*mc, name, defaults, set);
       st->finish();
       if (set.conditions.empty()) st->fail_here("set '" + name + "' has no conditions");
       out.sets.push_back(std::move(set));

@@ -1,12 +1,15 @@
 #include "fuzzypid/sim/experiment.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <utility>
 
 #include "fuzzypid/controller_file/joint_controllers.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/robot/ik.hpp"
+#include "fuzzypid/robot/path_file.hpp"
 #include "fuzzypid/sim/closed_loop.hpp"
 
 namespace fuzzypid::sim {
@@ -14,6 +17,18 @@ namespace fuzzypid::sim {
 namespace {
 
 constexpr std::size_t kJoints = robot::kNumJoints;
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Whether `urdf` is the bundled ER50-C20 file (same file, however it is spelled).
+bool is_bundled_urdf(const std::string& urdf) {
+  std::error_code ec;
+  return std::filesystem::equivalent(urdf, robot::default_urdf_path(), ec) && !ec;
+}
 
 }  // namespace
 
@@ -47,12 +62,26 @@ std::optional<Experiment> Experiment::create(const robot::RobotModel& model,
     error = "invalid experiment options (tick must be > 0, gains and initial error finite)";
     return std::nullopt;
   }
-  // The closed-form solver, seeded for the first sample with the paper's start joints so the
-  // path takes the same (elbow-up, wrist-flipped) branch the paper's vector suggests.
-  robot::JointPathResult planned =
-      robot::plan_joint_path(model, path, robot::IkSolver::Analytic, robot::kPaperStartJoints);
+  // The closed-form solver where the model is the Table 1 geometry, seeded for the first sample
+  // with the paper's start joints so the path takes the same (elbow-up, wrist-flipped) branch the
+  // paper's vector suggests; KDL's joint-limited Newton-Raphson from the middle of the limits for
+  // any other arm.
+  const robot::InverseKinematics ik(model);
+  const robot::IkSolver solver =
+      ik.has_analytic() ? robot::IkSolver::Analytic : robot::IkSolver::KdlNr;
+  const robot::JointVector seed =
+      ik.has_analytic() ? robot::kPaperStartJoints : robot::default_ik_seed(model);
+  robot::JointPathResult planned = robot::plan_joint_path(ik, model, path, solver, seed);
   if (!planned.ok()) {
-    error = "the path cannot be followed: " + planned.message;
+    error = "the line A -> B cannot be followed: " + planned.message;
+    if (planned.first_failure < planned.poses.size()) {
+      const robot::Pose& p = planned.poses[planned.first_failure];
+      error += " (t = " + num(planned.time_s[planned.first_failure]) + " s, tool at (" +
+               num(p.position_m.x()) + ", " + num(p.position_m.y()) + ", " +
+               num(p.position_m.z()) + ") m; solver " +
+               (ik.has_analytic() ? "closed-form IK" : "KDL Newton-Raphson (joint-limited)") +
+               "); another arm than the ER50-C20 needs its own path (--path FILE)";
+    }
     return std::nullopt;
   }
   const double planned_tick = planned.time_s.size() > 1 ? planned.time_s[1] - planned.time_s[0] : 0;
@@ -66,8 +95,89 @@ std::optional<Experiment> Experiment::create(const robot::RobotModel& model,
   std::swap(back.start_m, back.end_m);
   std::swap(back.start_rotation, back.end_rotation);
   robot::JointPathResult reverse =
-      robot::plan_joint_path(model, back, robot::IkSolver::Analytic, planned.position_rad.back());
+      robot::plan_joint_path(ik, model, back, solver, planned.position_rad.back());
   return Experiment(model, std::move(planned), std::move(reverse), options);
+}
+
+std::optional<Experiment> Experiment::create(const RobotSetup& setup,
+                                             const ExperimentOptions& options, std::string& error) {
+  if (const std::string bad = setup.validate(); !bad.empty()) {
+    error = bad;
+    return std::nullopt;
+  }
+  const std::string urdf = setup.urdf.empty() ? robot::default_urdf_path() : setup.urdf;
+  robot::LoadResult loaded = robot::RobotModel::load(urdf, setup.base_link, setup.tip_link);
+  if (!loaded.model) {
+    error = "cannot load " + urdf + ": " + loaded.error;
+    return std::nullopt;
+  }
+  const robot::RobotModel& model = *loaded.model;
+  ExperimentOptions o = options;
+  o.tick_s = setup.tick_s;
+  if (setup.armature_kgm2) {
+    o.plant.armature_kgm2 = *setup.armature_kgm2;
+  } else if (!is_bundled_urdf(urdf)) {
+    o.plant.armature_kgm2 = robot::JointVector{};
+  } else {
+    o.plant.armature_kgm2 = robot::PlantConfig{}.armature_kgm2;
+  }
+  std::optional<Experiment> ex;
+  if (setup.path.empty()) {
+    robot::CartesianPathSpec spec = robot::paper_path_spec();
+    if (setup.start_m)
+      spec.start_m = Eigen::Vector3d((*setup.start_m)[0], (*setup.start_m)[1], (*setup.start_m)[2]);
+    if (setup.end_m)
+      spec.end_m = Eigen::Vector3d((*setup.end_m)[0], (*setup.end_m)[1], (*setup.end_m)[2]);
+    // 5 s rounded to a whole number of ticks (exactly 5 s at 50 ms, 10 ms, 1 ms, ...).
+    spec.samples = static_cast<std::size_t>(std::llround(spec.duration_s / setup.tick_s)) + 1;
+    if (spec.samples < 2) spec.samples = 2;
+    spec.duration_s = static_cast<double>(spec.samples - 1) * setup.tick_s;
+    ex = create(model, spec, o, error);
+  } else {
+    robot::PathTable table;
+    if (!robot::load_path_csv(setup.path, table, error)) return std::nullopt;
+    const robot::InverseKinematics ik(model);
+    robot::JointPathResult planned = robot::joint_path_from_table(
+        ik, model, table, setup.tick_s, setup.ik_seed_rad.value_or(robot::default_ik_seed(model)));
+    if (!planned.ok()) {
+      error = planned.message;
+      return std::nullopt;
+    }
+    robot::JointPathResult back = robot::reversed(planned);
+    ex = Experiment(model, std::move(planned), std::move(back), o);
+  }
+  if (!ex) return std::nullopt;
+  ex->setup_ = setup;
+  ex->urdf_file_ = urdf;
+  return ex;
+}
+
+robot::RobotModel Experiment::plant_model(const Condition& condition) const {
+  if (condition.payload_kg > 0.0) return model_.with_payload(condition.payload_kg);
+  return model_;
+}
+
+std::optional<ExperimentSet> ExperimentSet::create(const std::vector<Condition>& conditions,
+                                                   const ExperimentOptions& options,
+                                                   std::string& error) {
+  ExperimentSet set;
+  std::vector<const RobotSetup*> setups;
+  for (const Condition& c : conditions) {
+    std::size_t found = setups.size();
+    for (std::size_t i = 0; i < setups.size(); ++i)
+      if (*setups[i] == c.robot) found = i;
+    if (found == setups.size()) {
+      auto ex = Experiment::create(c.robot, options, error);
+      if (!ex) {
+        error = "condition " + c.name + ": " + error;
+        return std::nullopt;
+      }
+      set.experiments_.push_back(std::make_shared<const Experiment>(std::move(*ex)));
+      setups.push_back(&c.robot);
+    }
+    set.index_.push_back(found);
+  }
+  return set;
 }
 
 Experiment::Experiment(const robot::RobotModel& model, robot::JointPathResult path,
@@ -106,6 +216,8 @@ robot::PlantConfig Experiment::plant_config(const Condition& condition) const {
   for (std::size_t i = 0; i < kJoints; ++i)
     config.damping_nms[i] = condition.friction_per_s * nominal_inertia_[i];
   config.torque_limit_nm = torque_limit(condition);
+  config.coupling = condition.dynamics;
+  config.gravity = condition.gravity;
   return config;
 }
 

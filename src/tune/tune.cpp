@@ -58,7 +58,21 @@ double run_cost(const sim::Experiment& ex, const sim::Condition& c, const Contro
   return itae_out + penalty_out;
 }
 
-Cost evaluate_in(tbb::task_arena* arena, const sim::Experiment& ex,
+// The experiment of each condition (conditions[k] runs on *experiments[k]).
+using ExperimentOf = std::vector<const sim::Experiment*>;
+
+ExperimentOf same_experiment(const sim::Experiment& ex, std::size_t n) {
+  return ExperimentOf(n, &ex);
+}
+
+ExperimentOf experiments_of(const sim::ExperimentSet& set, std::size_t n) {
+  ExperimentOf out(n);
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = &set.of(k);
+  return out;
+}
+
+Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
                  const std::vector<sim::Condition>& conditions, const ControllerSpec& spec,
                  const Objective& o) {
   const std::size_t n = conditions.size();
@@ -66,7 +80,7 @@ Cost evaluate_in(tbb::task_arena* arena, const sim::Experiment& ex,
   std::vector<char> faulted(n);
   const auto one = [&](std::size_t k) {
     bool f = false;
-    cost[k] = run_cost(ex, conditions[k], spec, o, itae[k], penalty[k], f);
+    cost[k] = run_cost(*ex[k], conditions[k], spec, o, itae[k], penalty[k], f);
     faulted[k] = f ? 1 : 0;
   };
   if (arena != nullptr && n > 1) {
@@ -174,7 +188,16 @@ Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Conditio
               const ControllerSpec& controller, const Objective& objective, unsigned threads) {
   std::unique_ptr<tbb::task_arena> arena;
   if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
-  return evaluate_in(arena.get(), experiment, conditions, controller, objective);
+  return evaluate_in(arena.get(), same_experiment(experiment, conditions.size()), conditions,
+                     controller, objective);
+}
+
+Cost evaluate(const sim::ExperimentSet& experiments, const std::vector<sim::Condition>& conditions,
+              const ControllerSpec& controller, const Objective& objective, unsigned threads) {
+  std::unique_ptr<tbb::task_arena> arena;
+  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+  return evaluate_in(arena.get(), experiments_of(experiments, conditions.size()), conditions,
+                     controller, objective);
 }
 
 std::optional<Minimum> minimize(const std::function<double(const std::vector<double>&)>& f,
@@ -236,9 +259,11 @@ std::optional<Minimum> minimize(const std::function<double(const std::vector<dou
   return m;
 }
 
-std::optional<Result> tune(const sim::Experiment& experiment,
-                           const std::vector<sim::Condition>& training, const Options& options,
-                           std::string& error) {
+namespace {
+
+std::optional<Result> tune_on(const ExperimentOf& experiment,
+                              const std::vector<sim::Condition>& training, const Options& options,
+                              std::string& error) {
   const std::size_t dim = dimension(options.family);
   const std::vector<SearchBox> box =
       options.box.empty() ? default_box(options.family) : options.box;
@@ -307,6 +332,20 @@ std::optional<Result> tune(const sim::Experiment& experiment,
   t.box = box;
   result.controller.tuning = t;
   return result;
+}
+
+}  // namespace
+
+std::optional<Result> tune(const sim::Experiment& experiment,
+                           const std::vector<sim::Condition>& training, const Options& options,
+                           std::string& error) {
+  return tune_on(same_experiment(experiment, training.size()), training, options, error);
+}
+
+std::optional<Result> tune(const sim::ExperimentSet& experiments,
+                           const std::vector<sim::Condition>& training, const Options& options,
+                           std::string& error) {
+  return tune_on(experiments_of(experiments, training.size()), training, options, error);
 }
 
 }  // namespace fuzzypid::tune

@@ -176,6 +176,18 @@ struct Objective {
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
 };
 
+// A file a controller was tuned on: the URDF or path of a training condition, by name and a
+// content hash (64-bit FNV-1a of the bytes, 16 hex digits), so a reader can tell whether the robot
+// it runs is the one the gains were tuned for.
+struct TrainedOn {
+  std::string kind;     // "urdf" or "path"
+  std::string file;     // as the condition named it
+  std::string fnv1a64;  // hex
+};
+
+// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when the file cannot be read.
+[[nodiscard]] std::string file_hash(const std::string& path);
+
 struct Tuning {
   std::string conditions;  // the conditions file, as given to `fuzzypid tune`
   std::string set;         // the training set's name
@@ -188,6 +200,14 @@ struct Tuning {
   double training_cost = 0.0;
   Objective objective{};
   std::vector<SearchBox> box;
+  std::vector<TrainedOn> trained_on;  // empty: the bundled ER50-C20 on the section 6 line
+};
+
+// Model-based feed-forward added to the PID's torque.
+struct Feedforward {
+  // tau += g^(q_desired): the gravity torque of the nominal model (no payload) at the reference,
+  // as industrial drives compensate gravity; without it the PID's integral carries the load.
+  bool gravity = false;
 };
 
 struct ControllerSpec {
@@ -201,6 +221,7 @@ struct ControllerSpec {
                                  std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity()};
   PidOptions pid{};
+  Feedforward feedforward{};
   std::optional<Tuning> tuning;
 };
 

@@ -69,6 +69,10 @@ class RobotModel {
   // Gravity torques g(q) (N·m) for gravity along -z of the root frame with the given magnitude.
   JointVector gravity_torque(const JointVector& q, double gravity_m_s2 = 9.81) const noexcept;
 
+  // A copy of the model with a point mass of mass_kg (finite, >= 0) added at the origin of the
+  // chain's tip frame (the tool flange), so the inertia it adds changes with the configuration.
+  [[nodiscard]] RobotModel with_payload(double mass_kg) const;
+
   class Impl;  // defined in src/robot/robot_model_impl.hpp; used by the other robot sources
   const Impl& impl() const noexcept { return *impl_; }
 

@@ -7,6 +7,12 @@
 // plant over one tick with the condition's contact disturbance held. create() allocates; tick()
 // does not allocate, throw or print.
 //
+// Continuous joints (no position limits in the URDF): the reference given to the controller is
+// moved by a multiple of 2 pi to within (-pi, pi] of the measured angle, so the controller's error
+// is wrapped to (-pi, pi] and a path crossing +/-pi never makes the joint unwind a full turn.
+// A controller file asking for gravity feed-forward ([feedforward] gravity = true) gets
+// g^(theta_d) of the nominal model (no payload) added to its torque.
+//
 // Fault injection: a TickInjection given to tick() reaches between those steps -- a setpoint jump,
 // corrupted measurements, another dt for the controller than the time the plant advances, an
 // extra disturbance torque -- and reset_plant() puts the plant anywhere. A default TickInjection
@@ -118,6 +124,10 @@ class ClosedLoop {
 
   const Experiment* experiment_;
   const robot::JointPathResult* path_;
+  std::array<bool, robot::kNumJoints> continuous_{};
+  // The nominal model for the gravity feed-forward (a copy: a model's queries are not
+  // thread-safe, and loops of one experiment run on several threads).
+  std::optional<robot::RobotModel> feedforward_model_;
   Condition condition_;
   PulseTrain pulses_;
   robot::JointPlant plant_;

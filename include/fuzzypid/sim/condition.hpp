@@ -8,8 +8,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "fuzzypid/robot/plant.hpp"
+#include "fuzzypid/robot/types.hpp"
 
 namespace fuzzypid::sim {
 
@@ -30,6 +34,36 @@ struct PulseTrain {
 // The deburring contact: 0.1 s pulses of +/- amplitude every 0.5 s from 1 s to 4 s.
 [[nodiscard]] PulseTrain contact_pulses(double amplitude_rad_s2) noexcept;
 
+// The robot, path and tick a condition runs on: what an Experiment is built from. The defaults are
+// the paper's: the bundled ER50-C20 following the straight line A -> B at a 50 ms tick.
+struct RobotSetup {
+  std::string urdf;       // empty: the bundled ER50-C20 (robot::default_urdf_path())
+  std::string base_link;  // empty: the URDF's root link
+  std::string tip_link;   // empty: the end of the unique chain below the base
+  std::string path;       // path CSV (robot/path_file.hpp); empty: the section 6 line A -> B
+  // The section 6 line's end points in the base frame, m (used when `path` is empty); nullopt:
+  // the paper's A and B.
+  std::optional<std::array<double, 3>> start_m, end_m;
+  double tick_s = 0.05;  // controller tick (section 6: 0.05 s)
+  // Reflected motor inertia, kg·m²; nullopt: the ER50's estimates for the bundled ER50, 0 for any
+  // other URDF (a URDF has no armature field).
+  std::optional<robot::JointVector> armature_kgm2;
+  // Seed of the first inverse kinematics of a Cartesian path; nullopt: the middle of each joint's
+  // limits (robot::default_ik_seed).
+  std::optional<robot::JointVector> ik_seed_rad;
+
+  [[nodiscard]] bool operator==(const RobotSetup& o) const noexcept;
+  [[nodiscard]] bool operator!=(const RobotSetup& o) const noexcept { return !(*this == o); }
+  // Empty, or what is wrong.
+  [[nodiscard]] std::string validate() const;
+};
+
+// Ranges shared by the command line and the condition files.
+inline constexpr double kMinTickS = 1e-4;     // 0.1 ms
+inline constexpr double kMaxTickS = 1.0;      // 1 s
+inline constexpr double kMaxPayloadKg = 1e4;  // a point mass at the flange
+inline constexpr double kMaxArmatureKgm2 = 1e6;
+
 struct Condition {
   std::string name;
   std::string description;
@@ -44,6 +78,11 @@ struct Condition {
   // Path and start state.
   bool reverse = false;             // follow the path B -> A
   double initial_error_rad = 0.05;  // joints start this far behind the path (< 0: ahead), at rest
+  // Robot, path and tick.
+  RobotSetup robot;
+  double payload_kg = 0.0;  // point mass at the tool flange, added to the plant's model only
+  robot::PlantCoupling dynamics = robot::PlantCoupling::Decoupled;  // the paper's model
+  bool gravity = false;  // rigid-body gravity (coupled dynamics only)
 
   // Empty, or what is wrong (non-finite or out-of-range values).
   [[nodiscard]] std::string validate() const;

@@ -16,6 +16,16 @@
 //
 // Condition keys: name, description, scenario, payload_scale, friction, torque_limit, contact,
 // noise = [SIGMA_Q, SIGMA_QD], seed, reverse, initial_error (sim_ab's options of the same names).
+//
+// The robot, path and plant of a condition (sim_ab's --urdf, --base-link, --tip-link, --path,
+// --tick-ms, --payload-kg, --armature, --dynamics, --gravity):
+//   urdf = "ur5.urdf"          base_link = "base_link"     tip_link = "tool0"
+//   path = "contour.csv"       tick_ms = 10.0              payload_kg = 2.5
+//   armature = [A1, A2, A3, A4, A5, A6]                    (kg·m²; default: see RobotSetup)
+//   dynamics = "decoupled" | "coupled"                     gravity = true (coupled only)
+// Relative file names resolve against the condition file's folder. Given in a set's table (next
+// to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
+// included; a condition's own keys override them.
 // Unknown keys, wrong types, NaN and out-of-range values are errors with file:line:column.
 #pragma once
 
@@ -27,6 +37,9 @@
 #include "fuzzypid/sim/condition.hpp"
 
 namespace fuzzypid::sim {
+
+inline constexpr std::array<controller_file::EnumName<robot::PlantCoupling>, 2> kDynamicsNames{
+    {{robot::PlantCoupling::Decoupled, "decoupled"}, {robot::PlantCoupling::Coupled, "coupled"}}};
 
 struct ConditionSet {
   std::string name;

@@ -20,6 +20,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,6 +94,15 @@ struct RunLimits {
 
 class Experiment {
  public:
+  // Loads the setup's URDF (base and tip links as named), chooses the armature (the ER50's
+  // estimates for the bundled URDF, else 0, unless the setup gives it) and plans the joint path at
+  // the setup's tick: the section 6 line A -> B (closed-form IK where the model is the Table 1
+  // geometry, KDL otherwise) or the setup's path file (robot/path_file.hpp). The options' tick
+  // and armature are replaced by the setup's. Returns nullopt with a message naming the file,
+  // row or pose that failed.
+  static std::optional<Experiment> create(const RobotSetup& setup, const ExperimentOptions& options,
+                                          std::string& error);
+
   // Plans the joint path A -> B (closed-form IK) and B -> A, and evaluates the nominal inertia J^
   // at A. Returns an error message instead when the A -> B path cannot be planned (a B -> A path
   // that cannot be planned is reported when a reversed condition is run).
@@ -135,6 +145,15 @@ class Experiment {
   std::array<paper::FuzzyPid<double>, robot::kNumJoints> make_fuzzy_pid(
       const robot::JointVector& torque_limit) const;
 
+  // The model the plant of `condition` integrates: the robot with the condition's payload mass at
+  // the flange (the controller's nominal model, model(), never has it).
+  robot::RobotModel plant_model(const Condition& condition) const;
+  // The setup the experiment was built from (urdf and path as given), the URDF file loaded and
+  // the reflected motor inertia used.
+  const RobotSetup& setup() const noexcept { return setup_; }
+  const std::string& urdf_file() const noexcept { return urdf_file_; }
+  const robot::JointVector& armature_kgm2() const noexcept { return options_.plant.armature_kgm2; }
+
   const robot::JointVector& nominal_inertia() const noexcept { return nominal_inertia_; }
   const ExperimentOptions& options() const noexcept { return options_; }
   const robot::RobotModel& model() const noexcept { return model_; }
@@ -145,11 +164,31 @@ class Experiment {
              robot::JointPathResult reverse_path, const ExperimentOptions& options);
 
   robot::RobotModel model_;
+  RobotSetup setup_;
+  std::string urdf_file_;
   robot::JointPathResult path_;
   robot::JointPathResult reverse_path_;
   ExperimentOptions options_;
   robot::JointVector nominal_inertia_{};
   paper::System<double> supervisor_{};  // of make_fuzzy_pid
+};
+
+// The experiments of a list of conditions: one per distinct RobotSetup, built once (loading URDFs
+// and planning paths allocates and takes milliseconds), shared by the conditions that name it.
+// Experiments never move once built, so closed loops may point into them.
+class ExperimentSet {
+ public:
+  // Builds the experiment of every condition's setup with `options`' controller settings.
+  static std::optional<ExperimentSet> create(const std::vector<Condition>& conditions,
+                                             const ExperimentOptions& options, std::string& error);
+  // The experiment of conditions[k] (the list given to create()).
+  const Experiment& of(std::size_t k) const noexcept { return *experiments_[index_[k]]; }
+  std::size_t size() const noexcept { return experiments_.size(); }
+  const Experiment& experiment(std::size_t i) const noexcept { return *experiments_[i]; }
+
+ private:
+  std::vector<std::shared_ptr<const Experiment>> experiments_;
+  std::vector<std::size_t> index_;
 };
 
 // ITAE summed over the six joints of a run's rows.

@@ -59,6 +59,12 @@ struct Cost {
                             const std::vector<sim::Condition>& conditions,
                             const ControllerSpec& controller, const Objective& objective,
                             unsigned threads = 1);
+// The same with each condition on its own robot and path: conditions[k] runs on
+// experiments.of(k) (experiments built from these conditions).
+[[nodiscard]] Cost evaluate(const sim::ExperimentSet& experiments,
+                            const std::vector<sim::Condition>& conditions,
+                            const ControllerSpec& controller, const Objective& objective,
+                            unsigned threads = 1);
 
 struct Progress {
   std::uint64_t evaluations = 0;
@@ -112,6 +118,11 @@ struct Result {
 // Tunes on `training`; returns nullopt with `error` set for invalid options (budget below one
 // population, a box that does not match the family, ...).
 [[nodiscard]] std::optional<Result> tune(const sim::Experiment& experiment,
+                                         const std::vector<sim::Condition>& training,
+                                         const Options& options, std::string& error);
+// The same with each training condition on its own robot and path (training[k] runs on
+// experiments.of(k)).
+[[nodiscard]] std::optional<Result> tune(const sim::ExperimentSet& experiments,
                                          const std::vector<sim::Condition>& training,
                                          const Options& options, std::string& error);
 

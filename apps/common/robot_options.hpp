@@ -1,0 +1,164 @@
+// The robot, path and plant options shared by sim_ab and rt_loop (CLI11), with the ranges of
+// sim/condition.hpp (the condition files use the same ones):
+//   --urdf FILE --base-link NAME --tip-link NAME --path FILE --tick-ms T --armature A1,...,A6
+//   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
+// Header-only: included by the tools that link fuzzypid::sim.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "fuzzypid/robot/plant.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/condition.hpp"
+#include "fuzzypid/sim/condition_set.hpp"
+#include "fuzzypid/sim/experiment.hpp"
+
+namespace fuzzypid::cli {
+
+struct RobotOptions {
+  sim::RobotSetup setup;  // --urdf, --base-link, --tip-link, --path, --tick-ms, --armature, ...
+  std::optional<double> payload_kg;
+  std::optional<robot::PlantCoupling> dynamics;
+  bool gravity = false;
+  bool tick_given = false;
+
+  // Whether any option naming the robot, its path or its plant was given.
+  [[nodiscard]] bool any() const {
+    return !setup.urdf.empty() || !setup.base_link.empty() || !setup.tip_link.empty() ||
+           !setup.path.empty() || tick_given || setup.armature_kgm2 || setup.ik_seed_rad ||
+           payload_kg || dynamics || gravity;
+  }
+  // The options applied to a condition.
+  void apply(sim::Condition& c) const {
+    c.robot.urdf = setup.urdf;
+    c.robot.base_link = setup.base_link;
+    c.robot.tip_link = setup.tip_link;
+    c.robot.path = setup.path;
+    if (tick_given) c.robot.tick_s = setup.tick_s;
+    c.robot.armature_kgm2 = setup.armature_kgm2;
+    c.robot.ik_seed_rad = setup.ik_seed_rad;
+    if (payload_kg) c.payload_kg = *payload_kg;
+    if (dynamics) c.dynamics = *dynamics;
+    c.gravity = gravity;
+  }
+};
+
+// "a,b,c,d,e,f": six finite numbers.
+inline bool parse_six(const std::string& text, robot::JointVector& out) {
+  std::stringstream in(text);
+  std::string field;
+  std::size_t k = 0;
+  while (std::getline(in, field, ',')) {
+    if (k == out.size()) return false;
+    const auto v = parse_finite(field);
+    if (!v) return false;
+    out[k++] = *v;
+  }
+  return k == out.size() && !text.empty() && text.back() != ',';
+}
+
+// Adds the options; `with_tick` adds --tick-ms (rt_loop has its own period and dt options).
+inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
+  const auto path_check = [](const std::string& s) -> std::string {
+    return s.empty() ? "empty file name" : "";
+  };
+  app.add_option("--urdf", o.setup.urdf,
+                 "robot description: a URDF with a serial chain of exactly 6 revolute or "
+                 "continuous joints between base and tip, each with <limit> (lower/upper for "
+                 "revolute, velocity, effort) and <inertial> on the moving links (default: the "
+                 "bundled ER50-C20)")
+      ->check(path_check)
+      ->option_text("FILE");
+  app.add_option("--base-link", o.setup.base_link, "first link of the chain (default: the root)")
+      ->option_text("NAME");
+  app.add_option("--tip-link", o.setup.tip_link,
+                 "last link of the chain, the tool flange (default: the end of the unique chain)")
+      ->option_text("NAME");
+  app.add_option("--path", o.setup.path,
+                 "path CSV with header t_s,q1_rad,...,q6_rad (joint samples) or "
+                 "t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad (tool poses in the base frame, "
+                 "URDF fixed-axis RPY); interpolated at the tick by cubic Hermite (default: the "
+                 "paper's line A -> B)")
+      ->check(path_check)
+      ->option_text("FILE");
+  if (with_tick)
+    app.add_option_function<double>(
+           "--tick-ms",
+           [&o](double ms) {
+             o.setup.tick_s = ms * 1e-3;
+             o.tick_given = true;
+           },
+           "controller tick, ms (default 50)")
+        ->check(finite_in(sim::kMinTickS * 1e3, sim::kMaxTickS * 1e3))
+        ->option_text("T");
+  app.add_option_function<std::string>(
+         "--armature",
+         [&o](const std::string& s) {
+           robot::JointVector v{};
+           if (!parse_six(s, v))
+             throw CLI::ValidationError("--armature",
+                                        "expected 6 comma-separated numbers (kg·m²): " + s);
+           for (double a : v)
+             if (a < 0.0 || a > sim::kMaxArmatureKgm2)
+               throw CLI::ValidationError("--armature", "values must be within 0 .. 1e6: " + s);
+           o.setup.armature_kgm2 = v;
+         },
+         "reflected motor inertia of each joint, kg·m² (default: the ER50's estimates for the "
+         "bundled ER50-C20, 0 for any other URDF)")
+      ->option_text("A1,...,A6");
+  app.add_option_function<std::string>(
+         "--ik-seed",
+         [&o](const std::string& s) {
+           robot::JointVector v{};
+           if (!parse_six(s, v))
+             throw CLI::ValidationError("--ik-seed", "expected 6 comma-separated angles: " + s);
+           o.setup.ik_seed_rad = v;
+         },
+         "joint angles seeding the first inverse kinematics of a Cartesian path, rad (default: "
+         "the middle of each joint's limits)")
+      ->option_text("Q1,...,Q6");
+  app.add_option_function<double>(
+         "--payload-kg", [&o](double m) { o.payload_kg = m; },
+         "point mass at the tool flange, kg (the controller's model keeps none)")
+      ->check(finite_in(0.0, sim::kMaxPayloadKg))
+      ->option_text("M");
+  std::vector<std::string> names;
+  for (const auto& e : sim::kDynamicsNames)
+    names.emplace_back(e.name);
+  app.add_option_function<std::string>(
+         "--dynamics",
+         [&o](const std::string& s) {
+           o.dynamics = *controller_file::parse_enum(sim::kDynamicsNames, s);
+         },
+         "plant: decoupled joints J_i theta'' = tau (the paper's model, default) or coupled "
+         "rigid-body dynamics M(q) q'' + C q' + g = tau")
+      ->check(CLI::IsMember(names));
+  app.add_flag("--gravity", o.gravity, "gravity in the plant (needs --dynamics coupled)");
+}
+
+// Usage errors the options can have on their own; empty when none.
+inline std::string check_robot_options(const RobotOptions& o) {
+  const bool coupled = o.dynamics && *o.dynamics == robot::PlantCoupling::Coupled;
+  if (o.gravity && !coupled) return "--gravity needs --dynamics coupled";
+  return {};
+}
+
+// What a run used, for stderr: the URDF, the path and the armature.
+inline void print_robot_note(const char* tool, const sim::Experiment& ex) {
+  const auto& a = ex.armature_kgm2();
+  std::fprintf(stderr,
+               "%s: robot %s (%s -> %s), path %s, tick %g ms, armature %g,%g,%g,%g,%g,%g kg·m²\n",
+               tool, ex.urdf_file().c_str(), ex.model().root_link().c_str(),
+               ex.model().tip_link().c_str(),
+               ex.setup().path.empty() ? "the section 6 line A -> B" : ex.setup().path.c_str(),
+               ex.options().tick_s * 1e3, a[0], a[1], a[2], a[3], a[4], a[5]);
+}
+
+}  // namespace fuzzypid::cli
