@@ -47,6 +47,15 @@ void read_robot(TableReader& r, Condition& c) {
     }
     s.armature_kgm2 = v;
   }
+  if (r.has("ik_seed")) {
+    const toml::array* a = r.array("ik_seed", true);
+    if (a->size() != robot::kNumJoints)
+      r.fail(*a, "'ik_seed' must list 6 joint angles (rad), found " + std::to_string(a->size()));
+    robot::JointVector v{};
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      v[i] = controller_file::number_of(r, *a->get(i), "'ik_seed[" + std::to_string(i) + "]'");
+    s.ik_seed_rad = v;
+  }
   if (r.has("payload_kg")) {
     c.payload_kg = r.number("payload_kg");
     if (!(c.payload_kg >= 0.0 && c.payload_kg <= kMaxPayloadKg))

@@ -22,6 +22,7 @@
 //   urdf = "ur5.urdf"          base_link = "base_link"     tip_link = "tool0"
 //   path = "contour.csv"       tick_ms = 10.0              payload_kg = 2.5
 //   armature = [A1, A2, A3, A4, A5, A6]                    (kg·m²; default: see RobotSetup)
+//   ik_seed = [Q1, Q2, Q3, Q4, Q5, Q6]                     (rad; first IK of a Cartesian path)
 //   dynamics = "decoupled" | "coupled"                     gravity = true (coupled only)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
 // to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
