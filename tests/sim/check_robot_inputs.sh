@@ -1,0 +1,78 @@
+#!/bin/sh
+# Bad robot, path and plant input to sim_ab and rt_loop: each case exits with its exact code (2 a
+# usage error, 1 a bad file or an impossible path), says what is wrong (the file and row where
+# there is one) and writes nothing.
+# Usage: check_robot_inputs.sh <sim_ab> <rt_loop> <source dir>
+set -u
+sim_ab=$1
+rt_loop=$2
+src=$3
+ur5="$src/urdf/ur5_class.urdf"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+# expect CODE PATTERN -- command...: the exit code, a part of stderr, and no output directory.
+expect() {
+  code=$1
+  pattern=$2
+  shift 3
+  rm -rf "$work/out"
+  "$@" >"$work/stdout" 2>"$work/err" </dev/null
+  got=$?
+  [ "$got" -eq "$code" ] || fail "$* exited $got, expected $code: $(cat "$work/err")"
+  grep -q -- "$pattern" "$work/err" || fail "$*: no '$pattern' in: $(cat "$work/err")"
+  [ ! -e "$work/out" ] || fail "$*: wrote $work/out"
+}
+row() { printf '%s\n' "$@"; }
+J="t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad"
+P="t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad"
+
+row "$J" "0,0,-1,1,0,0,0" "0.5,0,-1,1,0,0,0" "0.5,0,-1,1,0,0,0.1" >"$work/flat_time.csv"
+row "$J" "0,0,-1,1,0,0,0" "0.5,0,nan,1,0,0,0" >"$work/nan.csv"
+row "$J" "0,0,-1,1,0,0,0" >"$work/one_row.csv"
+row "t,a,b,c,d,e,f" "0,0,-1,1,0,0,0" "1,0,-1,1,0,0,0" >"$work/header.csv"
+row "$J" "0,0,-1,1,0,0,0" "1,0,-1,3.5,0,0,0" >"$work/limits.csv"
+row "$J" "0,0,-1,1,0,0,0" "0.1,0,-1,1.5,0,0,0" >"$work/fast.csv"
+row "$P" "0,0.4,0.1,0.3,3.1,0,0" "0.5,3.0,0.1,0.3,3.1,0,0" >"$work/far.csv"
+row "$J" "0,0,-1,1,0,0,0" "1,0,-1,1.2,0,0,0" >"$work/good.csv"
+
+run() { "$sim_ab" --quiet --out "$work/out" "$@"; }
+expect 1 "flat_time.csv:4: time 0.5 s does not increase" -- run --urdf "$ur5" --path "$work/flat_time.csv"
+expect 1 "nan.csv:3: field 3 is not finite" -- run --urdf "$ur5" --path "$work/nan.csv"
+expect 1 "one_row.csv: a path needs at least two rows, found 1" -- run --urdf "$ur5" --path "$work/one_row.csv"
+expect 1 "header.csv:1: unknown header" -- run --urdf "$ur5" --path "$work/header.csv"
+expect 1 "limits.csv:3: row at t = 1 s: joint 3 at 3.5 rad is outside its URDF limits" -- run --urdf "$ur5" --path "$work/limits.csv"
+expect 1 "fast.csv:3: row at t = 0.1 s: joint 3 moves at 5 rad/s" -- run --urdf "$ur5" --path "$work/fast.csv"
+expect 1 "far.csv:3: row at t = 0.5 s: pose (3, 0.1, 0.3) m" -- run --urdf "$ur5" --path "$work/far.csv"
+expect 1 "refused it: no_convergence" -- run --urdf "$ur5" --path "$work/far.csv"
+expect 1 "cannot open '$work/missing.csv'" -- run --urdf "$ur5" --path "$work/missing.csv"
+expect 1 "five_joints.urdf" -- run --urdf "$src/tests/robot/data/five_joints.urdf" --path "$work/good.csv"
+expect 1 "needs its own path (--path FILE)" -- run --urdf "$ur5"
+expect 2 "payload-kg" -- run --payload-kg -1
+expect 2 "--armature: expected 6 comma-separated numbers" -- run --armature 1,2,3
+expect 2 "--gravity needs --dynamics coupled" -- run --gravity
+expect 2 "--gravity needs --dynamics coupled" -- run --dynamics decoupled --gravity
+expect 2 "--dynamics" -- run --dynamics rigid
+expect 2 "--tick-ms" -- run --tick-ms 0
+expect 2 "--path replaces it" -- run --path "$work/good.csv" --start 1,2,3
+expect 2 "the robot options apply without it" -- run --conditions "$src/tuning/robust.toml" --urdf "$ur5"
+expect 2 "--gravity needs --dynamics coupled" -- "$rt_loop" --period-ms 0 --gravity
+expect 2 "--tick-ms and --dt both set the controller period" -- "$rt_loop" --tick-ms 10 --dt 0.01
+expect 1 "limits.csv:3" -- "$rt_loop" --period-ms 0 --urdf "$ur5" --path "$work/limits.csv"
+
+# And the good path runs, with the robot it used stated on stderr.
+run --urdf "$ur5" --path "$work/good.csv" --tick-ms 10 2>"$work/err" ||
+  fail "good path: $(cat "$work/err")"
+rm -rf "$work/out"
+"$sim_ab" --out "$work/out" --urdf "$ur5" --path "$work/good.csv" 2>"$work/err" >/dev/null
+grep -q "armature 0,0,0,0,0,0 kg·m²" "$work/err" || fail "armature not stated: $(cat "$work/err")"
+grep -q "^armature_kgm2=0,0,0,0,0,0$" "$work/out/settings.txt" || fail "settings: armature"
+grep -q "^path=$work/good.csv fnv1a64=[0-9a-f]\{16\}$" "$work/out/settings.txt" ||
+  fail "settings: path"
+
+[ "$failures" -eq 0 ] || exit 1
+echo "all robot-input cases behave"
