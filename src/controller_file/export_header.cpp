@@ -68,6 +68,12 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h +=
         "// The output u is an acceleration (rad/s^2): apply the torque J^_i u_i with the joint's\n"
         "// nominal inertia J^_i; pass output_limit in rad/s^2.\n";
+  if (spec.feedforward.gravity)
+    h +=
+        "// Gravity feed-forward ([feedforward] gravity = true): this header holds the feedback\n"
+        "// part only. Each tick the target must add g^_i(q_desired) to joint i's torque, in N·m:\n"
+        "// the gravity torque of its nominal rigid-body model (no payload) at the reference\n"
+        "// angles, e.g. from a recursive Newton-Euler pass with zero velocity (kGravityFeedforward).\n";
   h += "#pragma once\n\n#include <limits>\n\n";
   h += "#include \"fuzzypid/pid/pid.hpp\"\n";
   if (spec.family == Family::Fuzzy)
@@ -82,7 +88,10 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
          std::snprintf(b, sizeof b, "%a", spec.units.tick_s);
          return std::string(b);
        }()) +
-       ";  // the tick the file's gains refer to\n\n";
+       ";  // the tick the file's gains refer to\n";
+  h += std::string("inline constexpr bool kGravityFeedforward = ") +
+       (spec.feedforward.gravity ? "true" : "false") +
+       ";  // add g^(q_desired), N·m, to the torque\n\n";
   h += "// The inner PID; |u| <= output_limit.\n";
   h += "template <class Scalar>\nconstexpr fuzzypid::pid::Config<Scalar> pid_config(Scalar "
        "output_limit) noexcept {\n";

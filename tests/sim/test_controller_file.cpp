@@ -10,6 +10,7 @@
 #include <string>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller_file/export_header.hpp"
 
 namespace {
 
@@ -46,7 +47,10 @@ cf::ControllerSpec tuned_example() {
   t.training_cost = 0.058396812345678901;
   t.box = {{"kp", -1.0, 4.0},  {"ki", -6.0, 1.0}, {"kd", 0.0, 4.0},  {"ke", -1.0, 4.0},
            {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0},  {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
+  t.trained_on = {{"urdf", "../urdf/ur5_class.urdf", "0123456789abcdef"},
+                  {"path", "../paths/contour.csv", "fedcba9876543210"}};
   s.tuning = t;
+  s.feedforward.gravity = true;
   return s;
 }
 
@@ -63,8 +67,15 @@ void expect_same(const cf::ControllerSpec& a, const cf::ControllerSpec& b) {
   EXPECT_EQ(a.gain_max, b.gain_max);
   EXPECT_EQ(a.pid.derivative, b.pid.derivative);
   EXPECT_EQ(a.pid.anti_windup, b.pid.anti_windup);
+  EXPECT_EQ(a.feedforward.gravity, b.feedforward.gravity);
   ASSERT_EQ(a.tuning.has_value(), b.tuning.has_value());
   if (a.tuning) {
+    ASSERT_EQ(a.tuning->trained_on.size(), b.tuning->trained_on.size());
+    for (std::size_t k = 0; k < a.tuning->trained_on.size(); ++k) {
+      EXPECT_EQ(a.tuning->trained_on[k].kind, b.tuning->trained_on[k].kind);
+      EXPECT_EQ(a.tuning->trained_on[k].file, b.tuning->trained_on[k].file);
+      EXPECT_EQ(a.tuning->trained_on[k].fnv1a64, b.tuning->trained_on[k].fnv1a64);
+    }
     EXPECT_EQ(a.tuning->training_cost, b.tuning->training_cost);
     EXPECT_EQ(a.tuning->evaluations, b.tuning->evaluations);
     ASSERT_EQ(a.tuning->box.size(), b.tuning->box.size());
@@ -82,6 +93,25 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
     expect_same(spec, back);
     EXPECT_EQ(cf::to_toml(back), text);
   }
+}
+
+TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
+  cf::ControllerSpec spec = cf::paper_pid();
+  EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);
+  EXPECT_NE(cf::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
+            std::string::npos);
+  spec.feedforward.gravity = true;
+  EXPECT_NE(cf::to_toml(spec).find("[feedforward]\ngravity = true"), std::string::npos);
+  const std::string header = cf::export_header(spec, "ns", "x.toml");
+  EXPECT_NE(header.find("kGravityFeedforward = true"), std::string::npos);
+  EXPECT_NE(header.find("the target must add g^_i(q_desired)"), std::string::npos);
+}
+
+TEST(ControllerFile, FileHashIsFnv1aOfTheBytes) {
+  const std::string path = ::testing::TempDir() + "hash_me.txt";
+  std::ofstream(path) << "a";
+  EXPECT_EQ(cf::file_hash(path), "af63dc4c8601ec8c");  // FNV-1a 64 of "a"
+  EXPECT_EQ(cf::file_hash(path + ".missing"), "");
 }
 
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
