@@ -68,7 +68,7 @@ function(fuzzypid_install_package)
           DESTINATION ${FUZZYPID_INSTALL_CMAKEDIR})
 
   # Data the tools and libraries look for under share/fuzzypid/, and the licence.
-  foreach(dir urdf rulebases controllers tuning)
+  foreach(dir urdf rulebases controllers tuning paths)
     if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/${dir})
       install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fuzzypid/${dir})
     endif()

@@ -18,7 +18,10 @@ set(expected
   share/fuzzypid/rulebases/paper.fis
   share/fuzzypid/urdf/er50_c20.urdf
   share/fuzzypid/controllers/tuned_fuzzy.toml
-  share/fuzzypid/tuning/robust.toml)
+  share/fuzzypid/tuning/robust.toml
+  share/fuzzypid/tuning/ur5_class.toml
+  share/fuzzypid/urdf/ur5_class.urdf
+  share/fuzzypid/paths/ur5_deburring_contour.csv)
 foreach(part IN LISTS PARTS)
   list(APPEND expected lib/cmake/fuzzypid/fuzzypid-${part}-targets.cmake
                        lib/libfuzzypid_${part}.a)
