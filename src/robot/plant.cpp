@@ -5,6 +5,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "rigid_body_dynamics.hpp"
+
 namespace fuzzypid::robot {
 namespace {
 
@@ -42,6 +44,7 @@ class JointPlant::Impl {
   Impl(const RobotModel& m, const PlantConfig& c) : model(m), config(c) {
     limit = config.torque_limit_nm.value_or(model.effort_limits_nm());
     valid = std::isfinite(config.substep_s) && config.substep_s > 0.0 &&
+            std::isfinite(config.coupled_substep_s) && config.coupled_substep_s > 0.0 &&
             all_non_negative(config.armature_kgm2) && all_finite(config.armature_kgm2) &&
             all_non_negative(config.inertia_scale) && all_finite(config.inertia_scale) &&
             all_non_negative(config.damping_nms) && all_finite(config.damping_nms) &&
@@ -72,14 +75,24 @@ class JointPlant::Impl {
     return m;
   }
 
-  // q̈ for the coupled model at (x, v); false if M is not positive definite.
-  bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive,
-                            Vec6& a) const noexcept {
-    const JointVector xa = to_array(x);
-    const Mat6 m = config.inertia_update == InertiaUpdate::Fixed ? fixed_mass : effective_mass(xa);
-    Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) -
-               to_vec(model.coriolis_torque(xa, to_array(v)));
-    if (config.gravity) rhs -= to_vec(model.gravity_torque(xa, config.gravity_m_s2));
+  // q̈ for the coupled model at (x, v), from the fixed-size RNEA/CRBA over the model's chain;
+  // false if M_eff is not positive definite. `diagonal`, when given, receives diag(M_eff).
+  bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive, Vec6& a,
+                            Vec6* diagonal = nullptr) const noexcept {
+    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
+    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
+    Mat6 m;
+    Vec6 bias;
+    if (config.inertia_update == InertiaUpdate::Fixed) {
+      m = fixed_mass;
+      bias = dynamics.bias(x, v, g);
+    } else {
+      dynamics.mass_and_bias(x, v, g, m, bias);
+      m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
+      m.diagonal() += to_vec(config.armature_kgm2);
+    }
+    if (diagonal != nullptr) *diagonal = m.diagonal();
+    const Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
     const Eigen::LLT<Mat6> llt(m);
     if (llt.info() != Eigen::Success) return false;
     a = llt.solve(rhs);
@@ -144,15 +157,27 @@ class JointPlant::Impl {
       }
       a_end = accel(v);
     } else {
-      const Mat6 m0 =
-          config.inertia_update == InertiaUpdate::Fixed ? fixed_mass : effective_mass(q);
-      for (std::size_t i = 0; i < kNumJoints; ++i)
-        j_tick[i] = m0(static_cast<int>(i), static_cast<int>(i));
-      for (long s = 0; s < steps; ++s) {
-        const double h =
-            s + 1 < steps ? h_nominal : dt - h_nominal * static_cast<double>(steps - 1);
+      // Whole steps of `coupled_substep_s` (the dynamics within a tick are smooth: the torque is
+      // held), the last one shortened to end exactly at dt.
+      const double h_coupled = config.coupled_substep_s;
+      const auto coupled_steps =
+          static_cast<long>(std::fmax(1.0, std::ceil(dt / h_coupled - 1e-9)));
+      // k1 of the first substep also gives the tick's effective inertia.
+      Vec6 k1_first;
+      Vec6 diagonal;
+      if (!coupled_acceleration(x, v, drive, k1_first, &diagonal))
+        return PlantStatus::NumericalError;
+      j_tick = to_array(diagonal);
+      for (long s = 0; s < coupled_steps; ++s) {
+        const double h = s + 1 < coupled_steps
+                             ? h_coupled
+                             : dt - h_coupled * static_cast<double>(coupled_steps - 1);
         Vec6 k1v, k2v, k3v, k4v;
-        if (!coupled_acceleration(x, v, drive, k1v)) return PlantStatus::NumericalError;
+        if (s == 0) {
+          k1v = k1_first;
+        } else if (!coupled_acceleration(x, v, drive, k1v)) {
+          return PlantStatus::NumericalError;
+        }
         const Vec6 k1x = v;
         const Vec6 k2x = v + 0.5 * h * k1v;
         if (!coupled_acceleration(x + 0.5 * h * k1x, k2x, drive, k2v))

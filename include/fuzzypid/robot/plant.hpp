@@ -45,7 +45,9 @@ struct PlantConfig {
   std::optional<JointVector> torque_limit_nm;
   bool gravity = false;        // coupled mode only
   double gravity_m_s2 = 9.81;  // along -z of the root frame
-  double substep_s = 1e-3;     // RK4 step, > 0
+  double substep_s = 1e-3;     // RK4 step of the decoupled mode, s, > 0
+  // RK4 step of the coupled mode, s, > 0; a tick shorter than it is one step.
+  double coupled_substep_s = 1e-2;
 };
 
 enum class PlantStatus : std::uint8_t {
