@@ -10,6 +10,8 @@
 namespace fuzzypid::robot {
 namespace {
 
+constexpr double kMaxCoupledSubsteps = 1000.0;
+
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
@@ -45,10 +47,11 @@ class JointPlant::Impl {
     limit = config.torque_limit_nm.value_or(model.effort_limits_nm());
     valid = std::isfinite(config.substep_s) && config.substep_s > 0.0 &&
             std::isfinite(config.coupled_substep_s) && config.coupled_substep_s > 0.0 &&
-            all_non_negative(config.armature_kgm2) && all_finite(config.armature_kgm2) &&
-            all_non_negative(config.inertia_scale) && all_finite(config.inertia_scale) &&
-            all_non_negative(config.damping_nms) && all_finite(config.damping_nms) &&
-            all_non_negative(limit) && std::isfinite(config.gravity_m_s2) &&
+            config.coupled_step_rad > 0.0 && all_non_negative(config.armature_kgm2) &&
+            all_finite(config.armature_kgm2) && all_non_negative(config.inertia_scale) &&
+            all_finite(config.inertia_scale) && all_non_negative(config.damping_nms) &&
+            all_finite(config.damping_nms) && all_non_negative(limit) &&
+            std::isfinite(config.gravity_m_s2) &&
             (!config.fixed_configuration_rad || all_finite(*config.fixed_configuration_rad));
     sqrt_scale = to_vec(config.inertia_scale).cwiseSqrt();
     reset(JointVector{}, JointVector{});
@@ -157,21 +160,23 @@ class JointPlant::Impl {
       }
       a_end = accel(v);
     } else {
-      // Whole steps of `coupled_substep_s` (the dynamics within a tick are smooth: the torque is
-      // held), the last one shortened to end exactly at dt.
-      const double h_coupled = config.coupled_substep_s;
-      const auto coupled_steps =
-          static_cast<long>(std::fmax(1.0, std::ceil(dt / h_coupled - 1e-9)));
-      // k1 of the first substep also gives the tick's effective inertia.
+      // k1 of the first substep also gives the tick's effective inertia and the step size.
       Vec6 k1_first;
       Vec6 diagonal;
       if (!coupled_acceleration(x, v, drive, k1_first, &diagonal))
         return PlantStatus::NumericalError;
       j_tick = to_array(diagonal);
-      for (long s = 0; s < coupled_steps; ++s) {
-        const double h = s + 1 < coupled_steps
-                             ? h_coupled
-                             : dt - h_coupled * static_cast<double>(coupled_steps - 1);
+      // Equal substeps no longer than coupled_substep_s, nor than the time the fastest joint takes
+      // to move coupled_step_rad at the tick's initial rate max(|q̇|, √|q̈|) (rad/s): the RK4 error
+      // grows with (rate · step)⁴, so slow motion takes long steps and fast motion short ones.
+      // At most kMaxCoupledSubsteps, so that a wild state cannot stall the tick.
+      const double rate =
+          std::fmax(v.cwiseAbs().maxCoeff(), std::sqrt(k1_first.cwiseAbs().maxCoeff()));
+      const double h_max = std::fmin(config.coupled_substep_s, config.coupled_step_rad / rate);
+      const double coupled_steps =
+          std::fmin(kMaxCoupledSubsteps, std::fmax(1.0, std::ceil(dt / h_max - 1e-9)));
+      const double h = dt / coupled_steps;
+      for (long s = 0; s < static_cast<long>(coupled_steps); ++s) {
         Vec6 k1v, k2v, k3v, k4v;
         if (s == 0) {
           k1v = k1_first;

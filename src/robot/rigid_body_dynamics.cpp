@@ -35,21 +35,21 @@ struct Placement {
   Vec3 position;
 };
 
-// Rotation by angle q about the unit axis a (Rodrigues).
-Mat3 axis_rotation(const Vec3& a, double q) noexcept {
+// The body turns about its own z axis: rotation = R0 · Rz(q), position = p0.
+Placement place(const RigidBodyDynamics::Body& b, double q) noexcept {
   const double s = std::sin(q);
   const double c = std::cos(q);
-  const double t = 1.0 - c;
-  Mat3 r;
-  r << t * a.x() * a.x() + c, t * a.x() * a.y() - s * a.z(), t * a.x() * a.z() + s * a.y(),
-      t * a.x() * a.y() + s * a.z(), t * a.y() * a.y() + c, t * a.y() * a.z() - s * a.x(),
-      t * a.x() * a.z() - s * a.y(), t * a.y() * a.z() + s * a.x(), t * a.z() * a.z() + c;
-  return r;
+  Placement x;
+  x.rotation.col(0) = c * b.rotation0.col(0) + s * b.rotation0.col(1);
+  x.rotation.col(1) = c * b.rotation0.col(1) - s * b.rotation0.col(0);
+  x.rotation.col(2) = b.rotation0.col(2);
+  x.position = b.position0;
+  return x;
 }
 
-// The body turns about its axis through its own origin: x_parent = R0 R_q x + p0.
-Placement place(const RigidBodyDynamics::Body& b, double q) noexcept {
-  return {b.rotation0 * axis_rotation(b.axis, q), b.position0};
+// ẑ × u for u scaled by `rate`: the cross product with a joint rate about z.
+Vec3 z_cross(double rate, const Vec3& u) noexcept {
+  return Vec3(-rate * u.y(), rate * u.x(), 0.0);
 }
 
 // A composite rigid body: mass, first moment and rotational inertia about the frame origin.
@@ -91,14 +91,15 @@ void evaluate(const std::array<RigidBodyDynamics::Body, kNumJoints>& bodies, con
     x[i] = place(b, q[static_cast<int>(i)]);
     const Mat3 et = x[i].rotation.transpose();
     const double rate = qd[static_cast<int>(i)];
-    // The joint's motion subspace is S = (axis, 0): the axis passes through the body origin.
+    // The joint's motion subspace is S = (ẑ, 0): the axis is the body's z axis.
     v = et * (v + w.cross(x[i].position));
-    w = et * w + b.axis * rate;
+    w = et * w;
+    w.z() += rate;
     dv = et * (dv + dw.cross(x[i].position));
     dw = et * dw;
-    // a = X a_parent + v ×m (S q̇)
-    dw += w.cross(b.axis * rate);
-    dv += v.cross(b.axis * rate);
+    // a = X a_parent + v ×m (S q̇), with w × (ẑ q̇) = −(ẑ q̇) × w
+    dw -= z_cross(rate, w);
+    dv -= z_cross(rate, v);
     // f = I a + v ×f (I v)
     const Vec3 iv_n = b.rotational_inertia * w + b.first_moment.cross(v);
     const Vec3 iv_f = b.mass * v + w.cross(b.first_moment);
@@ -112,9 +113,8 @@ void evaluate(const std::array<RigidBodyDynamics::Body, kNumJoints>& bodies, con
       composite[i] = {bodies[i].mass, bodies[i].first_moment, bodies[i].rotational_inertia};
   }
   for (std::size_t k = kNumJoints; k-- > 0;) {
-    const RigidBodyDynamics::Body& b = bodies[k];
     const int i = static_cast<int>(k);
-    bias[i] = b.axis.dot(n[k]);
+    bias[i] = n[k].z();
     if (k > 0) {
       const Vec3 fp = x[k].rotation * f[k];
       n[k - 1] += x[k].rotation * n[k] + x[k].position.cross(fp);
@@ -123,14 +123,14 @@ void evaluate(const std::array<RigidBodyDynamics::Body, kNumJoints>& bodies, con
     if constexpr (WithMass) {
       // Column k of M: the composite body's force for a unit joint rate, carried to the root.
       const Inertia& c = composite[k];
-      Vec3 cn = c.rotational * b.axis;
-      Vec3 cf = b.axis.cross(c.first_moment);
-      (*mass)(i, i) = b.axis.dot(cn);
+      Vec3 cn = c.rotational.col(2);
+      Vec3 cf = z_cross(1.0, c.first_moment);
+      (*mass)(i, i) = cn.z();
       for (std::size_t j = k; j-- > 0;) {
         const Placement& xj = x[j + 1];
         cf = xj.rotation * cf;
         cn = xj.rotation * cn + xj.position.cross(cf);
-        const double m = bodies[j].axis.dot(cn);
+        const double m = cn.z();
         (*mass)(i, static_cast<int>(j)) = m;
         (*mass)(static_cast<int>(j), i) = m;
       }
@@ -143,17 +143,22 @@ void evaluate(const std::array<RigidBodyDynamics::Body, kNumJoints>& bodies, con
 
 RigidBodyDynamics::RigidBodyDynamics(const KDL::Chain& chain) {
   // `pending`: the fixed segments since the last moving joint (or since the root), as one frame in
-  // that body's frame. Their inertia joins the body; their pose starts the next body's placement.
+  // that body's tip frame. Their inertia joins the body; their pose starts the next body's
+  // placement.
   KDL::Frame pending = KDL::Frame::Identity();
   KDL::RigidBodyInertia merged = KDL::RigidBodyInertia::Zero();
+  // turn: the body frame in the segment's tip frame (x_tip = turn · x_body), chosen so that the
+  // joint axis is the body's z axis.
+  Mat3 turn = Mat3::Identity();
   int body = -1;
   const auto store_inertia = [&] {
     if (body < 0) return;
     Body& b = bodies_[static_cast<std::size_t>(body)];
     b.mass = merged.getMass();
-    b.first_moment = b.mass * to_eigen(merged.getCOG());
-    b.rotational_inertia = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+    b.first_moment = turn.transpose() * (b.mass * to_eigen(merged.getCOG()));
+    const Mat3 rotational = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
         merged.getRotationalInertia().data);
+    b.rotational_inertia = turn.transpose() * rotational * turn;
   };
   for (const KDL::Segment& segment : chain.segments) {
     const KDL::Frame tip = segment.getFrameToTip();
@@ -165,12 +170,17 @@ RigidBodyDynamics::RigidBodyDynamics(const KDL::Chain& chain) {
     store_inertia();
     if (++body >= static_cast<int>(kNumJoints)) break;
     // Segment pose: Rot(axis, q) · tip in the segment's start frame, the axis passing through the
-    // tip frame's origin; conjugated into the tip frame, the same turn reads tip · Rot(tip⁻¹ axis).
+    // tip frame's origin; in the tip frame the same turn is about a = tip⁻¹ axis, and in the body
+    // frame (x_tip = turn · x_body, turn ẑ = a) about ẑ.
     Body& b = bodies_[static_cast<std::size_t>(body)];
+    const Vec3 axis = to_eigen(tip.M.Inverse(segment.getJoint().JointAxis())).normalized();
+    const Mat3 parent_turn = turn;
+    turn = axis == Vec3::UnitZ()
+               ? Mat3::Identity()
+               : Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), axis).toRotationMatrix();
     const KDL::Frame zero = pending * tip;
-    b.rotation0 = to_eigen(zero.M);
-    b.position0 = to_eigen(zero.p);
-    b.axis = to_eigen(tip.M.Inverse(segment.getJoint().JointAxis())).normalized();
+    b.rotation0 = parent_turn.transpose() * to_eigen(zero.M) * turn;
+    b.position0 = parent_turn.transpose() * to_eigen(zero.p);
     merged = segment.getInertia();
     pending = KDL::Frame::Identity();
   }

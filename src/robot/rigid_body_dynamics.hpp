@@ -32,15 +32,15 @@ class RigidBodyDynamics {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-  // One moving body: the pose of its frame in its parent's frame (the previous body's, or the
-  // root's for body 0) at q_i = 0, and its joint's unit axis in the body's own frame (constant
-  // there because the body turns about it). The inertia is the body's with its fixed successors
-  // merged in: mass m (kg), first moment h = m·c (kg·m, c the centre of mass) and rotational
-  // inertia about the frame origin (kg·m²), all in the body frame.
+  // One moving body. Its frame is the tip frame of the segment carrying its joint, turned so that
+  // the joint axis is the frame's z axis (the turn is the identity when the URDF axis is already
+  // z). rotation0 and position0 place it in its parent body's frame (the root's for body 0) at
+  // q_i = 0: x_parent = rotation0 · Rz(q_i) · x + position0. The inertia is the body's with its
+  // fixed successors merged in: mass m (kg), first moment h = m·c (kg·m, c the centre of mass) and
+  // rotational inertia about the frame origin (kg·m²), in the body frame.
   struct Body {
     Mat3 rotation0 = Mat3::Identity();
     Vec3 position0 = Vec3::Zero();
-    Vec3 axis = Vec3::UnitZ();
     double mass = 0.0;
     Vec3 first_moment = Vec3::Zero();
     Mat3 rotational_inertia = Mat3::Zero();
