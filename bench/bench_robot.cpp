@@ -1,8 +1,11 @@
-// Robot-side costs: one inverse-kinematics solve (closed form against KDL's two iterative solvers)
-// and one 50 ms tick of the joint plant.
+// Robot-side costs: one inverse-kinematics solve (closed form against KDL's two iterative solvers),
+// one 50 ms tick of the joint plant, and one 5 s closed-loop condition through the decoupled and
+// the coupled-with-gravity plant side by side.
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <optional>
@@ -10,6 +13,7 @@
 
 #include "bench_inputs.hpp"
 #include "fuzzypid/robot/ik.hpp"
+#include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 
@@ -122,5 +126,73 @@ void BM_PlantStep6(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_PlantStep6);
+
+// A PD law toward a moving target, held over each tick (tests/robot/test_plant.cpp measures the
+// coupled plant's accuracy on the same loop).
+robot::JointVector pd_torque(const robot::JointPlant& plant, const robot::JointVector& centre,
+                             double t) {
+  static constexpr robot::JointVector kp = {6000.0, 12000.0, 3000.0, 300.0, 300.0, 60.0};
+  static constexpr robot::JointVector kd = {1200.0, 2400.0, 600.0, 60.0, 60.0, 12.0};
+  robot::JointVector tau{};
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+    const double target = centre[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
+    tau[i] = kp[i] * (target - plant.position()[i]) - kd[i] * plant.velocity()[i];
+  }
+  return tau;
+}
+
+// One 5 s condition: reset, then 5 s / tick ticks of PD torque held over each tick. Returns the
+// wall time in seconds.
+double run_condition(robot::JointPlant& plant, const robot::JointVector& centre, double tick_s,
+                     int ticks) {
+  const auto start = std::chrono::steady_clock::now();
+  plant.reset(centre, robot::JointVector{});
+  for (int k = 0; k < ticks; ++k) {
+    const robot::PlantStatus s = plant.step(pd_torque(plant, centre, k * tick_s), tick_s);
+    benchmark::DoNotOptimize(s);
+  }
+  benchmark::DoNotOptimize(plant.position());
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Each iteration runs one 5 s condition through the default decoupled plant and then the same
+// condition through the coupled plant with gravity (default PlantConfig otherwise, so the coupled
+// RK4 step is PlantConfig::coupled_substep_s), interleaved so that both see the same machine state.
+// Counters: decoupled_us and coupled_us per condition and their ratio coupled / decoupled. The
+// conditions start from a table of configurations around the paper's start joints.
+void BM_ConditionCost(benchmark::State& state) {
+  const robot::RobotModel* m = model();
+  if (m == nullptr) {
+    state.SkipWithError("cannot load the URDF");
+    return;
+  }
+  const double tick_s = static_cast<double>(state.range(0)) * 1e-3;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  robot::JointPlant decoupled(*m);
+  robot::PlantConfig coupled_config;
+  coupled_config.coupling = robot::PlantCoupling::Coupled;
+  coupled_config.gravity = true;
+  robot::JointPlant coupled(*m, coupled_config);
+  constexpr std::size_t kStarts = 64;  // a power of two
+  std::array<robot::JointVector, kStarts> starts{};
+  SplitMix64 rng(18);
+  for (auto& q : starts) {
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j)
+      q[j] = robot::kPaperStartJoints[j] + rng.uniform(-0.3, 0.3);
+  }
+  double decoupled_s = 0.0;
+  double coupled_s = 0.0;
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const robot::JointVector& centre = starts[k++ & (kStarts - 1)];
+    decoupled_s += run_condition(decoupled, centre, tick_s, ticks);
+    coupled_s += run_condition(coupled, centre, tick_s, ticks);
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["decoupled_us"] = 1e6 * decoupled_s / n;
+  state.counters["coupled_us"] = 1e6 * coupled_s / n;
+  state.counters["ratio"] = coupled_s / decoupled_s;
+}
+BENCHMARK(BM_ConditionCost)->ArgName("tick_ms")->Arg(50)->Arg(10)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -5,8 +5,12 @@
 
 #include <Eigen/Cholesky>
 
+#include "rigid_body_dynamics.hpp"
+
 namespace fuzzypid::robot {
 namespace {
+
+constexpr double kMaxCoupledSubsteps = 1000.0;
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
@@ -42,10 +46,12 @@ class JointPlant::Impl {
   Impl(const RobotModel& m, const PlantConfig& c) : model(m), config(c) {
     limit = config.torque_limit_nm.value_or(model.effort_limits_nm());
     valid = std::isfinite(config.substep_s) && config.substep_s > 0.0 &&
-            all_non_negative(config.armature_kgm2) && all_finite(config.armature_kgm2) &&
-            all_non_negative(config.inertia_scale) && all_finite(config.inertia_scale) &&
-            all_non_negative(config.damping_nms) && all_finite(config.damping_nms) &&
-            all_non_negative(limit) && std::isfinite(config.gravity_m_s2) &&
+            std::isfinite(config.coupled_substep_s) && config.coupled_substep_s > 0.0 &&
+            config.coupled_step_rad > 0.0 && all_non_negative(config.armature_kgm2) &&
+            all_finite(config.armature_kgm2) && all_non_negative(config.inertia_scale) &&
+            all_finite(config.inertia_scale) && all_non_negative(config.damping_nms) &&
+            all_finite(config.damping_nms) && all_non_negative(limit) &&
+            std::isfinite(config.gravity_m_s2) &&
             (!config.fixed_configuration_rad || all_finite(*config.fixed_configuration_rad));
     sqrt_scale = to_vec(config.inertia_scale).cwiseSqrt();
     reset(JointVector{}, JointVector{});
@@ -72,14 +78,24 @@ class JointPlant::Impl {
     return m;
   }
 
-  // q̈ for the coupled model at (x, v); false if M is not positive definite.
-  bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive,
-                            Vec6& a) const noexcept {
-    const JointVector xa = to_array(x);
-    const Mat6 m = config.inertia_update == InertiaUpdate::Fixed ? fixed_mass : effective_mass(xa);
-    Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) -
-               to_vec(model.coriolis_torque(xa, to_array(v)));
-    if (config.gravity) rhs -= to_vec(model.gravity_torque(xa, config.gravity_m_s2));
+  // q̈ for the coupled model at (x, v), from the fixed-size RNEA/CRBA over the model's chain;
+  // false if M_eff is not positive definite. `diagonal`, when given, receives diag(M_eff).
+  bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive, Vec6& a,
+                            Vec6* diagonal = nullptr) const noexcept {
+    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
+    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
+    Mat6 m;
+    Vec6 bias;
+    if (config.inertia_update == InertiaUpdate::Fixed) {
+      m = fixed_mass;
+      bias = dynamics.bias(x, v, g);
+    } else {
+      dynamics.mass_and_bias(x, v, g, m, bias);
+      m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
+      m.diagonal() += to_vec(config.armature_kgm2);
+    }
+    if (diagonal != nullptr) *diagonal = m.diagonal();
+    const Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
     const Eigen::LLT<Mat6> llt(m);
     if (llt.info() != Eigen::Success) return false;
     a = llt.solve(rhs);
@@ -144,15 +160,29 @@ class JointPlant::Impl {
       }
       a_end = accel(v);
     } else {
-      const Mat6 m0 =
-          config.inertia_update == InertiaUpdate::Fixed ? fixed_mass : effective_mass(q);
-      for (std::size_t i = 0; i < kNumJoints; ++i)
-        j_tick[i] = m0(static_cast<int>(i), static_cast<int>(i));
-      for (long s = 0; s < steps; ++s) {
-        const double h =
-            s + 1 < steps ? h_nominal : dt - h_nominal * static_cast<double>(steps - 1);
+      // k1 of the first substep also gives the tick's effective inertia and the step size.
+      Vec6 k1_first;
+      Vec6 diagonal;
+      if (!coupled_acceleration(x, v, drive, k1_first, &diagonal))
+        return PlantStatus::NumericalError;
+      j_tick = to_array(diagonal);
+      // Equal substeps no longer than coupled_substep_s, nor than the time the fastest joint takes
+      // to move coupled_step_rad at the tick's initial rate max(|q̇|, √|q̈|) (rad/s): the RK4 error
+      // grows with (rate · step)⁴, so slow motion takes long steps and fast motion short ones.
+      // At most kMaxCoupledSubsteps, so that a wild state cannot stall the tick.
+      const double rate =
+          std::fmax(v.cwiseAbs().maxCoeff(), std::sqrt(k1_first.cwiseAbs().maxCoeff()));
+      const double h_max = std::fmin(config.coupled_substep_s, config.coupled_step_rad / rate);
+      const double coupled_steps =
+          std::fmin(kMaxCoupledSubsteps, std::fmax(1.0, std::ceil(dt / h_max - 1e-9)));
+      const double h = dt / coupled_steps;
+      for (long s = 0; s < static_cast<long>(coupled_steps); ++s) {
         Vec6 k1v, k2v, k3v, k4v;
-        if (!coupled_acceleration(x, v, drive, k1v)) return PlantStatus::NumericalError;
+        if (s == 0) {
+          k1v = k1_first;
+        } else if (!coupled_acceleration(x, v, drive, k1v)) {
+          return PlantStatus::NumericalError;
+        }
         const Vec6 k1x = v;
         const Vec6 k2x = v + 0.5 * h * k1v;
         if (!coupled_acceleration(x + 0.5 * h * k1x, k2x, drive, k2v))

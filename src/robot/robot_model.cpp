@@ -242,6 +242,7 @@ RobotModel::Impl::Impl(ChainDescription description)
       fk_solver(desc.chain),
       jac_solver(desc.chain),
       dyn_solver(desc.chain, KDL::Vector(0.0, 0.0, -1.0)),
+      dynamics(desc.chain),
       q(kNumJoints),
       qd(kNumJoints),
       tau(kNumJoints),
@@ -303,6 +304,7 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
     }
 
     ChainDescription desc;
+    desc.robot_name = urdf_model->getName();
     desc.root_link = root;
     desc.tip_link = tip;
     if (!tree.getChain(root, tip, desc.chain)) {
@@ -333,6 +335,7 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
       desc.upper[j] = kInf;
       desc.velocity[j] = kInf;
       desc.effort[j] = kInf;
+      desc.continuous[j] = joint && joint->type == urdf::Joint::CONTINUOUS;
       if (joint && joint->limits) {
         if (joint->type == urdf::Joint::REVOLUTE) {
           desc.lower[j] = joint->limits->lower;
@@ -355,6 +358,23 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
   }
 }
 
+RobotModel RobotModel::with_payload(double mass_kg) const {
+  ChainDescription desc = impl_->desc;
+  if (mass_kg > 0.0) {
+    // The last segment's inertia is expressed in its tip frame: a point mass at that frame's
+    // origin has no first moment and no rotational inertia about it.
+    KDL::Segment& last = desc.chain.segments.back();
+    last.setInertia(last.getInertia() + KDL::RigidBodyInertia(mass_kg));
+  }
+  return RobotModel(std::make_unique<Impl>(std::move(desc)));
+}
+
+const std::string& RobotModel::robot_name() const noexcept {
+  return impl_->desc.robot_name;
+}
+bool RobotModel::continuous(std::size_t joint) const noexcept {
+  return joint < kNumJoints && impl_->desc.continuous[joint];
+}
 const std::string& RobotModel::root_link() const noexcept {
   return impl_->desc.root_link;
 }
@@ -424,26 +444,6 @@ JointVector RobotModel::coriolis_torque(const JointVector& q,
   return from_kdl(impl_->tau);
 }
 
-RobotModel RobotModel::with_payload(double mass_kg) const {
-  ChainDescription desc = impl_->desc;
-  KDL::Chain chain;
-  const unsigned int n = desc.chain.getNrOfSegments();
-  for (unsigned int k = 0; k < n; ++k) {
-    KDL::Segment seg = desc.chain.getSegment(k);
-    if (k + 1 == n && mass_kg > 0.0) {
-      // The segment's inertia is expressed in its frame after the joint; its tip is at
-      // getFrameToTip() there.
-      const KDL::RigidBodyInertia point(mass_kg, seg.getFrameToTip().p,
-                                        KDL::RotationalInertia(0, 0, 0, 0, 0, 0));
-      seg = KDL::Segment(seg.getName(), seg.getJoint(), seg.getFrameToTip(),
-                         seg.getInertia() + point);
-    }
-    chain.addSegment(seg);
-  }
-  desc.chain = chain;
-  return RobotModel(std::make_unique<Impl>(std::move(desc)));
-}
-
 JointVector RobotModel::gravity_torque(const JointVector& q, double gravity_m_s2) const noexcept {
   to_kdl(q, impl_->q);
   impl_->dyn_solver.JntToGravity(impl_->q, impl_->tau);
@@ -452,5 +452,11 @@ JointVector RobotModel::gravity_torque(const JointVector& q, double gravity_m_s2
     v *= gravity_m_s2;
   return g;
 }
+
+namespace detail {
+const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept {
+  return model.impl().dynamics;
+}
+}  // namespace detail
 
 }  // namespace fuzzypid::robot

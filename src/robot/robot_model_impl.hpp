@@ -14,11 +14,13 @@
 #include <kdl/jntspaceinertiamatrix.hpp>
 
 #include "fuzzypid/robot/robot_model.hpp"
+#include "rigid_body_dynamics.hpp"
 
 namespace fuzzypid::robot {
 
 struct ChainDescription {
   KDL::Chain chain;
+  std::string robot_name;  // the URDF's <robot name=...>
   std::string root_link;
   std::string tip_link;
   std::array<std::string, kNumJoints> joint_names;
@@ -26,6 +28,7 @@ struct ChainDescription {
   JointVector upper{};
   JointVector velocity{};
   JointVector effort{};
+  std::array<bool, kNumJoints> continuous{};  // URDF continuous joints (no position limits)
 };
 
 // Owns the chain and solvers bound to it. KDL solvers keep a reference to the chain, so an Impl is
@@ -39,7 +42,8 @@ class RobotModel::Impl {
   ChainDescription desc;
   KDL::ChainFkSolverPos_recursive fk_solver;
   KDL::ChainJntToJacSolver jac_solver;
-  KDL::ChainDynParam dyn_solver;  // built with unit gravity along -z; results scale linearly
+  KDL::ChainDynParam dyn_solver;       // built with unit gravity along -z; results scale linearly
+  detail::RigidBodyDynamics dynamics;  // the same chain's parameters, for the coupled plant
 
   // Scratch reused by the const queries (sized at construction, never reallocated).
   mutable KDL::JntArray q;

@@ -60,6 +60,26 @@ TEST(NoAllocation, CoupledPlantStepWithGravity) {
   EXPECT_EQ(c.count(), 0u);
 }
 
+TEST(NoAllocation, CoupledPlantStepWithPayloadGravityAndFixedInertia) {
+  const RobotModel loaded = model().with_payload(20.0);
+  PlantConfig config;
+  config.coupling = PlantCoupling::Coupled;
+  config.gravity = true;
+  config.damping_nms = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  JointPlant every_tick(loaded, config);
+  config.inertia_update = InertiaUpdate::Fixed;
+  JointPlant fixed(loaded, config);
+  every_tick.reset(kPaperStartJoints, {0.5, -0.5, 0.5, 1.0, -1.0, 2.0});
+  fixed.reset(kPaperStartJoints, JointVector{});
+  AllocationCounter c;
+  for (int k = 0; k < 50; ++k) {
+    (void)every_tick.step({100, -50, 20, 1, 1, 0.5}, 0.01, {1, 0, 0, 0, 0, 0});
+    (void)fixed.step({100, -50, 20, 1, 1, 0.5}, 0.05);
+  }
+  (void)fixed.step({0, 0, 0, 0, 0, 0}, -1.0);  // the rejection path too
+  EXPECT_EQ(c.count(), 0u);
+}
+
 TEST(NoAllocation, KinematicsAndDynamicsQueries) {
   const RobotModel& m = model();
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};

@@ -1,17 +1,31 @@
-// The joint plant: RK4 under zero-order hold, inertia from the model, saturation, bad input.
+// The joint plant: RK4 under zero-order hold, inertia from the model, saturation, bad input; the
+// fixed-size rigid-body dynamics of the coupled mode against KDL; the point-mass payload.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
+#include <random>
+#include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
+#include "rigid_body_dynamics.hpp"
 #include "test_support.hpp"
 
 namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+Vec6 to_vec(const JointVector& v) {
+  return Eigen::Map<const Vec6>(v.data());
+}
 
 // Closed form of J θ̈ = τ − b θ̇ from (θ0, ω0) after t seconds.
 void closed_form(double j, double b, double tau, double th0, double w0, double t, double& th,
@@ -147,6 +161,14 @@ TEST(JointPlant, InvalidConfigurationIsReportedAndRefusesToStep) {
   c = PlantConfig{};
   c.substep_s = 0.0;
   EXPECT_FALSE(JointPlant(bundled_model(), c).valid());
+  c = PlantConfig{};
+  c.coupled_substep_s = 0.0;
+  EXPECT_FALSE(JointPlant(bundled_model(), c).valid());
+  c = PlantConfig{};
+  c.coupled_step_rad = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(JointPlant(bundled_model(), c).valid());
+  c.coupled_step_rad = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(JointPlant(bundled_model(), c).valid());
 }
 
 TEST(JointPlant, DisturbanceTorqueAddsToTheDrive) {
@@ -203,6 +225,296 @@ TEST(JointPlant, CopiesStepIndependently) {
   JointPlant b = a;
   ASSERT_EQ(a.step({10, 0, 0, 0, 0, 0}, 0.05), PlantStatus::Ok);
   EXPECT_EQ(b.position(), kPaperStartJoints);
+}
+
+// A six-joint URDF with random joint origins (position and orientation), random unit axes, random
+// masses, centres of mass and inertia tensors, a massive fixed link between joints 3 and 4, fixed
+// mounts before joint 1 and a tool after joint 6: every path of the parameter extraction.
+std::string random_arm_urdf(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_real_distribution<double> mass(1.0, 40.0);
+  std::ostringstream x;
+  x.precision(17);
+  const auto origin = [&] {
+    std::ostringstream o;
+    o.precision(17);
+    o << "<origin xyz=\"" << 0.4 * u(rng) << " " << 0.4 * u(rng) << " " << 0.4 * u(rng)
+      << "\" rpy=\"" << 3.0 * u(rng) << " " << 1.5 * u(rng) << " " << 3.0 * u(rng) << "\"/>";
+    return o.str();
+  };
+  const auto link = [&](const std::string& name) {
+    // A positive-definite tensor satisfying the triangle inequality: a box's principal moments,
+    // turned by the inertial origin's rpy.
+    const double m = mass(rng);
+    const double a = 0.1 + 0.5 * std::fabs(u(rng));
+    const double b = 0.1 + 0.5 * std::fabs(u(rng));
+    const double c = 0.1 + 0.5 * std::fabs(u(rng));
+    x << "<link name=\"" << name << "\"><inertial>" << origin() << "<mass value=\"" << m
+      << "\"/><inertia ixx=\"" << m * (b * b + c * c) / 12 << "\" ixy=\"0\" ixz=\"0\" iyy=\""
+      << m * (a * a + c * c) / 12 << "\" iyz=\"0\" izz=\"" << m * (a * a + b * b) / 12
+      << "\"/></inertial></link>\n";
+  };
+  const auto joint = [&](const std::string& name, const std::string& parent,
+                         const std::string& child, bool fixed) {
+    x << "<joint name=\"" << name << "\" type=\"" << (fixed ? "fixed" : "revolute") << "\">"
+      << "<parent link=\"" << parent << "\"/><child link=\"" << child << "\"/>" << origin();
+    if (!fixed) {
+      Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+      axis.normalize();
+      x << "<axis xyz=\"" << axis.x() << " " << axis.y() << " " << axis.z() << "\"/>"
+        << "<limit lower=\"-3\" upper=\"3\" velocity=\"2\" effort=\"1000\"/>";
+    }
+    x << "</joint>\n";
+  };
+  x << "<?xml version=\"1.0\"?>\n<robot name=\"random_arm\">\n<link name=\"world\"/>\n";
+  link("mount");
+  joint("mount_joint", "world", "mount", true);
+  const char* names[] = {"l1", "l2", "l3", "l3b", "l4", "l5", "l6", "tool"};
+  std::string parent = "mount";
+  int moving = 0;
+  for (const char* name : names) {
+    link(name);
+    const bool fixed = std::string(name) == "l3b" || std::string(name) == "tool";
+    joint(std::string("j_") + name, parent, name, fixed);
+    moving += fixed ? 0 : 1;
+    parent = name;
+  }
+  x << "</robot>\n";
+  return x.str();
+}
+
+RobotModel load_text(const std::string& urdf, const std::string& file_name) {
+  const std::string path = testing::TempDir() + file_name;
+  std::ofstream(path) << urdf;
+  LoadResult r = RobotModel::load(path);
+  EXPECT_TRUE(r.model.has_value()) << r.error;
+  return std::move(*r.model);
+}
+
+// max |a − b| relative to max(1, max |b|).
+template <typename A, typename B>
+double relative_error(const A& a, const B& b) {
+  return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
+}
+
+// M, C q̇ and g of the fixed-size RNEA/CRBA equal KDL's ChainDynParam (behind RobotModel) to 1e-9
+// relative, on the bundled arm, on it with a payload, and on random arms.
+void expect_dynamics_match_kdl(const RobotModel& model, std::mt19937_64& rng, int states) {
+  const detail::RigidBodyDynamics& fast = detail::dynamics_of(model);
+  std::uniform_real_distribution<double> angle(-3.2, 3.2);
+  std::uniform_real_distribution<double> rate(-3.0, 3.0);
+  double worst_m = 0.0;
+  double worst_c = 0.0;
+  double worst_g = 0.0;
+  for (int k = 0; k < states; ++k) {
+    JointVector q{};
+    JointVector qd{};
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      q[i] = angle(rng);
+      qd[i] = rate(rng);
+    }
+    const double g = 9.81;
+    Mat6 m;
+    Vec6 bias;
+    fast.mass_and_bias(to_vec(q), to_vec(qd), g, m, bias);
+    const Vec6 coriolis = to_vec(model.coriolis_torque(q, qd));
+    const Vec6 gravity = to_vec(model.gravity_torque(q, g));
+    worst_m = std::max(worst_m, relative_error(m, model.mass_matrix(q)));
+    worst_m = std::max(worst_m, relative_error(fast.mass_matrix(to_vec(q)), model.mass_matrix(q)));
+    worst_c = std::max(worst_c, relative_error(fast.bias(to_vec(q), to_vec(qd), 0.0), coriolis));
+    worst_g = std::max(worst_g, relative_error(fast.bias(to_vec(q), Vec6::Zero(), g), gravity));
+    worst_g = std::max(worst_g, relative_error(bias, Vec6(coriolis + gravity)));
+  }
+  std::printf("[ dynamics ] %s: worst relative error M %.2e, C q̇ %.2e, g %.2e\n",
+              model.robot_name().c_str(), worst_m, worst_c, worst_g);
+  EXPECT_LT(worst_m, 1e-9);
+  EXPECT_LT(worst_c, 1e-9);
+  EXPECT_LT(worst_g, 1e-9);
+}
+
+TEST(RigidBodyDynamics, MassCoriolisAndGravityEqualKdlOnTheBundledArm) {
+  std::mt19937_64 rng = test::seeded_rng(18, "random states");
+  expect_dynamics_match_kdl(bundled_model(), rng, 2000);
+  expect_dynamics_match_kdl(bundled_model().with_payload(25.0), rng, 2000);
+}
+
+TEST(RigidBodyDynamics, MassCoriolisAndGravityEqualKdlOnRandomArms) {
+  std::mt19937_64 rng = test::seeded_rng(1807, "random arms and states");
+  for (int arm = 0; arm < 20; ++arm) {
+    const RobotModel model = load_text(random_arm_urdf(rng), "random_arm.urdf");
+    expect_dynamics_match_kdl(model, rng, 200);
+  }
+}
+
+TEST(RobotModel, PayloadAddsAPointMassAtTheTipOrigin) {
+  const RobotModel& bare = bundled_model();
+  const double mass = 12.5;
+  const RobotModel loaded = bare.with_payload(mass);
+  std::mt19937_64 rng = test::seeded_rng(7, "payload configurations");
+  for (int k = 0; k < 200; ++k) {
+    const JointVector q = test::random_within(bare, rng);
+    // A point mass at the tip origin: kinetic energy ½ m |J_v q̇|², potential m g z_tip.
+    const Eigen::Matrix<double, 3, 6> jv = bare.jacobian(q).topRows<3>();
+    const Mat6 added = mass * jv.transpose() * jv;
+    EXPECT_LT(relative_error(Mat6(loaded.mass_matrix(q) - bare.mass_matrix(q)), added), 1e-12);
+    const Vec6 added_g = mass * 9.81 * jv.transpose() * Eigen::Vector3d::UnitZ();
+    EXPECT_LT(relative_error(
+                  Vec6(to_vec(loaded.gravity_torque(q)) - to_vec(bare.gravity_torque(q))), added_g),
+              1e-12);
+    const JointVector diagonal = loaded.inertia_diagonal(q);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      EXPECT_NEAR(diagonal[i],
+                  bare.inertia_diagonal(q)[i] + added(static_cast<int>(i), static_cast<int>(i)),
+                  1e-9);
+    // The fast dynamics of the plant carry the payload too.
+    EXPECT_LT(
+        relative_error(detail::dynamics_of(loaded).mass_matrix(to_vec(q)), loaded.mass_matrix(q)),
+        1e-9);
+  }
+}
+
+TEST(RobotModel, ZeroPayloadIsAnEqualCopy) {
+  const RobotModel copy = bundled_model().with_payload(0.0);
+  const JointVector q = {0.3, -1.2, 0.1, 0.5, -0.4, -1.5};
+  const JointVector qd = {0.5, -0.4, 0.6, 1.0, -0.8, 1.2};
+  EXPECT_EQ(copy.mass_matrix(q), bundled_model().mass_matrix(q));
+  EXPECT_EQ(copy.gravity_torque(q), bundled_model().gravity_torque(q));
+  EXPECT_EQ(copy.coriolis_torque(q, qd), bundled_model().coriolis_torque(q, qd));
+  EXPECT_EQ(copy.robot_name(), bundled_model().robot_name());
+}
+
+TEST(RobotModel, NamesTheRobotAndItsContinuousJoints) {
+  EXPECT_EQ(bundled_model().robot_name(), "er50_c20");
+  for (std::size_t j = 0; j < kNumJoints; ++j)
+    EXPECT_FALSE(bundled_model().continuous(j));
+  EXPECT_FALSE(bundled_model().continuous(kNumJoints));
+  std::ifstream in(default_urdf_path());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = text.str();
+  const std::string joint6 = "<joint name=\"joint6\" type=\"revolute\">";
+  ASSERT_NE(urdf.find(joint6), std::string::npos);
+  urdf.replace(urdf.find(joint6), joint6.size(), "<joint name=\"joint6\" type=\"continuous\">");
+  const RobotModel model = load_text(urdf, "continuous_j6.urdf");
+  EXPECT_TRUE(model.continuous(5));
+  EXPECT_FALSE(model.continuous(4));
+  EXPECT_EQ(model.upper_limits_rad()[5], std::numeric_limits<double>::infinity());
+}
+
+// A PD law toward a moving target, held over each tick: the closed loop the accuracy and cost
+// figures are measured on (bench/bench_robot.cpp drives the plants the same way).
+JointVector pd_torque(const JointPlant& plant, double t) {
+  static constexpr JointVector kp = {6000.0, 12000.0, 3000.0, 300.0, 300.0, 60.0};
+  static constexpr JointVector kd = {1200.0, 2400.0, 600.0, 60.0, 60.0, 12.0};
+  JointVector tau{};
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const double target =
+        kPaperStartJoints[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
+    tau[i] = kp[i] * (target - plant.position()[i]) - kd[i] * plant.velocity()[i];
+  }
+  return tau;
+}
+
+// Largest |q − q_reference| over a 5 s run with gravity, each plant on its own PD loop.
+// The coupled step settings scaled by `scale` (1: the defaults).
+PlantConfig coupled_step(PlantConfig c, double substep_s, double step_rad, double scale) {
+  c.coupling = PlantCoupling::Coupled;
+  c.gravity = true;
+  c.coupled_substep_s = substep_s * scale;
+  c.coupled_step_rad = step_rad * scale;
+  return c;
+}
+
+double coupled_run_error(double tick_s, double substep_s, double step_rad) {
+  PlantConfig c;
+  c.coupling = PlantCoupling::Coupled;
+  c.gravity = true;
+  c.damping_nms = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  JointPlant plant(bundled_model(), coupled_step(c, substep_s, step_rad, 1.0));
+  JointPlant reference(bundled_model(), coupled_step(c, substep_s, step_rad, 0.1));
+  plant.reset(kPaperStartJoints, JointVector{});
+  reference.reset(kPaperStartJoints, JointVector{});
+  double worst = 0.0;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * tick_s;
+    EXPECT_NE(plant.step(pd_torque(plant, t), tick_s), PlantStatus::NumericalError);
+    EXPECT_NE(reference.step(pd_torque(reference, t), tick_s), PlantStatus::NumericalError);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      worst = std::max(worst, std::fabs(plant.position()[i] - reference.position()[i]));
+  }
+  return worst;
+}
+
+// The harder case for the step: no armature (a URDF other than the bundled one gets none by
+// default), so the wrist's small link inertia sets the fastest time scale; a 20 kg payload; gravity
+// compensated from the model and PD gains scaled to each joint's inertia, tracking 1 rad at
+// 3 rad/s (3 rad/s peak, about the ER50 J1-J3 velocity limits). Largest |q − q_reference| over 5 s.
+double bare_arm_run_error(double tick_s, double substep_s, double step_rad) {
+  const RobotModel model = bundled_model().with_payload(20.0);
+  PlantConfig c;
+  c.coupling = PlantCoupling::Coupled;
+  c.gravity = true;
+  c.armature_kgm2 = {};
+  c.torque_limit_nm = JointVector{1e9, 1e9, 1e9, 1e9, 1e9, 1e9};
+  JointPlant plant(model, coupled_step(c, substep_s, step_rad, 1.0));
+  JointPlant reference(model, coupled_step(c, substep_s, step_rad, 0.1));
+  // Starts on the target with its velocity, so no step transient exceeds the velocity limits.
+  const auto target = [](double t, JointVector& q, JointVector& qd) {
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double phase = 3.0 * t + 0.4 * static_cast<double>(i);
+      q[i] = kPaperStartJoints[i] + std::sin(phase);
+      qd[i] = 3.0 * std::cos(phase);
+    }
+  };
+  JointVector q0{};
+  JointVector qd0{};
+  target(0.0, q0, qd0);
+  plant.reset(q0, qd0);
+  reference.reset(q0, qd0);
+  const Mat6 m = model.mass_matrix(q0);
+  const double w = 0.25 / tick_s;  // closed-loop bandwidth, rad/s
+  const auto law = [&](const JointPlant& p, double t) {
+    JointVector tau = model.gravity_torque(p.position());
+    JointVector q{};
+    JointVector qd{};
+    target(t, q, qd);
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double j = m(static_cast<int>(i), static_cast<int>(i));
+      tau[i] += j * w * w * (q[i] - p.position()[i]) + 1.6 * j * w * (qd[i] - p.velocity()[i]);
+    }
+    return tau;
+  };
+  double worst = 0.0;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * tick_s;
+    EXPECT_NE(plant.step(law(plant, t), tick_s), PlantStatus::NumericalError);
+    EXPECT_NE(reference.step(law(reference, t), tick_s), PlantStatus::NumericalError);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      worst = std::max(worst, std::fabs(plant.position()[i] - reference.position()[i]));
+  }
+  return worst;
+}
+
+TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
+  const PlantConfig d;
+  for (double tick : {0.05, 0.01}) {
+    const double error = coupled_run_error(tick, d.coupled_substep_s, d.coupled_step_rad);
+    std::printf("[ accuracy ] PD loop, tick %.0f ms: max |q - q_ref| over 5 s %.2e rad\n",
+                tick * 1e3, error);
+    EXPECT_LT(error, 1e-6) << "tick " << tick;
+  }
+}
+
+TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullSpeed) {
+  const PlantConfig d;
+  for (double tick : {0.05, 0.01}) {
+    const double error = bare_arm_run_error(tick, d.coupled_substep_s, d.coupled_step_rad);
+    std::printf("[ accuracy ] no armature, tick %.0f ms: max |q - q_ref| over 5 s %.2e rad\n",
+                tick * 1e3, error);
+    EXPECT_LT(error, 1e-6) << "tick " << tick;
+  }
 }
 
 }  // namespace

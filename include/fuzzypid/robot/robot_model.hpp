@@ -38,6 +38,18 @@ class RobotModel {
   RobotModel& operator=(RobotModel&& other) noexcept;
   ~RobotModel();
 
+  // A copy of this model with a point mass of mass_kg added at the origin of the chain's tip frame
+  // (the tool flange): the inertia it adds depends on the configuration, and mass_matrix,
+  // inertia_diagonal, coriolis_torque, gravity_torque and the plant's dynamics all include it.
+  // Precondition: mass_kg finite and >= 0 (callers validate user input); 0 returns an equal copy.
+  [[nodiscard]] RobotModel with_payload(double mass_kg) const;
+
+  // The URDF's <robot name=...> attribute.
+  const std::string& robot_name() const noexcept;
+  // True when joint (0-based, < kNumJoints) is a URDF continuous joint (infinite position limits);
+  // false for a revolute joint or an index out of range.
+  bool continuous(std::size_t joint) const noexcept;
+
   const std::string& root_link() const noexcept;
   const std::string& tip_link() const noexcept;
   const std::array<std::string, kNumJoints>& joint_names() const noexcept;
@@ -68,10 +80,6 @@ class RobotModel {
 
   // Gravity torques g(q) (N·m) for gravity along -z of the root frame with the given magnitude.
   JointVector gravity_torque(const JointVector& q, double gravity_m_s2 = 9.81) const noexcept;
-
-  // A copy of the model with a point mass of mass_kg (finite, >= 0) added at the origin of the
-  // chain's tip frame (the tool flange), so the inertia it adds changes with the configuration.
-  [[nodiscard]] RobotModel with_payload(double mass_kg) const;
 
   class Impl;  // defined in src/robot/robot_model_impl.hpp; used by the other robot sources
   const Impl& impl() const noexcept { return *impl_; }
