@@ -99,7 +99,8 @@ bool parse_sweep(const std::string& text, Sweep& sweep) {
 
 ParseResult parse(int argc, const char* const* argv, Options& o) {
   CLI::App app{
-      "sim_ab: the paper's A/B experiment (section 6) on the ER50-C20 model -- controllers "
+      "sim_ab: the paper's A/B experiment (section 6) on the ER50-C20 model, or on any six-joint "
+      "arm (--urdf) following any path (--path) -- controllers "
       "(the paper's fixed and fuzzy PID, or controller files) on scenarios, conditions and "
       "condition sets; writes trajectory.csv, metrics.csv, endeffector.csv, conditions.csv and "
       "settings.txt into --out.",
