@@ -96,7 +96,7 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
              o.tick_given = true;
            },
            "controller tick, ms (default 50)")
-        ->check(finite_in(sim::kMinTickS * 1e3, sim::kMaxTickS * 1e3))
+        ->check(finite_in(sim::kTickMsRange.lo, sim::kTickMsRange.hi))
         ->option_text("T");
   app.add_option_function<std::string>(
          "--armature",
@@ -127,7 +127,7 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
   app.add_option_function<double>(
          "--payload-kg", [&o](double m) { o.payload_kg = m; },
          "point mass at the tool flange, kg (the controller's model keeps none)")
-      ->check(finite_in(0.0, sim::kMaxPayloadKg))
+      ->check(finite_in(sim::kPayloadKgRange.lo, sim::kPayloadKgRange.hi))
       ->option_text("M");
   std::vector<std::string> names;
   for (const auto& e : sim::kDynamicsNames)

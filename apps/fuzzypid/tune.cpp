@@ -30,6 +30,8 @@ namespace {
 
 namespace cf = controller_file;
 
+constexpr double kMaxLog10 = 300.0;
+
 bool parse_box(const std::string& text, cf::SearchBox& box) {
   const auto eq = text.find('=');
   const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
@@ -42,8 +44,10 @@ bool parse_box(const std::string& text, cf::SearchBox& box) {
   if (lo.empty() || *end != '\0') return false;
   box.log10_max = std::strtod(hi.c_str(), &end);
   if (hi.empty() || *end != '\0') return false;
+  // 10^x must be a finite, non-zero double: |x| <= 300 (DBL_MAX is 1.8e308, DBL_MIN 2.2e-308).
   return std::isfinite(box.log10_min) && std::isfinite(box.log10_max) &&
-         box.log10_min <= box.log10_max;
+         box.log10_min <= box.log10_max && std::fabs(box.log10_min) <= kMaxLog10 &&
+         std::fabs(box.log10_max) <= kMaxLog10;
 }
 
 struct TuneOptions {
@@ -78,7 +82,7 @@ int run_tune(const TuneOptions& t) {
   for (const std::string& text : t.boxes) {
     cf::SearchBox b;
     if (!parse_box(text, b)) {
-      std::fprintf(stderr, "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, MIN <= MAX)\n",
+      std::fprintf(stderr, "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, -300 <= MIN <= MAX <= 300)\n",
                    text.c_str());
       return 2;
     }
@@ -235,7 +239,11 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
       ->required()
       ->check(CLI::IsMember(family_names));
-  cmd->add_option("--conditions", t->conditions, "condition-set file (TOML)")->required();
+  cmd->add_option("--conditions", t->conditions,
+                  "condition-set file (TOML); each condition may name its robot, path, tick and "
+                  "plant (keys urdf, path, tick_ms, payload_kg, armature, dynamics, gravity; "
+                  "docs/your_robot.md)")
+      ->required();
   cmd->add_option("--set", t->set, "the training set's name (default training)");
   cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
       ->check(unsigned_in(14, 100000000));

@@ -150,28 +150,31 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
 
   // Condition overrides.
   const auto opt_number = [&app](const std::string& name, std::optional<double>& target,
-                                 const std::string& help, double lo, double hi) {
+                                 const std::string& help, const sim::FieldRange& range) {
     return app
         .add_option_function<double>(
             name, [&target](double v) { target = v; }, help)
         ->check(kFinite)
-        ->check(CLI::Range(lo, hi));
+        ->check(CLI::Range(range.lo, range.hi));
   };
   opt_number("--payload-scale", o.payload_scale,
-             "link inertia x S; the controller keeps the nominal inertia", 1e-3, 1e3);
-  opt_number("--friction", o.friction, "viscous friction b_i = B J^_i, 1/s", 0.0, 1e4);
+             "link inertia x S; the controller keeps the nominal inertia", sim::kPayloadScaleRange);
+  opt_number("--friction", o.friction, "viscous friction b_i = B J^_i, 1/s", sim::kFrictionRange);
   opt_number("--torque-limit", o.torque_limit,
-             "|tau_i| <= L J^_i, rad/s² (0: the URDF effort limits)", 0.0, 1e6);
-  opt_number("--contact", o.contact, "amplitude of the deburring contact pulses, rad/s²", -1e4,
-             1e4);
+             "|tau_i| <= L J^_i, rad/s² (0: the URDF effort limits)", sim::kTorqueLimitRange);
+  opt_number("--contact", o.contact, "amplitude of the deburring contact pulses, rad/s²",
+             sim::kContactRange);
   opt_number("--initial-error", o.initial_error,
-             "joints start this far behind the path, rad (< 0: ahead; default 0.05)", -1.0, 1.0);
+             "joints start this far behind the path, rad (< 0: ahead; default 0.05)",
+             sim::kInitialErrorRange);
   app.add_option_function<std::string>(
       "--noise",
       [&o](const std::string& s) {
         std::array<double, 2> v{};
-        if (!parse_list(s, v) || v[0] < 0.0 || v[1] < 0.0)
-          throw CLI::ValidationError("--noise", "expected SIGMA_Q,SIGMA_QD >= 0: " + s);
+        if (!parse_list(s, v) || !sim::kNoisePositionRange.contains(v[0]) ||
+            !sim::kNoiseVelocityRange.contains(v[1]))
+          throw CLI::ValidationError("--noise", "expected SIGMA_Q,SIGMA_QD within 0 .. 1 rad and "
+                                                "0 .. 100 rad/s: " + s);
         o.noise = v;
       },
       "Gaussian measurement noise on angles (rad) and velocities (rad/s)");
@@ -238,6 +241,26 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
     std::fprintf(stderr, "sim_ab: --start and --end move the line A -> B; --path replaces it\n");
     return ParseResult::UsageError;
   }
+  // The paper-controller options shape the built-in pid and fuzzy only: with controller files
+  // they would be ignored.
+  if (!o.controllers.empty()) {
+    for (const char* name : {"--gain-units", "--pid-form", "--derivative", "--gain-update",
+                             "--tables", "--and", "--error-scale", "--error-rate-scale",
+                             "--output-scale", "--gains"})
+      if (app.count(name) > 0) {
+        std::fprintf(stderr,
+                     "sim_ab: %s sets the built-in paper controllers; with --controller FILE the "
+                     "file says it (see --help)\n",
+                     name);
+        return ParseResult::UsageError;
+      }
+  }
+  for (std::size_t i = 0; i < o.sets.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (o.sets[i] == o.sets[j]) {
+        std::fprintf(stderr, "sim_ab: --set %s is given twice\n", o.sets[i].c_str());
+        return ParseResult::UsageError;
+      }
   if (o.sweep && !o.conditions_file.empty()) {
     std::fprintf(stderr, "sim_ab: --sweep varies the --scenario condition, not a file's sets\n");
     return ParseResult::UsageError;

@@ -1,6 +1,8 @@
 #include "fuzzypid/sim/condition.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 namespace fuzzypid::sim {
 
@@ -16,20 +18,27 @@ PulseTrain contact_pulses(double amplitude_rad_s2) noexcept {
   return PulseTrain{1.0, 4.0, 0.5, 0.1, amplitude_rad_s2};
 }
 
+namespace {
+
+// "KEY must be within LO .. HI", or empty when v is finite and inside.
+std::string out_of(const FieldRange& r, double v) {
+  if (std::isfinite(v) && r.contains(v)) return {};
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%s must be within %g .. %g", r.key, r.lo, r.hi);
+  return buf;
+}
+
+}  // namespace
+
 std::string Condition::validate() const {
-  const auto finite = [](double v) { return std::isfinite(v); };
-  if (!finite(payload_scale) || !(payload_scale > 0.0)) return "payload scale must be > 0";
-  if (!finite(friction_per_s) || friction_per_s < 0.0) return "friction must be >= 0";
-  if (!finite(torque_limit_rad_s2) || torque_limit_rad_s2 < 0.0)
-    return "torque limit must be >= 0 (0: the URDF effort limits)";
-  if (!finite(contact_rad_s2)) return "contact amplitude must be finite";
-  if (!finite(noise_position_rad) || noise_position_rad < 0.0 || !finite(noise_velocity_rad_s) ||
-      noise_velocity_rad_s < 0.0)
-    return "noise standard deviations must be >= 0";
-  if (!finite(initial_error_rad) || std::fabs(initial_error_rad) > 1.0)
-    return "initial error must be finite and within +/-1 rad";
-  if (!finite(payload_kg) || payload_kg < 0.0 || payload_kg > kMaxPayloadKg)
-    return "payload mass must be within 0 .. 1e4 kg";
+  for (const auto& [range, value] :
+       {std::pair{kPayloadScaleRange, payload_scale}, std::pair{kFrictionRange, friction_per_s},
+        std::pair{kTorqueLimitRange, torque_limit_rad_s2}, std::pair{kContactRange, contact_rad_s2},
+        std::pair{kNoisePositionRange, noise_position_rad},
+        std::pair{kNoiseVelocityRange, noise_velocity_rad_s},
+        std::pair{kInitialErrorRange, initial_error_rad}, std::pair{kPayloadKgRange, payload_kg}})
+    if (std::string bad = out_of(range, value); !bad.empty()) return bad;
+  if (!(payload_scale > 0.0)) return "payload_scale must be > 0";
   if (gravity && dynamics != robot::PlantCoupling::Coupled)
     return "gravity needs the coupled dynamics (dynamics = coupled)";
   return robot.validate();

@@ -88,7 +88,14 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
   const Bad cases[] = {
       {"[sets.s]\nconditions = [ { name = \"c\", mass = 2.0 } ]\n", 2, 30, "unknown key 'mass'"},
       {"[sets.s]\nconditions = [ { name = \"c\", payload_scale = -1.0 } ]\n", 2, 16,
-       "payload scale must be > 0"},
+       "payload_scale must be within 0.001 .. 1000"},
+      // The command line's ranges hold in files too (sim/condition.hpp, FieldRange).
+      {"[sets.s]\nconditions = [ { name = \"c\", payload_scale = 1e6 } ]\n", 2, 16,
+       "payload_scale must be within 0.001 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", noise = [1e300, 0.0] } ]\n", 2, 16,
+       "noise[0] must be within 0 .. 1"},
+      {"[sets.s]\nconditions = [ { name = \"c\", friction = 1e5 } ]\n", 2, 16,
+       "friction must be within 0 .. 10000"},
       {"[sets.s]\nconditions = [ { name = \"c\", friction = nan } ]\n", 2, 41, "NaN"},
       {"[sets.s]\nconditions = [ { name = \"c\" }, { name = \"c\" } ]\n", 2, 32, "duplicate"},
       {"[sets.s]\nconditions = [ { name = \"c\", scenario = \"moon\" } ]\n", 2, 41,

@@ -58,11 +58,28 @@ struct RobotSetup {
   [[nodiscard]] std::string validate() const;
 };
 
-// Ranges shared by the command line and the condition files.
-inline constexpr double kMinTickS = 1e-4;     // 0.1 ms
-inline constexpr double kMaxTickS = 1.0;      // 1 s
-inline constexpr double kMaxPayloadKg = 1e4;  // a point mass at the flange
-inline constexpr double kMaxArmatureKgm2 = 1e6;
+// The one table of ranges of the condition fields, used by the command line (sim_ab's options of
+// the same names) and by Condition::validate() for condition files alike. Bounds are inclusive.
+struct FieldRange {
+  const char* key;  // condition-file key; the option is "--" + key with '_' -> '-'
+  double lo;
+  double hi;
+  [[nodiscard]] constexpr bool contains(double v) const noexcept { return v >= lo && v <= hi; }
+};
+inline constexpr FieldRange kPayloadScaleRange{"payload_scale", 1e-3, 1e3};
+inline constexpr FieldRange kFrictionRange{"friction", 0.0, 1e4};           // 1/s
+inline constexpr FieldRange kTorqueLimitRange{"torque_limit", 0.0, 1e6};    // rad/s²
+inline constexpr FieldRange kContactRange{"contact", -1e4, 1e4};            // rad/s²
+inline constexpr FieldRange kNoisePositionRange{"noise[0]", 0.0, 1.0};      // rad
+inline constexpr FieldRange kNoiseVelocityRange{"noise[1]", 0.0, 100.0};    // rad/s
+inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0}; // rad
+inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};        // kg
+inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};           // ms
+inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};           // kg·m²
+inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
+inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
+inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
+inline constexpr double kMaxArmatureKgm2 = kArmatureRange.hi;
 
 struct Condition {
   std::string name;
