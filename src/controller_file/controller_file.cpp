@@ -273,6 +273,16 @@ std::string validate(const ControllerSpec& s) {
   for (int k = 0; k < 3; ++k)
     if (!(lo[k] >= 0.0) || std::isinf(lo[k]) || !(hi[k] >= lo[k]))
       return "gain bounds must satisfy 0 <= gain_min <= gain_max";
+  // The supervised families clamp the retuned gains into [bounds] every tick; a nominal K0
+  // outside them would be clamped on every tick without a word.
+  if (s.family != Family::Pid) {
+    const double k0[3] = {s.gains.kp, s.gains.ki, s.gains.kd};
+    const char* names[3] = {"kp", "ki", "kd"};
+    for (int k = 0; k < 3; ++k)
+      if (k0[k] < lo[k] || k0[k] > hi[k])
+        return std::string("gains.") + names[k] + " = " + format_double(k0[k]) +
+               " lies outside [bounds] " + format_double(lo[k]) + " .. " + format_double(hi[k]);
+  }
   if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
     return "derivative_filter_s must be finite and >= 0";
   return {};
