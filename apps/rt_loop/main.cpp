@@ -113,6 +113,8 @@ struct LoopResult {
   long minor_page_faults = 0;
   long major_page_faults = 0;
   double max_abs_error_rad = 0.0;
+  // Per joint: ticks on which the supervisor fired no rule (the gains stayed where they were).
+  std::array<std::uint64_t, robot::kNumJoints> no_rule_ticks{};
 };
 
 // Histograms are large (2240 buckets each): static storage, zeroed before main.
@@ -156,6 +158,7 @@ LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks
         t.plant == robot::PlantStatus::NumericalError)
       ++r.plant_fault_ticks;
     for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
+      if (t.command.joint_status[j] == fuzzypid::Status::NoRuleFired) ++r.no_rule_ticks[j];
       const double err = std::fabs(t.theta_d[j] - t.theta[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
@@ -338,6 +341,19 @@ int run(int argc, char** argv) {
   std::printf("page_faults_in_loop: minor %ld, major %ld\n", r.minor_page_faults,
               r.major_page_faults);
   std::printf("allocations_in_loop: %llu\n", static_cast<unsigned long long>(r.allocations));
+  std::uint64_t no_rule = 0;
+  std::printf("no_rule_ticks:");
+  for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
+    std::printf("%s%llu", j == 0 ? " " : ",", static_cast<unsigned long long>(r.no_rule_ticks[j]));
+    no_rule += r.no_rule_ticks[j];
+  }
+  std::printf(" ticks (joints 1-6)\n");
+  if (no_rule != 0)
+    std::fprintf(stderr,
+                 "%s: warning: on %llu joint-ticks the supervisor fired no rule and the gains "
+                 "stayed where they were (a coverage gap of the rule base)%s\n",
+                 kTool, static_cast<unsigned long long>(no_rule),
+                 o.strict_rules ? "" : "; --strict-rules makes this an error");
 
   int code = cli::kExitOk;
   if (csv_file) {
@@ -362,6 +378,7 @@ int run(int argc, char** argv) {
   if (r.allocations != 0) failure("the loop allocated");
   if (r.controller_fault_ticks != 0) failure("the controller reported faults");
   if (r.plant_fault_ticks != 0) failure("the plant reported faults");
+  if (no_rule != 0 && o.strict_rules) failure("the supervisor fired no rule (--strict-rules)");
   if (o.max_overruns && r.overruns > *o.max_overruns) failure("more overruns than --max-overruns");
   const int written = cli::finish_stdout(kTool);
   return code != cli::kExitOk ? code : written;

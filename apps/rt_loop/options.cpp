@@ -59,6 +59,8 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
       ->option_text("K");
   app.add_flag("--require-rt", o.require_rt,
                "a refused --fifo, --lock-memory or --cpu is an error (else a warning)");
+  app.add_flag("--strict-rules", o.strict_rules,
+               "a tick on which the supervisor fires no rule is an error (else a warning)");
   app.add_option("--max-overruns", o.max_overruns,
                  "exit 1 when more than N ticks overran (default: any number)")
       ->check(cli::unsigned_integer())

@@ -32,6 +32,7 @@ struct Options {
   std::optional<int> cpu;
   bool loop_path = false;
   bool require_rt = false;
+  bool strict_rules = false;  // a tick on which the supervisor fires no rule fails the run
   std::optional<std::uint64_t> max_overruns;
   cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
 

@@ -148,12 +148,19 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
           fmt(s.supervisor.error_scale).c_str(), fmt(s.supervisor.error_rate_scale).c_str(),
           fmt(s.supervisor.output_scale[0]).c_str(), fmt(s.supervisor.output_scale[1]).c_str(),
           fmt(s.supervisor.output_scale[2]).c_str());
-    if (s.family == cf::Family::Fuzzy)
+    if (s.family == cf::Family::Fuzzy && s.supervisor.rule_file.empty())
       std::fprintf(f, " gain_update=%s rule_base=%s and=%s",
                    cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update),
-                   s.supervisor.rule_file.empty() ? cf::to_string(s.supervisor.rule_base)
-                                                  : s.supervisor.rule_file.c_str(),
+                   cf::to_string(s.supervisor.rule_base),
                    cf::name_of(cf::kConjunctionNames, s.supervisor.conjunction));
+    if (s.family == cf::Family::Fuzzy && !s.supervisor.rule_file.empty()) {
+      // What ran: the rule file (resolved against the controller file's folder) and its hash.
+      const std::string rules =
+          (fs::path(c.source).parent_path() / s.supervisor.rule_file).lexically_normal().string();
+      std::fprintf(f, " gain_update=%s rule_file=%s rule_file_fnv1a64=%s",
+                   cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update), rules.c_str(),
+                   cf::file_hash(rules).c_str());
+    }
     if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
     std::fprintf(f, " derivative=%s\n", cf::name_of(cf::kDerivativeSourceNames, s.pid.derivative));
   }
@@ -358,7 +365,7 @@ int main(int argc, char** argv) {
   std::fputs("scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd\n", traj);
   std::fputs(
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
-      "iae,itae,max_abs_error_after_1s_rad,faults\n",
+      "iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,clamped_gain_ticks\n",
       metrics);
   std::fputs("scenario,controller,t,x_d,y_d,z_d,x,y,z\n", tip);
   std::fputs(
@@ -379,6 +386,7 @@ int main(int argc, char** argv) {
     std::printf("%-10s %-26s %-18s %11s %10s %10s %12s\n", "set", "condition", "controller", "ITAE",
                 "overshoot%", "settle_s", "max|e|>1s");
   std::size_t faulted_runs = 0;
+  std::size_t no_rule_runs = 0;
   std::size_t done = 0;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& run = runs[k];
@@ -421,17 +429,28 @@ int main(int argc, char** argv) {
       }
       const auto m = sim::run_metrics(r.rows, experiment.options().tick_s);
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-        std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu\n", cond.name.c_str(), cname,
-                     i + 1, fmt(m[i].settling_time_s).c_str(), fmt(m[i].overshoot_pct).c_str(),
-                     fmt(m[i].max_abs_error_rad).c_str(), fmt(m[i].rms_error_rad).c_str(),
-                     fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
-                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.controller_faults);
+        std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n", cond.name.c_str(),
+                     cname, i + 1, fmt(m[i].settling_time_s).c_str(),
+                     fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
+                     fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(),
+                     fmt(m[i].itae).c_str(), fmt(m[i].max_abs_error_after_1s_rad).c_str(),
+                     r.controller_faults, r.no_rule_ticks[i], r.clamped_gain_ticks[i]);
       }
       const Summary s = summarize(m);
       if (!o.quiet)
         std::printf("%-10s %-26s %-18s %11.4e %10.3g %10.3g %12.3e\n", run.set.c_str(),
                     cond.name.c_str(), cname, s.itae, s.max_overshoot_pct, s.max_settling_s,
                     s.max_error_after_1s_rad);
+      std::size_t no_rule = 0;
+      for (std::size_t n : r.no_rule_ticks)
+        no_rule += n;
+      if (no_rule != 0) {
+        ++no_rule_runs;
+        std::fprintf(stderr,
+                     "sim_ab: %s: %s/%s: on %zu joint-ticks the supervisor fired no rule and the "
+                     "gains stayed where they were (metrics.csv no_rule_ticks)\n",
+                     o.strict_rules ? "error" : "warning", cond.name.c_str(), cname, no_rule);
+      }
       if (r.controller_faults != 0) {
         ++faulted_runs;
         std::fprintf(stderr, "sim_ab: error: %zu controller faults in %s/%s\n", r.controller_faults,
@@ -449,6 +468,11 @@ int main(int argc, char** argv) {
                  o.out_dir.c_str());
   if (faulted_runs != 0) {
     std::fprintf(stderr, "sim_ab: %zu run(s) with controller faults\n", faulted_runs);
+    return 1;
+  }
+  if (no_rule_runs != 0 && o.strict_rules) {
+    std::fprintf(stderr, "sim_ab: %zu run(s) in which a supervisor fired no rule (--strict-rules)\n",
+                 no_rule_runs);
     return 1;
   }
   return 0;

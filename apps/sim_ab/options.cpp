@@ -202,6 +202,9 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
            [&e, &gains] {
              e.gains = {gains[0], gains[1], gains[2]};
            });
+  app.add_flag("--strict-rules", o.strict_rules,
+               "a tick on which a supervisor fires no rule is an error (exit 1; else a warning "
+               "and the count in metrics.csv)");
   app.add_flag("--quiet", o.quiet, "no table, no progress");
 
   try {

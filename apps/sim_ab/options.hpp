@@ -43,6 +43,7 @@ struct Options {
   std::optional<std::array<double, 2>> noise;
   std::optional<std::uint64_t> seed;
   bool reverse = false;
+  bool strict_rules = false;  // a tick on which a supervisor fires no rule fails the run
   bool list = false;
   bool quiet = false;
 };

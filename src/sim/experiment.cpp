@@ -283,10 +283,26 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   if (!loop) return result;
   const std::size_t ticks = loop->samples();
   if (limits.record) result.rows.reserve(ticks * kJoints);
+  // The bounds and K0 exactly as the joints hold them (continuous SI form).
+  const bool supervised = controller.family != controller_file::Family::Pid;
+  const control::FuzzyPidConfig<double> bounds = controller_file::fuzzy_pid_config(
+      controller, std::numeric_limits<double>::infinity());
+  const auto at_bound = [](double k, double k0, double lo, double hi) {
+    return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
+  };
   for (std::size_t k = 0; k < ticks; ++k) {
     const bool advance = k + 1 < ticks;
     const TickResult r = loop->tick(k, advance);
     if (is_fault(r.command.status)) ++result.controller_faults;
+    for (std::size_t i = 0; supervised && i < kJoints; ++i) {
+      if (r.command.joint_status[i] == Status::NoRuleFired) ++result.no_rule_ticks[i];
+      const pid::Gains<double> g = loop->controller().gains(i);
+      const auto& k0 = bounds.pid.gains;
+      if (at_bound(g.kp, k0.kp, bounds.gain_min.kp, bounds.gain_max.kp) ||
+          at_bound(g.ki, k0.ki, bounds.gain_min.ki, bounds.gain_max.ki) ||
+          at_bound(g.kd, k0.kd, bounds.gain_min.kd, bounds.gain_max.kd))
+        ++result.clamped_gain_ticks[i];
+    }
     bool diverged = false;
     for (std::size_t i = 0; i < kJoints; ++i) {
       const double e = r.theta_d[i] - r.theta[i];

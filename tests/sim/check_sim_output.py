@@ -15,7 +15,8 @@ import sys
 
 TRAJ_HEADER = "scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd"
 METRICS_HEADER = ("scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,"
-                  "rms_error_rad,iae,itae,max_abs_error_after_1s_rad,faults")
+                  "rms_error_rad,iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,"
+                  "clamped_gain_ticks")
 DT = 0.05
 
 

@@ -83,6 +83,12 @@ struct RunResult {
   std::vector<TrajectoryRow> rows;  // tick-major, joints 1..6 within a tick
   std::size_t controller_faults = 0;
   std::size_t saturated_ticks = 0;  // ticks in which the plant clamped at least one torque
+  // Per joint: ticks on which the supervisor fired no rule (the gains stayed where they were:
+  // a rule base with a coverage gap runs as a fixed PID there), and ticks on which a retuned gain
+  // sat at a bound of the file's [bounds] that K0 is not at (the supervisor asked for more or
+  // less than the bounds allow).
+  std::array<std::size_t, robot::kNumJoints> no_rule_ticks{};
+  std::array<std::size_t, robot::kNumJoints> clamped_gain_ticks{};
   bool diverged = false;            // stopped early: |e| exceeded RunLimits::max_error_rad
 };
 
