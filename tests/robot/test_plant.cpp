@@ -517,5 +517,32 @@ TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullS
   }
 }
 
+TEST(JointPlant, CoupledAccelerationIsTheDynamicsAtTheEndOfTheTick) {
+  PlantConfig c;
+  c.coupling = PlantCoupling::Coupled;
+  c.gravity = true;
+  c.inertia_scale = {1.0, 1.5, 0.5, 1.0, 2.0, 1.0};
+  c.damping_nms = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  JointPlant plant(bundled_model(), c);
+  plant.reset(kPaperStartJoints, {0.2, -0.1, 0.3, 0.5, -0.4, 1.0});
+  const JointVector tau = {300.0, -1500.0, 400.0, 10.0, -5.0, 2.0};
+  const JointVector disturbance = {5.0, 0.0, 0.0, 0.0, 0.0, -1.0};
+  ASSERT_EQ(plant.step(tau, 0.05, disturbance), PlantStatus::Ok);
+  const JointVector& q = plant.position();
+  const JointVector& qd = plant.velocity();
+  const Vec6 s = to_vec(c.inertia_scale).cwiseSqrt();
+  Mat6 m = s.asDiagonal() * bundled_model().mass_matrix(q) * s.asDiagonal();
+  m.diagonal() += to_vec(c.armature_kgm2);
+  const Vec6 rhs =
+      to_vec(tau) + to_vec(disturbance) - to_vec(bundled_model().coriolis_torque(q, qd)) -
+      to_vec(bundled_model().gravity_torque(q)) - to_vec(c.damping_nms).cwiseProduct(to_vec(qd));
+  const Vec6 expected = m.llt().solve(rhs);
+  EXPECT_LT(relative_error(to_vec(plant.acceleration()), expected), 1e-9);
+  const JointPlant copy = plant;
+  EXPECT_EQ(copy.acceleration(), plant.acceleration());
+  plant.reset(q, qd);
+  EXPECT_EQ(plant.acceleration(), JointVector{});
+}
+
 }  // namespace
 }  // namespace fuzzypid::robot
