@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -203,6 +204,53 @@ void BM_ConditionCost(benchmark::State& state) {
   state.counters["coupled_us"] = 1e6 * coupled_s / n;
   state.counters["ratio"] = coupled_s / decoupled_s;
 }
+// The coupled plant alone on the same conditions with other step settings: args tick_ms,
+// coupled_substep_s in ms, coupled_step_rad in mrad (0: +inf, i.e. fixed substeps). Counter
+// coupled_us: thread CPU time per condition. docs/performance.md pairs these with the accuracy
+// of each setting.
+void BM_CoupledStepCost(benchmark::State& state) {
+  const robot::RobotModel* m = model();
+  if (m == nullptr) {
+    state.SkipWithError("cannot load the URDF");
+    return;
+  }
+  const double tick_s = static_cast<double>(state.range(0)) * 1e-3;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  robot::PlantConfig config;
+  config.coupling = robot::PlantCoupling::Coupled;
+  config.gravity = true;
+  config.coupled_substep_s = static_cast<double>(state.range(1)) * 1e-3;
+  config.coupled_step_rad = state.range(2) == 0 ? std::numeric_limits<double>::infinity()
+                                                : static_cast<double>(state.range(2)) * 1e-3;
+  robot::JointPlant coupled(*m, config);
+  constexpr std::size_t kStarts = 64;  // a power of two
+  std::array<robot::JointVector, kStarts> starts{};
+  SplitMix64 rng(18);
+  for (auto& q : starts) {
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j)
+      q[j] = robot::kPaperStartJoints[j] + rng.uniform(-0.3, 0.3);
+  }
+  double coupled_s = 0.0;
+  std::size_t k = 0;
+  for (auto _ : state)
+    coupled_s += run_condition(coupled, starts[k++ & (kStarts - 1)], tick_s, ticks);
+  state.counters["coupled_us"] = 1e6 * coupled_s / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_CoupledStepCost)
+    ->ArgNames({"tick_ms", "substep_ms", "step_mrad"})
+    ->Args({50, 1, 0})
+    ->Args({50, 10, 0})
+    ->Args({50, 25, 0})
+    ->Args({50, 50, 0})
+    ->Args({50, 50, 10})
+    ->Args({50, 50, 15})
+    ->Args({50, 50, 20})
+    ->Args({50, 50, 30})
+    ->Args({10, 1, 0})
+    ->Args({10, 10, 0})
+    ->Args({10, 50, 15})
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_ConditionCost)->ArgName("tick_ms")->Arg(50)->Arg(10)->Unit(benchmark::kMillisecond);
 
 }  // namespace
