@@ -176,7 +176,7 @@ class JointPlant::Impl {
       double h_max = config.coupled_substep_s;
       const double theta = config.coupled_step_rad;
       if (std::isfinite(theta)) {
-        for (int i = 0; i < 6; ++i) {
+        for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
           const double speed = std::fabs(v[i]);
           const double h_i =
               2.0 * theta /
