@@ -12,8 +12,9 @@
 // Coupled mode: M_eff(q) q̈ = sat(τ) − C(q, q̇) q̇ − g(q) − b q̇ + d, with
 // M_eff = S^½ M(q) S^½ + diag(J_motor), S = diag(s), M, C and g re-evaluated at every RK4 stage
 // (fixed-size recursive Newton-Euler and composite-rigid-body algorithms over the model's chain,
-// equal to KDL's ChainDynParam to ~1e-14), and gravity off by default (the paper's model has none).
-// With InertiaUpdate::Fixed, M_eff is the one of the fixed configuration and only C q̇ + g vary.
+// equal to KDL's ChainDynParam within 1e-12 relative), and gravity off by default (the paper's
+// model has none). With InertiaUpdate::Fixed, M_eff is the one of the fixed configuration and only
+// C q̇ + g vary.
 //
 // The torque and disturbance are held over the tick (zero-order hold), so the motion within a tick
 // is smooth. The state is integrated with classical RK4: decoupled at `substep_s`, the last substep
