@@ -3,11 +3,13 @@
 // the coupled-with-gravity plant side by side.
 #include <benchmark/benchmark.h>
 
+#include <time.h>
+
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -141,25 +143,34 @@ robot::JointVector pd_torque(const robot::JointPlant& plant, const robot::JointV
   return tau;
 }
 
+// CPU time of the calling thread, s: unlike wall time, it does not count the time other processes
+// on a shared machine take the core away.
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // One 5 s condition: reset, then 5 s / tick ticks of PD torque held over each tick. Returns the
-// wall time in seconds.
+// thread CPU time it took, s.
 double run_condition(robot::JointPlant& plant, const robot::JointVector& centre, double tick_s,
                      int ticks) {
-  const auto start = std::chrono::steady_clock::now();
+  const double start = thread_cpu_s();
   plant.reset(centre, robot::JointVector{});
   for (int k = 0; k < ticks; ++k) {
     const robot::PlantStatus s = plant.step(pd_torque(plant, centre, k * tick_s), tick_s);
     benchmark::DoNotOptimize(s);
   }
   benchmark::DoNotOptimize(plant.position());
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return thread_cpu_s() - start;
 }
 
 // Each iteration runs one 5 s condition through the default decoupled plant and then the same
 // condition through the coupled plant with gravity (default PlantConfig otherwise, so the coupled
-// RK4 step is PlantConfig::coupled_substep_s), interleaved so that both see the same machine state.
-// Counters: decoupled_us and coupled_us per condition and their ratio coupled / decoupled. The
-// conditions start from a table of configurations around the paper's start joints.
+// step is sized by coupled_substep_s and coupled_step_rad), interleaved so that both see the same
+// machine state. Counters: decoupled_us and coupled_us, thread CPU time per condition, and their
+// ratio coupled / decoupled. The conditions start from a table of configurations around the
+// paper's start joints.
 void BM_ConditionCost(benchmark::State& state) {
   const robot::RobotModel* m = model();
   if (m == nullptr) {
@@ -193,6 +204,53 @@ void BM_ConditionCost(benchmark::State& state) {
   state.counters["coupled_us"] = 1e6 * coupled_s / n;
   state.counters["ratio"] = coupled_s / decoupled_s;
 }
+// The coupled plant alone on the same conditions with other step settings: args tick_ms,
+// coupled_substep_s in ms, coupled_step_rad in mrad (0: +inf, i.e. fixed substeps). Counter
+// coupled_us: thread CPU time per condition. docs/performance.md pairs these with the accuracy
+// of each setting.
+void BM_CoupledStepCost(benchmark::State& state) {
+  const robot::RobotModel* m = model();
+  if (m == nullptr) {
+    state.SkipWithError("cannot load the URDF");
+    return;
+  }
+  const double tick_s = static_cast<double>(state.range(0)) * 1e-3;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  robot::PlantConfig config;
+  config.coupling = robot::PlantCoupling::Coupled;
+  config.gravity = true;
+  config.coupled_substep_s = static_cast<double>(state.range(1)) * 1e-3;
+  config.coupled_step_rad = state.range(2) == 0 ? std::numeric_limits<double>::infinity()
+                                                : static_cast<double>(state.range(2)) * 1e-3;
+  robot::JointPlant coupled(*m, config);
+  constexpr std::size_t kStarts = 64;  // a power of two
+  std::array<robot::JointVector, kStarts> starts{};
+  SplitMix64 rng(18);
+  for (auto& q : starts) {
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j)
+      q[j] = robot::kPaperStartJoints[j] + rng.uniform(-0.3, 0.3);
+  }
+  double coupled_s = 0.0;
+  std::size_t k = 0;
+  for (auto _ : state)
+    coupled_s += run_condition(coupled, starts[k++ & (kStarts - 1)], tick_s, ticks);
+  state.counters["coupled_us"] = 1e6 * coupled_s / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_CoupledStepCost)
+    ->ArgNames({"tick_ms", "substep_ms", "step_mrad"})
+    ->Args({50, 1, 0})
+    ->Args({50, 10, 0})
+    ->Args({50, 25, 0})
+    ->Args({50, 50, 0})
+    ->Args({50, 50, 10})
+    ->Args({50, 50, 15})
+    ->Args({50, 50, 20})
+    ->Args({50, 50, 30})
+    ->Args({10, 1, 0})
+    ->Args({10, 10, 0})
+    ->Args({10, 50, 15})
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_ConditionCost)->ArgName("tick_ms")->Arg(50)->Arg(10)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "fuzzypid/robot/plant.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Cholesky>
 
@@ -61,6 +62,7 @@ class JointPlant::Impl {
     q = q0;
     qd = qd0;
     qdd = JointVector{};
+    qdd_pending = false;
     applied = JointVector{};
     saturated = {};
     time = 0.0;
@@ -166,13 +168,22 @@ class JointPlant::Impl {
       if (!coupled_acceleration(x, v, drive, k1_first, &diagonal))
         return PlantStatus::NumericalError;
       j_tick = to_array(diagonal);
-      // Equal substeps no longer than coupled_substep_s, nor than the time the fastest joint takes
-      // to move coupled_step_rad at the tick's initial rate max(|q̇|, √|q̈|) (rad/s): the RK4 error
-      // grows with (rate · step)⁴, so slow motion takes long steps and fast motion short ones.
-      // At most kMaxCoupledSubsteps, so that a wild state cannot stall the tick.
-      const double rate =
-          std::fmax(v.cwiseAbs().maxCoeff(), std::sqrt(k1_first.cwiseAbs().maxCoeff()));
-      const double h_max = std::fmin(config.coupled_substep_s, config.coupled_step_rad / rate);
+      // Equal substeps no longer than coupled_substep_s, nor than the time in which a joint moving
+      // with the tick's initial q̇ and q̈ covers coupled_step_rad (|q̇| h + ½ |q̈| h² = θ, in its
+      // cancellation-free form h = 2θ / (|q̇| + √(q̇² + 2 |q̈| θ))): RK4's error grows with how far
+      // the state moves through M(q), C and g within a step, so slow motion takes long steps and
+      // fast motion short ones. At most kMaxCoupledSubsteps, so a wild state cannot stall the tick.
+      double h_max = config.coupled_substep_s;
+      const double theta = config.coupled_step_rad;
+      if (std::isfinite(theta)) {
+        for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+          const double speed = std::fabs(v[i]);
+          const double h_i =
+              2.0 * theta /
+              (speed + std::sqrt(speed * speed + 2.0 * std::fabs(k1_first[i]) * theta));
+          h_max = std::fmin(h_max, h_i);
+        }
+      }
       const double coupled_steps =
           std::fmin(kMaxCoupledSubsteps, std::fmax(1.0, std::ceil(dt / h_max - 1e-9)));
       const double h = dt / coupled_steps;
@@ -195,18 +206,32 @@ class JointPlant::Impl {
         x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
         v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
       }
-      if (!coupled_acceleration(x, v, drive, a_end)) return PlantStatus::NumericalError;
     }
     if (!x.allFinite() || !v.allFinite() || !a_end.allFinite()) return PlantStatus::NumericalError;
 
     q = to_array(x);
     qd = to_array(v);
     qdd = to_array(a_end);
+    // The coupled q̈ at the end of the tick costs a full dynamics evaluation (a fifth of a 10 ms
+    // tick's): acceleration() computes it when asked.
+    qdd_pending = config.coupling == PlantCoupling::Coupled;
+    qdd_drive = drive;
     inertia = j_tick;
     applied = clamped;
     saturated = sat;
     time += dt;
     return any ? PlantStatus::Saturated : PlantStatus::Ok;
+  }
+
+  const JointVector& acceleration() const noexcept {
+    if (qdd_pending) {
+      Vec6 a;
+      qdd = coupled_acceleration(to_vec(q), to_vec(qd), qdd_drive, a)
+                ? to_array(a)
+                : to_array(Vec6::Constant(std::numeric_limits<double>::quiet_NaN()));
+      qdd_pending = false;
+    }
+    return qdd;
   }
 
   RobotModel model;
@@ -217,7 +242,10 @@ class JointPlant::Impl {
   Mat6 fixed_mass = Mat6::Identity();
   JointVector q{};
   JointVector qd{};
-  JointVector qdd{};
+  // acceleration(): cached; in coupled mode evaluated from (q, qd, qdd_drive) on first request.
+  mutable JointVector qdd{};
+  mutable bool qdd_pending = false;
+  Vec6 qdd_drive = Vec6::Zero();
   JointVector inertia{};
   JointVector applied{};
   std::array<bool, kNumJoints> saturated{};
@@ -252,7 +280,7 @@ const JointVector& JointPlant::velocity() const noexcept {
   return impl_->qd;
 }
 const JointVector& JointPlant::acceleration() const noexcept {
-  return impl_->qdd;
+  return impl_->acceleration();
 }
 const JointVector& JointPlant::inertia() const noexcept {
   return impl_->inertia;

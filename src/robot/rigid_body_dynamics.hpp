@@ -72,4 +72,9 @@ class RigidBodyDynamics {
 // The dynamics extracted from the model's chain when it was loaded (or copied, or given a payload).
 [[nodiscard]] const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept;
 
+// KDL's ChainDynParam::JntToGravity on the model's chain: the independent reference the tests
+// check RobotModel::gravity_torque (this RNEA) against. Not thread-safe (the model's KDL scratch).
+[[nodiscard]] JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q,
+                                             double gravity_m_s2) noexcept;
+
 }  // namespace fuzzypid::robot::detail

