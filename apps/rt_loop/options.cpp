@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "output_files.hpp"
 
 namespace fuzzypid::rt_loop {
 
@@ -70,6 +71,17 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
                  "%s: --period-ms %g is outside the controller periods %g-%g ms; give --dt\n",
                  kTool, o.period_ms, kMinDtS * 1000.0, kMaxDtS * 1000.0);
     return cli::kExitUsage;
+  }
+  // The CSV's path is checked now, before any work (apps/common/output_files.hpp): --csv '' is
+  // refused like any other path that cannot be written, and so is the controller file itself.
+  if (app.count("--csv") > 0) {
+    const bool controller_file = o.controller != "pid" && o.controller != "fuzzy";
+    const std::string bad =
+        cli::check_output_path(o.csv, {controller_file ? o.controller : std::string()});
+    if (!bad.empty()) {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
   }
   if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks) {
     std::fprintf(stderr, "%s: --csv buffers every tick in memory: at most %llu ticks\n", kTool,

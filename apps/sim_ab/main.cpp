@@ -237,6 +237,19 @@ int main(int argc, char** argv) {
     case sim_ab::ParseResult::Run:
       break;
   }
+  // The output folder is checked before any work (apps/common/output_files.hpp): a refused --out
+  // is a usage error, like a bad option.
+  {
+    std::vector<std::string> inputs = o.controllers;
+    inputs.push_back(o.conditions_file);
+    inputs.push_back(o.urdf);
+    const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
+                                            "conditions.csv", "settings.txt", "sweep.csv"};
+    if (const std::string bad = cli::check_output_dir(o.out_dir, names, inputs); !bad.empty()) {
+      std::fprintf(stderr, "sim_ab: --out: %s\n", bad.c_str());
+      return 2;
+    }
+  }
 
   // Controllers: the files, or the paper's two.
   std::vector<NamedController> controllers;
