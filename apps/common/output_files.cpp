@@ -10,10 +10,10 @@
 #include <unistd.h>
 
 #include <array>
-#include <cstdlib>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -366,18 +366,17 @@ std::string in_quotes(const std::string& path) {
 // grants write permission to no one is treated as read-only even for root.
 std::string check_folder(const std::string& dir, const std::string& what) {
   struct stat st {};
-  if (::stat(dir.c_str(), &st) != 0) return what + ": the folder " + in_quotes(dir) + ": " + errno_text(errno);
+  if (::stat(dir.c_str(), &st) != 0)
+    return what + ": the folder " + in_quotes(dir) + ": " + errno_text(errno);
   if (!S_ISDIR(st.st_mode)) return what + ": " + in_quotes(dir) + " is not a folder";
   if (::faccessat(AT_FDCWD, dir.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
     return what + ": cannot write into the folder " + in_quotes(dir) + ": " + errno_text(errno);
   if ((st.st_mode & 0222) == 0)
-    return what + ": the folder " + in_quotes(dir) + " is read-only (mode " +
-           [&] {
-             char b[8];
-             std::snprintf(b, sizeof b, "%04o", static_cast<unsigned>(st.st_mode & 07777));
-             return std::string(b);
-           }() +
-           ")";
+    return what + ": the folder " + in_quotes(dir) + " is read-only (mode " + [&] {
+      char b[8];
+      std::snprintf(b, sizeof b, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+      return std::string(b);
+    }() + ")";
   return {};
 }
 
@@ -402,8 +401,8 @@ std::string resolve_output(const std::string& path, std::string& target, bool& e
   if (S_ISLNK(lst.st_mode)) {
     char* resolved = ::realpath(path.c_str(), nullptr);
     if (resolved == nullptr)
-      return in_quotes(path) + " is a symbolic link to a missing file or folder: " +
-             errno_text(errno);
+      return in_quotes(path) +
+             " is a symbolic link to a missing file or folder: " + errno_text(errno);
     target = resolved;
     std::free(resolved);
     if (::stat(target.c_str(), &lst) != 0) return in_quotes(path) + ": " + errno_text(errno);

@@ -14,7 +14,6 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "output_files.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/controller_file/export_header.hpp"
 #include "fuzzypid/robot/path.hpp"
@@ -22,6 +21,7 @@
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/tune.hpp"
+#include "output_files.hpp"
 
 namespace fuzzypid::cli {
 

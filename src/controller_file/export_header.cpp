@@ -65,14 +65,14 @@ namespace {
 constexpr std::array<std::string_view, 109> kRefusedNames = {
     "alignas", "alignof", "asm", "auto", "bool", "break", "case", "catch", "char", "char8_t",
     "char16_t", "char32_t", "class", "concept", "const", "consteval", "constexpr", "constinit",
-    "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default",
-    "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern",
-    "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable",
-    "namespace", "new", "noexcept", "nullptr", "operator", "private", "protected", "public",
-    "register", "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
-    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
-    "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using",
-    "virtual", "void", "volatile", "wchar_t", "while",
+    "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+    "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false",
+    "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new",
+    "noexcept", "nullptr", "operator", "private", "protected", "public", "register",
+    "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
+    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local", "throw",
+    "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual", "void",
+    "volatile", "wchar_t", "while",
     // alternative tokens
     "and", "and_eq", "bitand", "bitor", "compl", "not", "not_eq", "or", "or_eq", "xor", "xor_eq",
     // special identifiers, reserved or used by the generated code
@@ -89,7 +89,8 @@ std::string check_part(std::string_view part, bool global) {
   if (part.empty()) return "an empty name";
   if (part[0] >= '0' && part[0] <= '9') return "'" + name + "' starts with a digit";
   for (char c : part)
-    if (!is_identifier_char(c)) return "'" + name + "' is not a C++ identifier (letters, digits, _)";
+    if (!is_identifier_char(c))
+      return "'" + name + "' is not a C++ identifier (letters, digits, _)";
   if (part.find("__") != std::string_view::npos)
     return "'" + name + "' contains '__' (reserved to the implementation)";
   if (part[0] == '_' && part.size() > 1 && part[1] >= 'A' && part[1] <= 'Z')
