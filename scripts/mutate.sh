@@ -21,9 +21,10 @@ build="${BUILD_DIR:-build}"
 mutants=(
   "triangle_open_right|include/fuzzypid/fuzzy/membership.hpp|s/return c == detail::infinity<Scalar>() ? h \* Scalar(1)/return c == detail::infinity<Scalar>() ? h * Scalar(0)/|bin:test_membership"
   "d_on_measurement_uses_setpoint_rate|include/fuzzypid/pid/pid.hpp|s/d_raw = in.setpoint_rate \* Scalar(0) - in.measurement_rate;/d_raw = in.setpoint_rate - in.measurement_rate;/|bin:test_pid"
-  "reader_drops_derivative_on|src/controller_file/controller_file.cpp|/s.pid.derivative_on = p->choice(\"derivative_on\"/d|bin:test_controller_file"
+  "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
+  "pid_config_drops_derivative_on|src/controller_file/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
   "incremental_gain_update_ignored|src/controller_file/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
-  "tuner_swaps_output_scales|src/tune/tune.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(6), p(5), p(7)};/|bin:test_tune"
+  "tuner_swaps_output_scales|src/tune/tune.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune"
   "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
   # Our own: the core.
   "triangle_left_edge_slope|include/fuzzypid/fuzzy/membership.hpp|s/h \* (x - a) \/ (b - a);/h * (x - a) \/ (c - a);/|bin:test_membership"

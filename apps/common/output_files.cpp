@@ -427,6 +427,14 @@ std::string check_output_path(const std::string& path, const std::vector<std::st
   struct stat st {};
   if (std::string bad = resolve_output(path, target, exists, st); !bad.empty()) return bad;
   if (!exists) return {};  // a file that does not exist yet is no input
+  // Replacing the file that standard output or error goes to (`--csv log > log`, a link to
+  // /dev/stdout) would send the tool's own messages into a deleted file.
+  for (const int fd : {STDOUT_FILENO, STDERR_FILENO}) {
+    struct stat stream {};
+    if (::fstat(fd, &stream) == 0 && stream.st_dev == st.st_dev && stream.st_ino == st.st_ino)
+      return in_quotes(path) + " is the file the tool's standard " +
+             (fd == STDOUT_FILENO ? "output" : "error") + " goes to";
+  }
   for (const std::string& input : inputs) {
     struct stat in {};
     if (input.empty() || ::stat(input.c_str(), &in) != 0) continue;

@@ -31,7 +31,8 @@
 //     (never replaced, never written through); a symbolic link is followed, and the file it names
 //     is replaced, so the link stays a link;
 //   - the target is not the same file (device and inode) as any input of the run, whatever its
-//     spelling (symbolic links, `./`, hard links); a target that does not exist is no input.
+//     spelling (symbolic links, `./`, hard links), nor the file standard output or error goes
+//     to; a target that does not exist is no input.
 // A refused path is a usage error: the tools exit 2 with the message before doing anything.
 #pragma once
 

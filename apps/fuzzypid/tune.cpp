@@ -56,7 +56,9 @@ struct TuneOptions {
 
 int run_tune(const TuneOptions& t) {
   // The output is checked before anything else: a refused --out never costs the budget.
-  if (const std::string bad = check_output_path(t.out, {t.conditions, t.base_file}); !bad.empty()) {
+  if (const std::string bad =
+          check_output_path(t.out, {t.conditions, t.base_file, robot::default_urdf_path()});
+      !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
     return kExitUsage;
   }

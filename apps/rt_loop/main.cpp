@@ -273,6 +273,14 @@ int run(int argc, char** argv) {
   install_stop_handlers();
 
   // --- Model, path, closed loop and outputs (allocating; all before the loop).
+  // The options checked --csv against the controller file; the robot model is an input too.
+  if (!o.csv.empty()) {
+    if (const std::string bad = cli::check_output_path(o.csv, {robot::default_urdf_path()});
+        !bad.empty()) {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
+  }
   robot::LoadResult loaded = robot::RobotModel::load(robot::default_urdf_path());
   if (!loaded.model) {
     std::fprintf(stderr, "%s: cannot load the robot model: %s\n", kTool, loaded.error.c_str());

@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
   {
     std::vector<std::string> inputs = o.controllers;
     inputs.push_back(o.conditions_file);
-    inputs.push_back(o.urdf);
+    inputs.push_back(o.urdf.empty() ? robot::default_urdf_path() : o.urdf);
     const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
                                             "conditions.csv", "settings.txt", "sweep.csv"};
     if (const std::string bad = cli::check_output_dir(o.out_dir, names, inputs); !bad.empty()) {

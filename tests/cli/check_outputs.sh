@@ -80,6 +80,17 @@ cmp -s cond.toml cond.orig || fail "an input condition file was changed"
 [ -z "$(ls -A ro)$(ls -A folder)" ] || fail "something was written: $(ls -A ro) $(ls -A folder)"
 ls -A | grep -q '\.tmp' && fail "temporary left: $(ls -A)"
 
+# The file standard output goes to is no output either (directly or through /dev/stdout).
+ln -s /dev/stdout to_stdout.csv
+for csv in log.txt to_stdout.csv; do
+  : >log.txt
+  "$rt_loop" --period-ms 0 --ticks 3 --csv "$csv" >log.txt 2>err
+  code=$?
+  [ "$code" -eq 2 ] || fail "--csv $csv > log.txt: exit $code: $(cat err)"
+  grep -q "standard output" err || fail "--csv $csv > log.txt: $(cat err)"
+done
+rm -f log.txt to_stdout.csv
+
 # Accepted: a symbolic link to a regular file is followed (the link stays a link).
 echo old >real.hpp
 ln -s real.hpp out_link.hpp
