@@ -80,6 +80,14 @@ cmp -s cond.toml cond.orig || fail "an input condition file was changed"
 [ -z "$(ls -A ro)$(ls -A folder)" ] || fail "something was written: $(ls -A ro) $(ls -A folder)"
 ls -A | grep -q '\.tmp' && fail "temporary left: $(ls -A)"
 
+# A base with a rule file and an --out without a folder: the rule file is named relative to the
+# current folder (this used to fail after the whole budget with a filesystem error).
+"$fuzzypid" tune --family fuzzy --base "$src/tests/sim/data/engine_fuzzy.toml" --conditions cond.toml \
+  --budget 40 --population 20 --threads 1 --quiet --out name.toml >out 2>err ||
+  fail "tune --base with a rule file --out name.toml: $(cat err)"
+grep -q '^rule_file = ".*rulebases/paper.fll"' name.toml || fail "rule file: $(grep rule_file name.toml)"
+rm -f name.toml
+
 # The file standard output goes to is no output either (directly or through /dev/stdout).
 ln -s /dev/stdout to_stdout.csv
 for csv in log.txt to_stdout.csv; do
