@@ -28,7 +28,7 @@ std::string errno_text(int err) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Clean-up on SIGINT/SIGTERM of the one set being written. The handler only uses
+// Clean-up on SIGINT/SIGTERM/SIGHUP of the one set being written. The handler only uses
 // async-signal-safe calls (unlink, rmdir, signal, raise) on paths prepared before.
 
 constexpr std::size_t kMaxSignalFiles = 16;
@@ -39,6 +39,7 @@ char g_signal_lock[PATH_MAX];
 volatile std::sig_atomic_t g_signal_armed = 0;
 struct sigaction g_old_int {};
 struct sigaction g_old_term {};
+struct sigaction g_old_hup {};
 
 extern "C" void remove_on_signal(int sig) {
   if (g_signal_armed != 0) {
@@ -71,6 +72,7 @@ void arm_signal_cleanup(const std::string& dir, const std::vector<std::string>& 
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, &g_old_int);
   sigaction(SIGTERM, &sa, &g_old_term);
+  sigaction(SIGHUP, &sa, &g_old_hup);
   g_signal_armed = 1;
 }
 
@@ -79,6 +81,7 @@ void disarm_signal_cleanup() {
   g_signal_armed = 0;
   sigaction(SIGINT, &g_old_int, nullptr);
   sigaction(SIGTERM, &g_old_term, nullptr);
+  sigaction(SIGHUP, &g_old_hup, nullptr);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,9 +7,10 @@
 // sees either the previous complete set or the new one. While a set is open:
 //   - the target is locked (flock on `.<name>.lock` beside it): a second writer of the same
 //     directory is refused instead of interleaving with the first;
-//   - SIGINT and SIGTERM remove the temporary directory and the lock file before the process
-//     dies with the signal, so an interrupted run leaves nothing behind; temporaries of a run
-//     killed outright (SIGKILL, power loss) are removed by the next run into the same directory.
+//   - SIGINT, SIGTERM and SIGHUP remove the temporary directory and the lock file before the
+//     process dies with the signal, so an interrupted run leaves nothing behind; temporaries of a
+//     run killed outright (SIGKILL, power loss) are removed by the next run into the same
+//     directory.
 // Regular files in the target that are not part of the set (plots made from an earlier run, say)
 // are carried over into the new directory. A target holding subdirectories or other special
 // files, the current directory or one of its ancestors is refused: it cannot be replaced whole

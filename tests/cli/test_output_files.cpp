@@ -144,22 +144,24 @@ TEST_F(OutputFilesTest, TemporariesOfAKilledRunAreRemovedByTheNextRun) {
 }
 
 TEST_F(OutputFilesTest, AnInterruptedRunLeavesNothingBehind) {
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    std::string error;
-    auto set = OutputSet::open((root_ / "out").string(), names_, error);
-    if (!set) ::_exit(3);
-    std::fputs("partial", set->file(0));
-    std::fflush(set->file(0));
-    std::raise(SIGINT);
-    ::_exit(4);  // not reached: SIGINT ends the process after the clean-up
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      std::string error;
+      auto set = OutputSet::open((root_ / "out").string(), names_, error);
+      if (!set) ::_exit(3);
+      std::fputs("partial", set->file(0));
+      std::fflush(set->file(0));
+      std::raise(sig);
+      ::_exit(4);  // not reached: the signal ends the process after the clean-up
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_TRUE(entries(root_).empty()) << "signal " << sig;
   }
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
-  EXPECT_EQ(WTERMSIG(status), SIGINT);
-  EXPECT_TRUE(entries(root_).empty());
 }
 
 TEST_F(OutputFilesTest, OutputFileAppearsOnlyOnCommit) {
