@@ -17,10 +17,11 @@ namespace fuzzypid::rt_loop {
 std::optional<int> parse(int argc, const char* const* argv, Options& o) {
   CLI::App app(
       "The 6-joint controller against the simulated ER50-C20 in a fixed-period loop, with its "
-      "timing measured (docs/performance.md). Ctrl-C stops at the next tick and prints the "
-      "summary.\nExit codes: 0 success, 1 a run-time failure (controller or plant fault, "
-      "allocation in the loop, too many overruns, a refused setting under --require-rt, a write "
-      "error), 2 bad usage.",
+      "timing measured (docs/performance.md). Ctrl-C (SIGINT), SIGTERM or SIGHUP stops at the "
+      "next tick, prints the summary and writes the CSV.\nExit codes: 0 success, 1 a run-time "
+      "failure (controller or plant fault, allocation in the loop, too many overruns, a refused "
+      "setting under --require-rt, a write error), 2 bad usage (including a --csv that cannot be "
+      "written: docs/robustness.md, Outputs).",
       kTool);
   app.add_option("--period-ms", o.period_ms, "tick period, ms (default 50; 0 = free-running)")
       ->check(cli::finite_in(0.0, kMaxPeriodMs))
