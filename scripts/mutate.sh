@@ -37,7 +37,7 @@ mutants=(
   # Our own: issue 20's output writer, export-header and rt_loop.
   "writer_accepts_special_files|apps/common/output_files.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
   "writer_ignores_inputs|apps/common/output_files.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
-  "writer_skips_fsync_check|apps/common/output_files.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
+  "writer_ignores_flush_errors|apps/common/output_files.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
   "namespace_allows_std|src/controller_file/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "float_range_unchecked|src/controller_file/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "rt_loop_ignores_sigterm|apps/rt_loop/main.cpp|s/for (int sig : {SIGINT, SIGTERM, SIGHUP})/for (int sig : {SIGINT})/|build:rt_loop ctest:^rt_loop\.exit_codes"
