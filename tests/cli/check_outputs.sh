@@ -3,7 +3,7 @@
 # "Outputs"): a path that cannot be written -- '' , a missing or read-only folder, a folder, a
 # device, a FIFO, or one of the run's own inputs under any spelling -- is a usage error (exit 2)
 # reported before any work, and the node or input is left exactly as it was; a write that fails
-# (here the file-size limit, as a full disk would) exits 1 and keeps the previous file.
+# (the file-size limit; as root also a full tmpfs) exits 1 and keeps the previous file.
 # Device nodes and FIFOs are private ones made in a temporary folder, never the system's.
 # Usage: check_outputs.sh <fuzzypid> <rt_loop> <sim_ab> <source dir>
 set -u
@@ -114,4 +114,26 @@ code=$?
 grep -q 'File too large' err || fail "no reason given: $(cat err)"
 [ "$(cat prev.hpp)" = previous ] || fail "the previous header was destroyed"
 ls -A | grep -q '\.tmp' && fail "temporary left after a failed write: $(ls -A)"
+# A full disk, where a private mount namespace and a 64 KiB tmpfs are available (root): ENOSPC
+# keeps the previous header and controller file. The mount vanishes with the namespace, whatever
+# happens to this script.
+mkdir full_disk
+if unshare --mount sh -c "mount -t tmpfs -o size=64k tmpfs '$work/full_disk'" 2>/dev/null; then
+  unshare --mount sh -c '
+    set -u
+    cd "$1" && mount -t tmpfs -o size=64k tmpfs full_disk && cd full_disk || exit 3
+    echo previous >h.hpp
+    dd if=/dev/zero of=fill bs=4k count=15 2>/dev/null
+    "$2" export-header "$3/controllers/paper_fuzzy.toml" --out h.hpp 2>"$1/err"
+    [ $? -eq 1 ] && grep -q "No space left on device" "$1/err" || { cat "$1/err"; exit 4; }
+    "$2" tune --family pid --conditions "$3/tuning/robust.toml" --budget 40 --population 20 \
+      --threads 1 --quiet --out h.hpp 2>"$1/err"
+    [ $? -eq 1 ] && grep -q "No space left on device" "$1/err" || { cat "$1/err"; exit 5; }
+    [ "$(cat h.hpp)" = previous ] || exit 6
+    [ "$(ls -A)" = "fill
+h.hpp" ] || { ls -A; exit 7; }
+  ' sh "$work" "$fuzzypid" "$src" || fail "full disk: case $?"
+else
+  echo "note: no private tmpfs (needs root): the full-disk case is not checked"
+fi
 echo ok
