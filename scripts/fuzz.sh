@@ -5,7 +5,7 @@
 #   csv            the command-line tools' CSV reader
 #   urdf           the URDF loader (robot::RobotModel::load)
 #   sim_ab_args    sim_ab's command-line parser
-#   rt_loop_args   rt_loop's command-line parser
+#   rt_loop_args   rt_loop's command-line parser and its --csv output path checks
 #   controller_file  the controller-file loader (TOML)
 #   FUZZ_SECONDS   time per target (default 30)
 #   FUZZ_TARGETS   space-separated subset of the names above (default: all)

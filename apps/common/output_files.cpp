@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -27,7 +28,7 @@ std::string errno_text(int err) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Clean-up on SIGINT/SIGTERM of the one set being written. The handler only uses
+// Clean-up on SIGINT/SIGTERM/SIGHUP of the one set being written. The handler only uses
 // async-signal-safe calls (unlink, rmdir, signal, raise) on paths prepared before.
 
 constexpr std::size_t kMaxSignalFiles = 16;
@@ -38,6 +39,7 @@ char g_signal_lock[PATH_MAX];
 volatile std::sig_atomic_t g_signal_armed = 0;
 struct sigaction g_old_int {};
 struct sigaction g_old_term {};
+struct sigaction g_old_hup {};
 
 extern "C" void remove_on_signal(int sig) {
   if (g_signal_armed != 0) {
@@ -70,6 +72,7 @@ void arm_signal_cleanup(const std::string& dir, const std::vector<std::string>& 
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, &g_old_int);
   sigaction(SIGTERM, &sa, &g_old_term);
+  sigaction(SIGHUP, &sa, &g_old_hup);
   g_signal_armed = 1;
 }
 
@@ -78,6 +81,7 @@ void disarm_signal_cleanup() {
   g_signal_armed = 0;
   sigaction(SIGINT, &g_old_int, nullptr);
   sigaction(SIGTERM, &g_old_term, nullptr);
+  sigaction(SIGHUP, &g_old_hup, nullptr);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -344,32 +348,210 @@ bool OutputSet::commit(std::string& error) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Output paths (output_files.hpp, "The contract of an output path").
 
-std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::string& error) {
-  std::unique_ptr<OutputFile> out(new OutputFile());
-  const fs::path target(path);
-  if (path.empty() || !target.has_filename()) {
-    error = "'" + path + "' is not a file name";
-    return nullptr;
+namespace {
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+std::string in_quotes(const std::string& path) {
+  return "'" + path + "'";
+}
+
+// The folder `dir` must exist, be a folder and be writable by this process; a folder whose mode
+// grants write permission to no one is treated as read-only even for root.
+std::string check_folder(const std::string& dir, const std::string& what) {
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0)
+    return what + ": the folder " + in_quotes(dir) + ": " + errno_text(errno);
+  if (!S_ISDIR(st.st_mode)) return what + ": " + in_quotes(dir) + " is not a folder";
+  if (::faccessat(AT_FDCWD, dir.c_str(), W_OK | X_OK, AT_EACCESS) != 0)
+    return what + ": cannot write into the folder " + in_quotes(dir) + ": " + errno_text(errno);
+  if ((st.st_mode & 0222) == 0)
+    return what + ": the folder " + in_quotes(dir) + " is read-only (mode " + [&] {
+      char b[8];
+      std::snprintf(b, sizeof b, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+      return std::string(b);
+    }() + ")";
+  return {};
+}
+
+// Resolves `path` to the file an output replaces: itself, or what its symbolic link names. Sets
+// `exists` and, when it exists, `st` (of the final file). "" or the reason.
+std::string resolve_output(const std::string& path, std::string& target, bool& exists,
+                           struct stat& st) {
+  if (path.empty()) return "'' is not a file name";
+  const fs::path p(path);
+  const std::string name = p.filename().string();
+  if (name.empty() || name == "." || name == "..")
+    return in_quotes(path) + " is not a file name (it names a folder)";
+  target = path;
+  exists = false;
+  struct stat lst {};
+  if (::lstat(path.c_str(), &lst) != 0) {
+    const int err = errno;
+    if (err != ENOENT) return in_quotes(path) + ": " + errno_text(err);
+    const std::string dir = p.has_parent_path() ? p.parent_path().string() : ".";
+    return check_folder(dir, in_quotes(path));
   }
+  if (S_ISLNK(lst.st_mode)) {
+    char* resolved = ::realpath(path.c_str(), nullptr);
+    if (resolved == nullptr)
+      return in_quotes(path) +
+             " is a symbolic link to a missing file or folder: " + errno_text(errno);
+    target = resolved;
+    std::free(resolved);
+    if (::stat(target.c_str(), &lst) != 0) return in_quotes(path) + ": " + errno_text(errno);
+  }
+  exists = true;
+  st = lst;
+  const std::string via = target == path ? "" : " (through the link to " + in_quotes(target) + ")";
+  if (!S_ISREG(st.st_mode))
+    return in_quotes(path) + via + " is " + kind_of(st.st_mode) +
+           ": outputs are written only to regular files, never through or over anything else";
+  if ((st.st_mode & 0222) == 0)
+    return in_quotes(path) + via + " is read-only: make it writable or choose another name";
+  const fs::path t(target);
+  return check_folder(t.has_parent_path() ? t.parent_path().string() : ".", in_quotes(path));
+}
+
+}  // namespace
+
+std::string check_output_path(const std::string& path, const std::vector<std::string>& inputs) {
+  std::string target;
+  bool exists = false;
+  struct stat st {};
+  if (std::string bad = resolve_output(path, target, exists, st); !bad.empty()) return bad;
+  if (!exists) return {};  // a file that does not exist yet is no input
+  // Replacing the file that standard output or error goes to (`--csv log > log`, a link to
+  // /dev/stdout) would send the tool's own messages into a deleted file.
+  for (const int fd : {STDOUT_FILENO, STDERR_FILENO}) {
+    struct stat stream {};
+    if (::fstat(fd, &stream) == 0 && stream.st_dev == st.st_dev && stream.st_ino == st.st_ino)
+      return in_quotes(path) + " is the file the tool's standard " +
+             (fd == STDOUT_FILENO ? "output" : "error") + " goes to";
+  }
+  for (const std::string& input : inputs) {
+    struct stat in {};
+    if (input.empty() || ::stat(input.c_str(), &in) != 0) continue;
+    if (in.st_dev == st.st_dev && in.st_ino == st.st_ino)
+      return in_quotes(path) + " is the same file as the input " + in_quotes(input) +
+             ": writing it would destroy the input";
+  }
+  return {};
+}
+
+std::string check_output_dir(const std::string& dir, const std::vector<std::string>& names,
+                             const std::vector<std::string>& inputs) {
+  if (dir.empty()) return "'' is not a folder name";
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) == 0) {
+    if (!S_ISDIR(st.st_mode))
+      return in_quotes(dir) + " is " + kind_of(st.st_mode) + ", not an output folder";
+    for (const std::string& input : inputs) {
+      struct stat in {};
+      if (input.empty() || ::stat(input.c_str(), &in) != 0) continue;
+      for (const std::string& name : names) {
+        struct stat out {};
+        const std::string file = (fs::path(dir) / name).string();
+        if (::stat(file.c_str(), &out) == 0 && out.st_dev == in.st_dev && out.st_ino == in.st_ino)
+          return in_quotes(file) + " is the same file as the input " + in_quotes(input) +
+                 ": writing the folder would destroy the input";
+      }
+    }
+  } else if (errno != ENOENT) {
+    return in_quotes(dir) + ": " + errno_text(errno);
+  }
+  // The folder is replaced (or created) by a rename in its parent: the nearest existing ancestor
+  // must be a writable folder.
   std::error_code ec;
-  if (fs::is_directory(target, ec)) {
-    error = "cannot write " + path + ": it is a directory";
+  fs::path p = fs::absolute(fs::path(dir), ec).lexically_normal();
+  if (ec) return in_quotes(dir) + ": " + ec.message();
+  if (!p.has_filename()) p = p.parent_path();
+  for (fs::path a = p.parent_path();; a = a.parent_path()) {
+    struct stat ast {};
+    if (::stat(a.c_str(), &ast) == 0) return check_folder(a.string(), in_quotes(dir));
+    if (errno != ENOENT) return in_quotes(dir) + ": " + a.string() + ": " + errno_text(errno);
+    if (a == a.root_path() || a.empty()) return in_quotes(dir) + ": no existing parent folder";
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// Removes `.<name>.<tool>.<pid>.tmp` in `dir` whose process no longer exists.
+void remove_stale_temporaries(const std::string& dir, const std::string& name,
+                              const std::string& tool) {
+  const std::string prefix = "." + name + "." + tool + ".";
+  const std::string suffix = ".tmp";
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string entry = e->d_name;
+    if (entry.size() <= prefix.size() + suffix.size() || entry.rfind(prefix, 0) != 0 ||
+        entry.compare(entry.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    const std::string digits =
+        entry.substr(prefix.size(), entry.size() - prefix.size() - suffix.size());
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    const long pid = std::strtol(digits.c_str(), nullptr, 10);
+    if (pid <= 0) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+      ::unlinkat(::dirfd(d), entry.c_str(), 0);
+  }
+  ::closedir(d);
+}
+
+void sync_folder(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);  // best effort: the file itself is already on disk
+  ::close(fd);
+}
+
+std::string folder_of(const std::string& path) {
+  const fs::path p(path);
+  return p.has_parent_path() ? p.parent_path().string() : ".";
+}
+
+}  // namespace
+
+std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::string& error,
+                                             const std::string& tool) {
+  std::unique_ptr<OutputFile> out(new OutputFile());
+  bool exists = false;
+  struct stat st {};
+  if (std::string bad = resolve_output(path, out->target_, exists, st); !bad.empty()) {
+    error = bad;
     return nullptr;
   }
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string pattern = (dir / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
-  const int fd = ::mkstemp(pattern.data());
+  const std::string dir = folder_of(out->target_);
+  const std::string name = fs::path(out->target_).filename().string();
+  remove_stale_temporaries(dir, name, tool);
+  const std::string temp =
+      (fs::path(dir) / ("." + name + "." + tool + "." + std::to_string(::getpid()) + ".tmp"))
+          .string();
+  ::unlink(temp.c_str());  // ours by name: a leftover of an earlier open in this process
+  // The new file gets the mode of the file it replaces, else the usual 0666 & ~umask.
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
+                        exists ? (st.st_mode & 07777) : 0666);
   if (fd < 0) {
     error = "cannot write " + path + ": " + errno_text(errno);
     return nullptr;
   }
-  // mkstemp makes the file private (0600); give it fopen's default mode.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
+  if (exists) ::fchmod(fd, st.st_mode & 07777);  // not masked by the umask
   out->path_ = path;
-  out->temp_path_ = pattern;
+  out->temp_path_ = temp;
   out->file_ = ::fdopen(fd, "w");
   if (out->file_ == nullptr) {
     error = "cannot write " + path + ": " + errno_text(errno);
@@ -396,22 +578,54 @@ bool OutputFile::commit(std::string& error) {
     error = "the output file was already committed or discarded";
     return false;
   }
-  const bool written = std::fflush(file_) == 0 && std::ferror(file_) == 0;
-  const int err = errno;
-  const bool closed = std::fclose(file_) == 0;
+  errno = 0;
+  bool ok = std::fflush(file_) == 0 && std::ferror(file_) == 0;
+  int err = errno;
+  if (ok && ::fsync(fileno(file_)) != 0) {
+    ok = false;
+    err = errno;
+  }
+  if (std::fclose(file_) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
   file_ = nullptr;
-  if (!written || !closed) {
-    error = "cannot write " + path_ + ": " + errno_text(err);
+  if (!ok) {
+    error = "cannot write " + path_ + ": " + errno_text(err != 0 ? err : EIO) +
+            " (the previous file, if any, is unchanged)";
     discard();
     return false;
   }
-  if (::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+  // The target may have changed since open: still never replace anything but a regular file.
+  struct stat st {};
+  if (::lstat(target_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    error = "cannot write " + path_ + ": it is now " + kind_of(st.st_mode) + "; left unchanged";
+    discard();
+    return false;
+  }
+  if (::rename(temp_path_.c_str(), target_.c_str()) != 0) {
     error = "cannot write " + path_ + ": " + errno_text(errno);
     discard();
     return false;
   }
+  sync_folder(folder_of(target_));
   done_ = true;
   return true;
+}
+
+std::string write_output_file(const std::string& path, std::string_view text,
+                              const std::string& tool) {
+  std::string error;
+  const std::unique_ptr<OutputFile> out = OutputFile::open(path, error, tool);
+  if (!out) return error;
+  if (!text.empty() && std::fwrite(text.data(), 1, text.size(), out->file()) != text.size()) {
+    const int err = errno;
+    out->discard();
+    return "cannot write " + path + ": " + errno_text(err != 0 ? err : EIO) +
+           " (the previous file, if any, is unchanged)";
+  }
+  if (!out->commit(error)) return error;
+  return {};
 }
 
 }  // namespace fuzzypid::cli

@@ -7,26 +7,56 @@
 // sees either the previous complete set or the new one. While a set is open:
 //   - the target is locked (flock on `.<name>.lock` beside it): a second writer of the same
 //     directory is refused instead of interleaving with the first;
-//   - SIGINT and SIGTERM remove the temporary directory and the lock file before the process
-//     dies with the signal, so an interrupted run leaves nothing behind; temporaries of a run
-//     killed outright (SIGKILL, power loss) are removed by the next run into the same directory.
+//   - SIGINT, SIGTERM and SIGHUP remove the temporary directory and the lock file before the
+//     process dies with the signal, so an interrupted run leaves nothing behind; temporaries of a
+//     run killed outright (SIGKILL, power loss) are removed by the next run into the same
+//     directory.
 // Regular files in the target that are not part of the set (plots made from an earlier run, say)
 // are carried over into the new directory. A target holding subdirectories or other special
 // files, the current directory or one of its ancestors is refused: it cannot be replaced whole
 // without taking the user's other data with it.
 //
-// OutputFile is the same for one file: written under a unique temporary name in the target's
-// directory, renamed over the target on commit, removed otherwise. Opening it before a run checks
-// that the target's directory is writable before any work is done.
+// OutputFile is the same for one file, and every tool writes its output files through it
+// (write_output_file for a text made at once): the text goes to `.<name>.<tool>.<pid>.tmp` in the
+// target's folder, is flushed and fsync'ed, and is renamed over the target only when complete; on
+// any failure the temporary is removed, the previous file is left as it was and the error names
+// the reason (strerror). Temporaries of the same tool whose process is gone (a run killed outright)
+// are removed when the next run opens the same target.
+//
+// The contract of an output path (docs/robustness.md, "Outputs"), checked by check_output_path()
+// when the arguments are parsed, before any work, and again when the file is opened:
+//   - the name is not empty and names a file (not `dir/`, `.` or `..`);
+//   - its folder exists, is a folder, and is writable (a folder or file whose mode grants no write
+//     permission to anyone is refused even for root, who could otherwise write it);
+//   - the target is absent or a regular file: a folder, a device, a FIFO or a socket is refused
+//     (never replaced, never written through); a symbolic link is followed, and the file it names
+//     is replaced, so the link stays a link;
+//   - the target is not the same file (device and inode) as any input of the run, whatever its
+//     spelling (symbolic links, `./`, hard links), nor the file standard output or error goes
+//     to; a target that does not exist is no input.
+// A refused path is a usage error: the tools exit 2 with the message before doing anything.
 #pragma once
 
 #include <cstddef>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fuzzypid::cli {
+
+// "" when `path` may be written as an output file of a run reading `inputs` (paths; empty ones are
+// ignored), else the reason, starting with the path.
+[[nodiscard]] std::string check_output_path(const std::string& path,
+                                            const std::vector<std::string>& inputs);
+
+// The same for an output folder replaced as a whole (OutputSet): `dir` is not empty, is absent or a
+// folder (followed if a symbolic link), its nearest existing ancestor is a writable folder, and no
+// input is one of the files `names` inside it.
+[[nodiscard]] std::string check_output_dir(const std::string& dir,
+                                           const std::vector<std::string>& names,
+                                           const std::vector<std::string>& inputs);
 
 class OutputSet {
  public:
@@ -67,25 +97,35 @@ class OutputSet {
 
 class OutputFile {
  public:
-  // Creates a unique temporary file beside `path` (.<name>.tmp-XXXXXX). Null and `error` on
-  // failure (e.g. the directory does not exist or is not writable).
-  static std::unique_ptr<OutputFile> open(const std::string& path, std::string& error);
+  // Checks `path` (check_output_path without inputs), removes the stale temporaries of `tool` for
+  // it, and creates the temporary file `.<name>.<tool>.<pid>.tmp` in the target's folder. Null
+  // and `error` on failure.
+  static std::unique_ptr<OutputFile> open(const std::string& path, std::string& error,
+                                          const std::string& tool = "fuzzypid");
 
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
   ~OutputFile();  // discards unless committed
 
   [[nodiscard]] std::FILE* file() const { return file_; }
-  // Closes the file, checking every write, and renames it to the target path.
+  // The temporary file's path (until commit).
+  [[nodiscard]] const std::string& temporary_path() const { return temp_path_; }
+  // Flushes, fsyncs and closes the file, checking every write, checks that the target is still
+  // absent or a regular file, and renames the temporary over it (then fsyncs the folder).
   [[nodiscard]] bool commit(std::string& error);
   void discard() noexcept;
 
  private:
   OutputFile() = default;
-  std::string path_;
+  std::string path_;    // as given, for messages
+  std::string target_;  // the file replaced: `path_` with a symbolic link resolved
   std::string temp_path_;
   std::FILE* file_ = nullptr;
   bool done_ = false;
 };
+
+// Writes `text` to `path` through an OutputFile. "" on success, else the reason.
+[[nodiscard]] std::string write_output_file(const std::string& path, std::string_view text,
+                                            const std::string& tool);
 
 }  // namespace fuzzypid::cli

@@ -1,6 +1,5 @@
 // `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
 // `fuzzypid export-header`: a controller file as a self-contained C++ header.
-#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +21,7 @@
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/tune.hpp"
+#include "output_files.hpp"
 #include "robot_options.hpp"
 
 namespace fuzzypid::cli {
@@ -60,6 +60,13 @@ struct TuneOptions {
 };
 
 int run_tune(const TuneOptions& t) {
+  // The output is checked before anything else: a refused --out never costs the budget.
+  if (const std::string bad =
+          check_output_path(t.out, {t.conditions, t.base_file, robot::default_urdf_path()});
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+    return kExitUsage;
+  }
   const cf::Family family = *cf::parse_enum(cf::kFamilyNames, t.family_name);
   tune::Options opt;
   opt.family = family;
@@ -77,6 +84,16 @@ int run_tune(const TuneOptions& t) {
       return 1;
     }
     opt.base.tuning.reset();
+    // The base's rule file is an input too (read relative to the base's folder).
+    if (!opt.base.supervisor.rule_file.empty()) {
+      const std::string rules =
+          (std::filesystem::path(t.base_file).parent_path() / opt.base.supervisor.rule_file)
+              .string();
+      if (const std::string bad = check_output_path(t.out, {rules}); !bad.empty()) {
+        std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+        return kExitUsage;
+      }
+    }
   }
   opt.box = tune::default_box(family);
   for (const std::string& text : t.boxes) {
@@ -112,6 +129,14 @@ int run_tune(const TuneOptions& t) {
                  t.set.c_str(), file.set_names().c_str());
     return 1;
   }
+  // The robots and paths the conditions name are inputs too: --out must not replace them.
+  for (const sim::Condition& c : training->conditions)
+    for (const std::string& input : {c.robot.urdf, c.robot.path})
+      if (!input.empty())
+        if (const std::string bad = check_output_path(t.out, {input}); !bad.empty()) {
+          std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+          return kExitUsage;
+        }
   // Each training condition on its own robot and path (keys urdf, path, tick_ms, ...).
   sim::ExperimentOptions eo;
   eo.tick_s = opt.base.units.tick_s;
@@ -152,9 +177,10 @@ int run_tune(const TuneOptions& t) {
     // The base's rule file, named relative to the folder of the file written.
     namespace fs = std::filesystem;
     std::error_code ec;
-    const fs::path target =
-        fs::absolute(fs::path(t.base_file).parent_path() / result->controller.supervisor.rule_file);
-    const fs::path relative = fs::relative(target, fs::absolute(fs::path(t.out).parent_path()), ec);
+    const fs::path target = fs::absolute(fs::path(t.base_file), ec).parent_path() /
+                            result->controller.supervisor.rule_file;
+    const fs::path relative =
+        fs::relative(target, fs::absolute(fs::path(t.out), ec).parent_path(), ec);
     result->controller.supervisor.rule_file =
         ec || relative.empty() ? target.generic_string() : relative.generic_string();
   }
@@ -172,7 +198,8 @@ int run_tune(const TuneOptions& t) {
   result->controller.tuning->set = t.set;
   result->controller.description =
       "tuned " + std::string(cf::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
-  if (const std::string bad = cf::save(t.out, result->controller); !bad.empty()) {
+  if (const std::string bad = write_output_file(t.out, cf::to_toml(result->controller), "tune");
+      !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
     return 1;
   }
@@ -190,12 +217,19 @@ int run_tune(const TuneOptions& t) {
 
 struct ExportOptions {
   std::string in, out, ns = "fuzzypid_controller";
+  bool out_given = false;  // --out '' is refused, not stdout
 };
 
 int run_export_header(const ExportOptions& o) {
   const std::string& in = o.in;
   const std::string& out = o.out;
   const std::string& ns = o.ns;
+  if (o.out_given) {
+    if (const std::string bad = check_output_path(out, {in}); !bad.empty()) {
+      std::fprintf(stderr, "fuzzypid export-header: --out: %s\n", bad.c_str());
+      return kExitUsage;
+    }
+  }
   cf::ControllerSpec spec;
   cf::Error err;
   if (!cf::load(in, spec, err)) {
@@ -209,14 +243,17 @@ int run_export_header(const ExportOptions& o) {
                  in.c_str(), spec.supervisor.rule_file.c_str());
     return 1;
   }
+  if (const std::string bad = cf::check_float_range(spec); !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid export-header: %s: %s\n", in.c_str(), bad.c_str());
+    return 1;
+  }
   const std::string text = cf::export_header(spec, ns, in);
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
     return std::ferror(stdout) ? 1 : 0;
   }
-  std::FILE* f = std::fopen(out.c_str(), "w");
-  if (f == nullptr || std::fputs(text.c_str(), f) < 0 || std::fclose(f) != 0) {
-    std::fprintf(stderr, "fuzzypid export-header: cannot write %s\n", out.c_str());
+  if (const std::string bad = write_output_file(out, text, "export-header"); !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid export-header: %s\n", bad.c_str());
     return 1;
   }
   return 0;
@@ -285,17 +322,15 @@ void add_export_header_command(CLI::App& app, std::function<int()>& run) {
       "Write a controller file as a self-contained C++ header of constexpr configuration (no "
       "parser needed on the target).");
   cmd->add_option("file", o->in, "controller file (TOML)")->required();
-  cmd->add_option("--out", o->out, "header to write (default: stdout)");
-  cmd->add_option("--namespace", o->ns, "namespace of the generated code")
-      ->check([](const std::string& s) -> std::string {
-        if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
-          return "not a C++ identifier: " + s;
-        for (char c : s)
-          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
-            return "not a C++ identifier: " + s;
-        return {};
-      });
-  cmd->callback([&run, o] { run = [o] { return run_export_header(*o); }; });
+  CLI::Option* out = cmd->add_option("--out", o->out, "header to write (default: stdout)");
+  cmd->add_option("--namespace", o->ns,
+                  "namespace of the generated code: C++ identifiers joined by ::, no keyword or "
+                  "reserved name (default fuzzypid_controller)")
+      ->check([](const std::string& s) { return cf::check_namespace(s); });
+  cmd->callback([&run, o, out] {
+    o->out_given = out->count() > 0;
+    run = [o] { return run_export_header(*o); };
+  });
 }
 
 }  // namespace fuzzypid::cli

@@ -20,7 +20,9 @@
 // file itself are all made before the first tick. Inside the loop nothing allocates, locks, prints
 // or throws: the global operator new is replaced in this binary by a counting one and the count
 // over the loop is printed as `allocations_in_loop`. The CSV is written after the loop under a
-// temporary name and renamed when complete, so a cut-short file never looks valid.
+// temporary name (.<name>.rt_loop.<pid>.tmp) and renamed when complete, so a cut-short file never
+// looks valid; SIGINT, SIGTERM and SIGHUP end the run early with the same summary and CSV, and the
+// temporaries of runs killed outright are removed by the next run writing the same CSV.
 //
 // Exit codes: 0 success; 1 a run-time failure -- a controller or plant fault, an allocation in the
 // loop, more overruns than --max-overruns, a real-time setting refused under --require-rt, an
@@ -72,9 +74,19 @@ namespace cf = fuzzypid::controller_file;
 using fuzzypid::rt_loop::kTool;
 using fuzzypid::rt_loop::Options;
 
+// SIGINT, SIGTERM and SIGHUP all stop the loop at the next tick; the summary is printed and the
+// CSV committed as after a complete run. The handlers are installed before the CSV's temporary
+// file exists, so no signal of these three can leave it behind.
 volatile std::sig_atomic_t g_stop = 0;
-extern "C" void on_sigint(int) {
+extern "C" void on_stop_signal(int) {
   g_stop = 1;
+}
+void install_stop_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP})
+    sigaction(sig, &sa, nullptr);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -252,6 +264,7 @@ bool apply_rt_settings(const Options& o, std::string& cpu_state, std::string& lo
 int run(int argc, char** argv) {
   Options o;
   if (const auto code = fuzzypid::rt_loop::parse(argc, argv, o)) return *code;
+  install_stop_handlers();
 
   // --- Model, path, closed loop and outputs (allocating; all before the loop).
   const double dt_s = o.controller_dt_s();
@@ -265,6 +278,18 @@ int run(int argc, char** argv) {
   if (const std::string bad = condition.validate(); !bad.empty()) {
     std::fprintf(stderr, "%s: %s\n", kTool, bad.c_str());
     return cli::kExitUsage;
+  }
+  // The options checked --csv against the controller file; the robot model and the path are
+  // inputs too.
+  if (!o.csv.empty()) {
+    const std::string urdf =
+        condition.robot.urdf.empty() ? robot::default_urdf_path() : condition.robot.urdf;
+    std::vector<std::string> inputs = {urdf};
+    if (!condition.robot.path.empty()) inputs.push_back(condition.robot.path);
+    if (const std::string bad = cli::check_output_path(o.csv, inputs); !bad.empty()) {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
   }
   std::string error;
   const auto experiment = sim::Experiment::create(condition.robot, options, error);
@@ -293,7 +318,7 @@ int run(int argc, char** argv) {
   std::unique_ptr<cli::OutputFile> csv_file;
   std::vector<TickRecord> csv;
   if (!o.csv.empty()) {
-    csv_file = cli::OutputFile::open(o.csv, error);
+    csv_file = cli::OutputFile::open(o.csv, error, kTool);
     if (!csv_file) {
       std::fprintf(stderr, "%s: --csv: %s\n", kTool, error.c_str());
       return cli::kExitFailure;
@@ -304,11 +329,6 @@ int run(int argc, char** argv) {
   std::string cpu_state, lock_state, fifo_state;
   if (!apply_rt_settings(o, cpu_state, lock_state, fifo_state)) return cli::kExitFailure;
   prefault_stack();
-
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
 
   std::printf(
       "rt_loop: controller %s, period %.3f ms%s, controller dt %.3f ms, ticks %llu, path %zu "

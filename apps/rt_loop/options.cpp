@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "output_files.hpp"
 
 namespace fuzzypid::rt_loop {
 
@@ -17,10 +18,11 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
   CLI::App app(
       "The 6-joint controller against the simulated arm (the ER50-C20, or --urdf with --path) in "
       "a fixed-period loop, with its "
-      "timing measured (docs/performance.md). Ctrl-C stops at the next tick and prints the "
-      "summary.\nExit codes: 0 success, 1 a run-time failure (controller or plant fault, "
-      "allocation in the loop, too many overruns, a refused setting under --require-rt, a write "
-      "error), 2 bad usage.",
+      "timing measured (docs/performance.md). Ctrl-C (SIGINT), SIGTERM or SIGHUP stops at the "
+      "next tick, prints the summary and writes the CSV.\nExit codes: 0 success, 1 a run-time "
+      "failure (controller or plant fault, allocation in the loop, too many overruns, a refused "
+      "setting under --require-rt, a write error), 2 bad usage (including a --csv that cannot be "
+      "written: docs/robustness.md, Outputs).",
       kTool);
   app.add_option("--period-ms", o.period_ms, "tick period, ms (default 50; 0 = free-running)")
       ->check(cli::finite_in(0.0, kMaxPeriodMs))
@@ -87,6 +89,17 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
                  "%s: --period-ms %g is outside the controller periods %g-%g ms; give --dt\n",
                  kTool, o.period_ms, kMinDtS * 1000.0, kMaxDtS * 1000.0);
     return cli::kExitUsage;
+  }
+  // The CSV's path is checked now, before any work (apps/common/output_files.hpp): --csv '' is
+  // refused like any other path that cannot be written, and so is the controller file itself.
+  if (app.count("--csv") > 0) {
+    const bool controller_file = o.controller != "pid" && o.controller != "fuzzy";
+    const std::string bad =
+        cli::check_output_path(o.csv, {controller_file ? o.controller : std::string()});
+    if (!bad.empty()) {
+      std::fprintf(stderr, "%s: --csv: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
   }
   if (!o.csv.empty() && o.ticks && *o.ticks > kMaxCsvTicks) {
     std::fprintf(stderr, "%s: --csv buffers every tick in memory: at most %llu ticks\n", kTool,

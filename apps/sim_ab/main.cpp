@@ -266,6 +266,21 @@ int main(int argc, char** argv) {
     case sim_ab::ParseResult::Run:
       break;
   }
+  // The output folder is checked before any work (apps/common/output_files.hpp): a refused --out
+  // is a usage error, like a bad option.
+  {
+    std::vector<std::string> inputs = o.controllers;
+    inputs.push_back(o.conditions_file);
+    inputs.push_back(o.robot.setup.urdf.empty() ? robot::default_urdf_path()
+                                                : o.robot.setup.urdf);
+    if (!o.robot.setup.path.empty()) inputs.push_back(o.robot.setup.path);
+    const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
+                                            "conditions.csv", "settings.txt", "sweep.csv"};
+    if (const std::string bad = cli::check_output_dir(o.out_dir, names, inputs); !bad.empty()) {
+      std::fprintf(stderr, "sim_ab: --out: %s\n", bad.c_str());
+      return 2;
+    }
+  }
 
   // Controllers: the files, or the paper's two.
   std::vector<NamedController> controllers;
@@ -327,6 +342,19 @@ int main(int argc, char** argv) {
     }
   }
 
+  // The robots and paths a condition file names are inputs too.
+  for (const Run& r : runs)
+    for (const std::string& input : {r.condition.robot.urdf, r.condition.robot.path})
+      if (!input.empty()) {
+        const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",
+                                                "endeffector.csv", "conditions.csv",
+                                                "settings.txt", "sweep.csv"};
+        if (const std::string bad = cli::check_output_dir(o.out_dir, names, {input});
+            !bad.empty()) {
+          std::fprintf(stderr, "sim_ab: --out: %s\n", bad.c_str());
+          return 2;
+        }
+      }
   // One experiment per robot setup (URDF, path, tick): built before any output is opened.
   std::vector<sim::Condition> conditions;
   conditions.reserve(runs.size());

@@ -392,24 +392,4 @@ std::string to_toml(const ControllerSpec& s) {
   return o;
 }
 
-std::string save(const std::string& path, const ControllerSpec& spec) {
-  namespace fs = std::filesystem;
-  const std::string text = to_toml(spec);
-  const std::string temp = path + ".partial";
-  std::FILE* f = std::fopen(temp.c_str(), "wb");
-  if (f == nullptr) return "cannot write " + temp + ": " + std::strerror(errno);
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) {
-    std::remove(temp.c_str());
-    return "write error on " + temp;
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    std::remove(temp.c_str());
-    return "cannot rename " + temp + " to " + path + ": " + ec.message();
-  }
-  return {};
-}
-
 }  // namespace fuzzypid::controller_file

@@ -1,8 +1,14 @@
 #include "fuzzypid/controller_file/export_header.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "fuzzypid/controller_file/joint_controllers.hpp"
 
@@ -51,6 +57,104 @@ const char* enum_code(pid::AntiWindup a) {
 }
 
 }  // namespace
+
+namespace {
+
+// C++20 keywords (a superset of C++17's), alternative tokens, and identifiers with a special
+// meaning in some places.
+constexpr std::array<std::string_view, 109> kRefusedNames = {
+    "alignas", "alignof", "asm", "auto", "bool", "break", "case", "catch", "char", "char8_t",
+    "char16_t", "char32_t", "class", "concept", "const", "consteval", "constexpr", "constinit",
+    "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+    "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false",
+    "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new",
+    "noexcept", "nullptr", "operator", "private", "protected", "public", "register",
+    "reinterpret_cast", "requires", "return", "short", "signed", "sizeof", "static",
+    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local", "throw",
+    "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual", "void",
+    "volatile", "wchar_t", "while",
+    // alternative tokens
+    "and", "and_eq", "bitand", "bitor", "compl", "not", "not_eq", "or", "or_eq", "xor", "xor_eq",
+    // special identifiers, reserved or used by the generated code
+    "final", "override", "import", "module", "std", "posix", "main", "fuzzypid",
+    // lower-case macros of the C and POSIX headers, and of GNU mode (-std=gnu++17)
+    "errno", "assert", "offsetof", "stdin", "stdout", "stderr", "linux", "unix", "i386"};
+
+bool is_identifier_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+std::string check_part(std::string_view part, bool global) {
+  const std::string name(part);
+  if (part.empty()) return "an empty name";
+  if (part[0] >= '0' && part[0] <= '9') return "'" + name + "' starts with a digit";
+  for (char c : part)
+    if (!is_identifier_char(c))
+      return "'" + name + "' is not a C++ identifier (letters, digits, _)";
+  if (part.find("__") != std::string_view::npos)
+    return "'" + name + "' contains '__' (reserved to the implementation)";
+  if (part[0] == '_' && part.size() > 1 && part[1] >= 'A' && part[1] <= 'Z')
+    return "'" + name + "' starts with '_' and a capital (reserved to the implementation)";
+  if (part[0] == '_' && global)
+    return "'" + name + "' starts with '_' at global scope (reserved to the implementation)";
+  if (std::find(kRefusedNames.begin(), kRefusedNames.end(), part) != kRefusedNames.end())
+    return "'" + name + "' is a C++ keyword or a reserved, standard or macro name";
+  if (std::none_of(part.begin(), part.end(), [](char c) { return c >= 'a' && c <= 'z'; }))
+    return "'" + name + "' has no lower-case letter (such names are left to macros)";
+  return {};
+}
+
+}  // namespace
+
+std::string check_namespace(const std::string& ns) {
+  if (ns.empty()) return "the namespace is empty";
+  if (ns.size() > 512) return "the namespace is longer than 512 characters";
+  std::string_view rest(ns);
+  bool global = true;
+  for (;;) {
+    const std::size_t sep = rest.find("::");
+    const std::string bad = check_part(rest.substr(0, sep), global);
+    if (!bad.empty()) return "namespace '" + ns + "': " + bad;
+    if (sep == std::string_view::npos) return {};
+    rest.remove_prefix(sep + 2);
+    global = false;
+  }
+}
+
+std::string check_float_range(const ControllerSpec& spec) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const pid::Config<double> pc = pid_config(spec, inf);
+  std::vector<std::pair<const char*, double>> values = {
+      {"the PID's kp", pc.gains.kp},
+      {"the PID's ki", pc.gains.ki},
+      {"the PID's kd", pc.gains.kd},
+      {"derivative_filter_s", pc.derivative_filter_s}};
+  if (spec.family != Family::Pid) {
+    const control::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
+    values.insert(values.end(), {{"error_scale", fc.error_scale},
+                                 {"error_rate_scale", fc.error_rate_scale},
+                                 {"output_scale (kp)", fc.output_scale[0]},
+                                 {"output_scale (ki)", fc.output_scale[1]},
+                                 {"output_scale (kd)", fc.output_scale[2]},
+                                 {"gain_min kp", fc.gain_min.kp},
+                                 {"gain_min ki", fc.gain_min.ki},
+                                 {"gain_min kd", fc.gain_min.kd},
+                                 {"gain_max kp", fc.gain_max.kp},
+                                 {"gain_max ki", fc.gain_max.ki},
+                                 {"gain_max kd", fc.gain_max.kd}});
+  }
+  for (const auto& [name, v] : values) {
+    if (std::isnan(v) || (std::isfinite(v) && std::fabs(v) > static_cast<double>(FLT_MAX))) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "%s is %.17g in SI units, which is not finite as a float (|x| <= %g): the "
+                    "float controller would get an infinite value",
+                    name, v, static_cast<double>(FLT_MAX));
+      return buf;
+    }
+  }
+  return {};
+}
 
 std::string export_header(const ControllerSpec& spec, const std::string& ns,
                           const std::string& source) {

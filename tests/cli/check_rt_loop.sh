@@ -51,9 +51,12 @@ looped=$(sed -n 's/^max_abs_error_rad: \([0-9.e+-]*\) rad$/\1/p' "$work/out")
 awk -v a="$one" -v b="$looped" 'BEGIN { exit !(b <= 1.5 * a && b < 0.2) }' ||
   fail "--loop: max error $looped rad against $one rad for one pass"
 
-# --csv to an unwritable place fails before the run; a complete file appears only at the end.
-expect 1 --period-ms 0 --ticks 1000 --csv "$work/missing/ticks.csv"
+# --csv to an unwritable place is a usage error before the run (tests/cli/check_outputs.sh has
+# the other refused paths); a complete file appears only at the end.
+expect 2 --period-ms 0 --ticks 1000 --csv "$work/missing/ticks.csv"
 grep -q '^ticks_run' "$work/out" && fail "ran although the CSV cannot be written"
+grep -q "^rt_loop: --csv: .*missing/ticks.csv.*No such file or directory" "$work/err" ||
+  fail "no reason: $(cat "$work/err")"
 expect 0 --period-ms 0 --ticks 50 --csv "$work/ticks.csv"
 [ "$(head -1 "$work/ticks.csv")" = "tick,wakeup_latency_ns,period_error_ns,compute_ns" ] ||
   fail "CSV header: $(head -1 "$work/ticks.csv")"
@@ -84,6 +87,44 @@ else
   grep -q 'error: SCHED_FIFO refused' "$work/err" || fail "no error: $(cat "$work/err")"
   grep -q '^ticks_run' "$work/out" && fail "ran although --require-rt was refused"
 fi
+
+# SIGTERM and SIGHUP stop the run as SIGINT does: the summary, the complete CSV (one row per tick
+# run), exit 0 and no temporary file left.
+mkdir "$work/sig"
+# start_run: rt_loop in the background writing $work/sig/ticks.csv; returns once the loop runs.
+start_run() {
+  "$rt_loop" --period-ms 5 --ticks 100000 --csv "$work/sig/ticks.csv" >"$work/out" 2>"$work/err" &
+  pid=$!
+  n=0
+  while ! grep -q '^scheduler' "$work/out" && [ "$n" -lt 200 ]; do
+    sleep 0.05
+    n=$((n + 1))
+  done
+  sleep 0.3
+}
+for sig in TERM HUP INT; do
+  rm -f "$work/sig/ticks.csv"
+  start_run
+  kill -s "$sig" "$pid"
+  wait "$pid"
+  code=$?
+  [ "$code" -eq 0 ] || fail "SIG$sig: exit $code: $(cat "$work/err")"
+  grep -q '^interrupted: stopped at the next tick' "$work/out" || fail "SIG$sig: $(cat "$work/out")"
+  grep -q '^allocations_in_loop: 0' "$work/out" || fail "SIG$sig: no summary: $(cat "$work/out")"
+  rows=$(sed -n 's/^ticks_run: \([0-9]*\) ticks$/\1/p' "$work/out")
+  [ -n "$rows" ] && [ "$rows" -gt 0 ] || fail "SIG$sig: ticks_run: $(cat "$work/out")"
+  [ "$(wc -l <"$work/sig/ticks.csv")" -eq $((rows + 1)) ] ||
+    fail "SIG$sig: $(wc -l <"$work/sig/ticks.csv") CSV lines for $rows ticks"
+  [ "$(ls -A "$work/sig")" = ticks.csv ] || fail "SIG$sig: left: $(ls -A "$work/sig")"
+done
+# A run killed outright (SIGKILL) leaves its temporary .ticks.csv.rt_loop.<pid>.tmp; the next run
+# writing the same CSV removes it, as the process is gone.
+start_run
+kill -s KILL "$pid"
+wait "$pid"
+[ -e "$work/sig/.ticks.csv.rt_loop.$pid.tmp" ] || fail "no temporary named by pid: $(ls -A "$work/sig")"
+expect 0 --period-ms 0 --ticks 5 --csv "$work/sig/ticks.csv"
+[ "$(ls -A "$work/sig")" = ticks.csv ] || fail "stale temporary kept: $(ls -A "$work/sig")"
 
 # Output that cannot be written is an error.
 "$rt_loop" --period-ms 0 --ticks 3 >/dev/full 2>"$work/err" && fail "> /dev/full exited 0"

@@ -1,12 +1,19 @@
 // OutputSet and OutputFile (apps/common/output_files.hpp): complete or absent, never mixed.
 #include "output_files.hpp"
 
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -137,22 +144,24 @@ TEST_F(OutputFilesTest, TemporariesOfAKilledRunAreRemovedByTheNextRun) {
 }
 
 TEST_F(OutputFilesTest, AnInterruptedRunLeavesNothingBehind) {
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    std::string error;
-    auto set = OutputSet::open((root_ / "out").string(), names_, error);
-    if (!set) ::_exit(3);
-    std::fputs("partial", set->file(0));
-    std::fflush(set->file(0));
-    std::raise(SIGINT);
-    ::_exit(4);  // not reached: SIGINT ends the process after the clean-up
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      std::string error;
+      auto set = OutputSet::open((root_ / "out").string(), names_, error);
+      if (!set) ::_exit(3);
+      std::fputs("partial", set->file(0));
+      std::fflush(set->file(0));
+      std::raise(sig);
+      ::_exit(4);  // not reached: the signal ends the process after the clean-up
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_TRUE(entries(root_).empty()) << "signal " << sig;
   }
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
-  EXPECT_EQ(WTERMSIG(status), SIGINT);
-  EXPECT_TRUE(entries(root_).empty());
 }
 
 TEST_F(OutputFilesTest, OutputFileAppearsOnlyOnCommit) {
@@ -179,7 +188,194 @@ TEST_F(OutputFilesTest, OutputFileInAMissingDirectoryFailsAtOpen) {
   EXPECT_FALSE(OutputFile::open((root_ / "missing" / "x.csv").string(), error));
   EXPECT_NE(error.find("x.csv"), std::string::npos) << error;
   EXPECT_FALSE(OutputFile::open(root_.string(), error));
-  EXPECT_NE(error.find("directory"), std::string::npos) << error;
+  EXPECT_NE(error.find("folder"), std::string::npos) << error;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The contract of an output path (check_output_path), the same at parse time and at open.
+
+TEST_F(OutputFilesTest, ANameThatIsNoFileOrWhoseFolderIsMissingIsRefused) {
+  const std::string dir = root_.string();
+  EXPECT_NE(check_output_path("", {}).find("not a file name"), std::string::npos);
+  EXPECT_NE(check_output_path(dir + "/", {}).find("not a file name"), std::string::npos);
+  EXPECT_NE(check_output_path(dir + "/.", {}).find("not a file name"), std::string::npos);
+  EXPECT_NE(check_output_path(dir + "/..", {}).find("not a file name"), std::string::npos);
+  EXPECT_NE(check_output_path(dir, {}).find("is a folder"), std::string::npos);
+  const std::string missing = check_output_path(dir + "/missing/x.toml", {});
+  EXPECT_NE(missing.find("No such file or directory"), std::string::npos) << missing;
+  std::ofstream(root_ / "file") << "x";
+  const std::string under_file = check_output_path(dir + "/file/x.toml", {});
+  EXPECT_NE(under_file.find("Not a directory"), std::string::npos) << under_file;
+  EXPECT_EQ(check_output_path(dir + "/new.toml", {}), "");
+  EXPECT_EQ(check_output_path(dir + "/file", {}), "");
+}
+
+TEST_F(OutputFilesTest, ReadOnlyFoldersAndFilesAreRefusedEvenForRoot) {
+  fs::create_directory(root_ / "ro");
+  fs::permissions(root_ / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+  const std::string folder = check_output_path((root_ / "ro" / "x.toml").string(), {});
+  // Root is refused by the mode bits ("read-only"), anyone else by access(2) ("Permission").
+  EXPECT_TRUE(folder.find("read-only") != std::string::npos ||
+              folder.find(std::strerror(EACCES)) != std::string::npos)
+      << folder;
+  std::ofstream(root_ / "locked.toml") << "keep";
+  fs::permissions(root_ / "locked.toml", fs::perms::owner_read);
+  const std::string file = check_output_path((root_ / "locked.toml").string(), {});
+  EXPECT_NE(file.find("read-only"), std::string::npos) << file;
+  std::string error;
+  EXPECT_FALSE(OutputFile::open((root_ / "locked.toml").string(), error));
+  EXPECT_EQ(read(root_ / "locked.toml"), "keep");
+  fs::permissions(root_ / "ro", fs::perms::owner_all);
+}
+
+// Device nodes, FIFOs and sockets are refused and never replaced (private nodes, never the
+// system's: a character device 1,7 is what /dev/full is).
+TEST_F(OutputFilesTest, DevicesFifosAndSocketsAreRefusedAndLeftAsTheyAre) {
+  std::vector<std::pair<fs::path, const char*>> nodes;
+  if (::mknod((root_ / "full").c_str(), S_IFCHR | 0666, makedev(1, 7)) == 0)
+    nodes.emplace_back(root_ / "full", "character device");
+  else
+    std::printf("note: mknod refused (%s): the device case is not checked\n", std::strerror(errno));
+  ASSERT_EQ(::mkfifo((root_ / "fifo").c_str(), 0666), 0);
+  nodes.emplace_back(root_ / "fifo", "FIFO");
+  const int sock = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  ASSERT_GE(sock, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string sock_path = (root_ / "sock").string();
+  ASSERT_LT(sock_path.size(), sizeof addr.sun_path);
+  std::memcpy(addr.sun_path, sock_path.c_str(), sock_path.size() + 1);
+  ASSERT_EQ(::bind(sock, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  nodes.emplace_back(root_ / "sock", "socket");
+  fs::create_symlink(root_ / "fifo", root_ / "link_to_fifo");
+  nodes.emplace_back(root_ / "link_to_fifo", "FIFO");
+  for (const auto& [node, kind] : nodes) {
+    const std::string bad = check_output_path(node.string(), {});
+    EXPECT_NE(bad.find(kind), std::string::npos) << bad;
+    std::string error;
+    EXPECT_FALSE(OutputFile::open(node.string(), error)) << node;
+    EXPECT_EQ(write_output_file(node.string(), "text", "test").find("'" + node.string() + "'"), 0u);
+    struct stat st {};
+    ASSERT_EQ(::lstat(node.c_str(), &st), 0);
+    EXPECT_FALSE(S_ISREG(st.st_mode)) << node << " became a regular file";
+  }
+  ::close(sock);
+  for (const std::string& e : entries(root_))  // no temporary left
+    EXPECT_EQ(e.find(".tmp"), std::string::npos) << e;
+}
+
+TEST_F(OutputFilesTest, AnInputIsRefusedAsOutputUnderAnySpelling) {
+  const fs::path input = root_ / "in.toml";
+  std::ofstream(input) << "input";
+  fs::create_symlink(input, root_ / "link.toml");
+  fs::create_hard_link(input, root_ / "hard.toml");
+  fs::create_directory(root_ / "sub");
+  const std::vector<std::string> inputs = {"", (root_ / "missing.toml").string(), input.string()};
+  for (const fs::path& spelling : {input, root_ / "link.toml", root_ / "hard.toml",
+                                   root_ / "sub" / ".." / "in.toml", root_ / "." / "in.toml"}) {
+    const std::string bad = check_output_path(spelling.string(), inputs);
+    EXPECT_NE(bad.find("same file as the input"), std::string::npos) << spelling << ": " << bad;
+  }
+  // A file that does not exist yet cannot be an input.
+  EXPECT_EQ(check_output_path((root_ / "missing.toml").string(), inputs), "");
+  EXPECT_EQ(check_output_path((root_ / "other.toml").string(), inputs), "");
+  EXPECT_EQ(read(input), "input");
+}
+
+TEST_F(OutputFilesTest, ASymbolicLinkIsFollowedAndStaysALink) {
+  std::ofstream(root_ / "real.csv") << "old";
+  fs::create_symlink("real.csv", root_ / "link.csv");
+  ASSERT_EQ(write_output_file((root_ / "link.csv").string(), "new", "test"), "");
+  EXPECT_TRUE(fs::is_symlink(root_ / "link.csv"));
+  EXPECT_EQ(read(root_ / "real.csv"), "new");
+  // A dangling link is refused (it names no file to replace).
+  fs::create_symlink(root_ / "nowhere" / "x", root_ / "dangling.csv");
+  EXPECT_NE(check_output_path((root_ / "dangling.csv").string(), {}).find("symbolic link"),
+            std::string::npos);
+}
+
+TEST_F(OutputFilesTest, TheReplacedFileKeepsItsMode) {
+  std::ofstream(root_ / "x.csv") << "old";
+  fs::permissions(root_ / "x.csv",
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  ASSERT_EQ(write_output_file((root_ / "x.csv").string(), "new", "test"), "");
+  EXPECT_EQ(fs::status(root_ / "x.csv").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+}
+
+// A write that fails (here: the file size limit, EFBIG, as a full disk gives ENOSPC) leaves the
+// previous file intact and no temporary, and says why.
+TEST_F(OutputFilesTest, AFailedWriteLeavesThePreviousFileIntact) {
+  const fs::path target = root_ / "big.hpp";
+  std::ofstream(target) << "previous";
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const std::string error = write_output_file(target.string(), std::string(100000, 'x'), "test");
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_NE(error.find(std::strerror(EFBIG)), std::string::npos) << error;
+  EXPECT_EQ(read(target), "previous");
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"big.hpp"}));
+}
+
+TEST_F(OutputFilesTest, ATargetThatBecameAFifoBeforeCommitIsLeftAlone) {
+  const fs::path target = root_ / "x.csv";
+  std::string error;
+  auto file = OutputFile::open(target.string(), error, "test");
+  ASSERT_TRUE(file) << error;
+  std::fputs("data", file->file());
+  ASSERT_EQ(::mkfifo(target.c_str(), 0666), 0);
+  EXPECT_FALSE(file->commit(error));
+  EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
+  struct stat st {};
+  ASSERT_EQ(::lstat(target.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"x.csv"}));
+}
+
+TEST_F(OutputFilesTest, TemporariesOfDeadProcessesAreRemovedOthersKept) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) ::_exit(0);
+  ASSERT_EQ(::waitpid(child, nullptr, 0), child);  // `child` is now a pid no process has
+  const std::string dead = ".ticks.csv.rt_loop." + std::to_string(child) + ".tmp";
+  const std::string alive = ".ticks.csv.rt_loop." + std::to_string(::getppid()) + ".tmp";
+  const std::string other_tool = ".ticks.csv.tune." + std::to_string(child) + ".tmp";
+  for (const std::string& name : {dead, alive, other_tool})
+    std::ofstream(root_ / name) << "";
+  std::string error;
+  auto file = OutputFile::open((root_ / "ticks.csv").string(), error, "rt_loop");
+  ASSERT_TRUE(file) << error;
+  EXPECT_EQ(file->temporary_path(),
+            (root_ / (".ticks.csv.rt_loop." + std::to_string(::getpid()) + ".tmp")).string());
+  ASSERT_TRUE(file->commit(error)) << error;
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"ticks.csv", alive, other_tool}));
+}
+
+TEST_F(OutputFilesTest, AnOutputFolderIsCheckedBeforeTheRun) {
+  const std::vector<std::string> names = {"metrics.csv"};
+  EXPECT_NE(check_output_dir("", names, {}).find("not a folder name"), std::string::npos);
+  std::ofstream(root_ / "file") << "x";
+  EXPECT_NE(check_output_dir((root_ / "file").string(), names, {}).find("not an output folder"),
+            std::string::npos);
+  EXPECT_EQ(check_output_dir((root_ / "new" / "deeper").string(), names, {}), "");
+  fs::create_directory(root_ / "out");
+  std::ofstream(root_ / "out" / "metrics.csv") << "input";
+  const std::string input = (root_ / "out" / "metrics.csv").string();
+  EXPECT_NE(check_output_dir((root_ / "out").string(), names, {input}).find("same file"),
+            std::string::npos);
+  EXPECT_EQ(check_output_dir((root_ / "out").string(), {"other.csv"}, {input}), "");
+  fs::create_directory(root_ / "ro");
+  fs::permissions(root_ / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+  const std::string ro = check_output_dir((root_ / "ro" / "out").string(), names, {});
+  EXPECT_TRUE(ro.find("read-only") != std::string::npos ||
+              ro.find(std::strerror(EACCES)) != std::string::npos)
+      << ro;
+  fs::permissions(root_ / "ro", fs::perms::owner_all);
 }
 
 }  // namespace

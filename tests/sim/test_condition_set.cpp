@@ -2,6 +2,8 @@
 // draws, scenario shorthands, and file:line:column errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstddef>
 #include <string>
 
 #include "fuzzypid/sim/condition_set.hpp"
@@ -111,6 +113,26 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
     EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
     EXPECT_NE(e.message.find(b.message), std::string::npos) << e.to_string();
   }
+}
+
+// Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and
+// friction in [0, 1] (uniform), friction = log2(payload) on every draw would mean one number
+// drives both.
+TEST(ConditionSets, MonteCarloPayloadAndFrictionAreIndependentDraws) {
+  const char* text =
+      "[sets.mc.monte_carlo]\ncount = 20\nseed = 3\npayload_scale = [1.0, 2.0]\n"
+      "friction = [0.0, 1.0]\ninitial_error = [0.0, 1.0]\n";
+  ConditionFile f;
+  cf::Error e;
+  ASSERT_TRUE(parse_conditions(text, "mc.toml", f, e)) << e.to_string();
+  std::size_t coupled_friction = 0, coupled_initial = 0;
+  for (const auto& c : f.find("mc")->conditions) {
+    const double u_payload = std::log2(c.payload_scale);
+    if (std::fabs(c.friction_per_s - u_payload) < 1e-9) ++coupled_friction;
+    if (std::fabs(c.initial_error_rad - u_payload) < 1e-9) ++coupled_initial;
+  }
+  EXPECT_EQ(coupled_friction, 0u);
+  EXPECT_EQ(coupled_initial, 0u);
 }
 
 }  // namespace

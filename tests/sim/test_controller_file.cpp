@@ -11,6 +11,7 @@
 
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/controller_file/export_header.hpp"
+#include "fuzzypid/controller_file/joint_controllers.hpp"
 
 namespace {
 
@@ -295,6 +296,36 @@ TEST(ControllerFile, ANominalGainOutsideItsOwnBoundsIsRefusedAtLoad) {
   EXPECT_NE(error.message.find("gains.kp = 50.0 lies outside [bounds] 0.0 .. 10.0"),
             std::string::npos)
       << error.to_string();
+}
+
+// Every [pid] choice of a file reaches the controller, non-default values included.
+TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
+  const std::string text = std::string(kValid) +
+                           "[pid]\nderivative = \"difference\"\nderivative_on = \"measurement\"\n"
+                           "anti_windup = \"back-calculation\"\n";
+  cf::ControllerSpec spec;
+  cf::Error error;
+  ASSERT_TRUE(cf::parse(text, "ok.toml", spec, error)) << error.to_string();
+  EXPECT_EQ(spec.pid.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
+  EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Difference);
+  EXPECT_EQ(spec.pid.anti_windup, fuzzypid::pid::AntiWindup::BackCalculation);
+  const auto pc = cf::pid_config(spec, 1.0);
+  EXPECT_EQ(pc.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
+  EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Difference);
+}
+
+// gain_update = "incremental" reaches the runtime fuzzy controller's configuration.
+TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
+  cf::ControllerSpec spec = cf::paper_fuzzy();
+  spec.supervisor.gain_update = fuzzypid::control::GainUpdate::Incremental;
+  cf::ControllerSpec back;
+  cf::Error error;
+  ASSERT_TRUE(cf::parse(cf::to_toml(spec), "inc.toml", back, error)) << error.to_string();
+  EXPECT_EQ(back.supervisor.gain_update, fuzzypid::control::GainUpdate::Incremental);
+  EXPECT_EQ(cf::fuzzy_pid_config(back, 1.0).gain_update,
+            fuzzypid::control::GainUpdate::Incremental);
+  EXPECT_EQ(cf::fuzzy_pid_config(cf::paper_fuzzy(), 1.0).gain_update,
+            fuzzypid::control::GainUpdate::Absolute);
 }
 
 }  // namespace

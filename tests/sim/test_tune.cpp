@@ -179,4 +179,17 @@ TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
   EXPECT_NEAR(x[5], 0.5, 1e-15);
 }
 
+// Each log10 parameter lands on its own field: the three output scales in order (distinct values).
+TEST(ToSpec, TheOutputScalesKeepTheirOrder) {
+  const auto s = tune::to_spec(cf::Family::Fuzzy, {0, 0, 0, 0, 0, 1, 2, 3}, cf::paper_fuzzy());
+  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[0], 10.0);
+  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[1], 100.0);
+  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[2], 1000.0);
+  const auto x = tune::from_spec(s);
+  ASSERT_EQ(x.size(), 8u);
+  EXPECT_NEAR(x[5], 1.0, 1e-15);
+  EXPECT_NEAR(x[6], 2.0, 1e-15);
+  EXPECT_NEAR(x[7], 3.0, 1e-15);
+}
+
 }  // namespace

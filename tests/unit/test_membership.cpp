@@ -467,4 +467,16 @@ TEST(LinguisticVariable, ValidRejectsBadUniversesAndTerms) {
   EXPECT_FALSE((LinguisticVariable<double, 7>::custom(-0.3, 0.3, terms).valid()));
 }
 
+// An open right side (c = +inf) is a shoulder: 1 from the peak on, up to +inf itself.
+TEST(Triangle, AnOpenRightSideHoldsOneBeyondThePeak) {
+  const Triangle<double> t{0.0, 1.0, kInf};
+  EXPECT_EQ(t(0.5), 0.5);
+  EXPECT_EQ(t(2.0), 1.0);
+  EXPECT_EQ(t(1e300), 1.0);
+  EXPECT_EQ(t(kInf), 1.0);
+  const Triangle<double> left{-kInf, -1.0, 0.0};
+  EXPECT_EQ(left(-1e300), 1.0);
+  EXPECT_EQ(left(-0.5), 0.5);
+}
+
 }  // namespace

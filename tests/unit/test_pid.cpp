@@ -651,4 +651,21 @@ TEST(Pid, FloatInstantiationTracksDouble) {
   }
 }
 
+// With the Rates source the derivative on measurement is -measurement_rate alone: a moving setpoint
+// (setpoint_rate != 0) adds nothing, while on the error it adds Kd * setpoint_rate.
+TEST(Pid, DerivativeOnMeasurementWithRatesIgnoresTheSetpointRate) {
+  for (const DerivativeOn on : {DerivativeOn::Error, DerivativeOn::Measurement}) {
+    Config c = gains_only(0.0, 0.0, 2.0);
+    c.derivative_source = DerivativeSource::Rates;
+    c.derivative_on = on;
+    Pid pid(c);
+    Input in = at(0.0, 0.0, 0.5);
+    in.setpoint_rate = 3.0;
+    ASSERT_EQ(pid.update(in, 0.01), Status::Ok);
+    const double expected = on == DerivativeOn::Measurement ? 2.0 * -0.5 : 2.0 * (3.0 - 0.5);
+    EXPECT_DOUBLE_EQ(pid.terms().d, expected);
+    EXPECT_DOUBLE_EQ(pid.output(), expected);
+  }
+}
+
 }  // namespace

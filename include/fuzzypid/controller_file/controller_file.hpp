@@ -248,9 +248,8 @@ struct Error {
 [[nodiscard]] bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
                          Error& error);
 [[nodiscard]] bool load(const std::string& path, ControllerSpec& spec, Error& error);
+// The file's text; the tools write it through their one output writer (apps/common/output_files).
 [[nodiscard]] std::string to_toml(const ControllerSpec& spec);
-// Writes atomically (temporary file, then rename). Returns an empty string or the error.
-[[nodiscard]] std::string save(const std::string& path, const ControllerSpec& spec);
 
 // "%.17g", always with a '.', 'e', "inf" or "nan" so TOML reads it as a float.
 [[nodiscard]] std::string format_double(double v);

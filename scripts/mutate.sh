@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# A small mutation pass: each mutant is a one-line bug put into the library (or a tool) with sed;
+# the tests that guard that line are rebuilt and run; the mutant is "killed" when a build or a
+# test fails, "survived" otherwise; the file is then restored with git checkout. Prints one line
+# per mutant and the mutation score. Not run in CI (minutes per mutant on a small machine).
+#
+# Usage: scripts/mutate.sh [ID...]        (default: every mutant below)
+#   BUILD_DIR=build   an already configured build tree (Ninja)
+#   TESTS_FROM=REV    run the mutants against the tests (tests/) of revision REV instead of the
+#                     working tree's -- e.g. the score before a change to the tests; tests/ is
+#                     restored afterwards
+# Refuses to start when a mutated file has uncommitted changes (they would be lost by the revert).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+build="${BUILD_DIR:-build}"
+[ -f "${build}/build.ninja" ] || { echo "mutate.sh: configure ${build} first (Ninja)" >&2; exit 2; }
+
+# ID | file | sed expression (applied with sed -i -e) | what guards it: bin:TARGET (a test binary,
+# built and run), build:TARGET (built only), ctest:REGEX (ctest cases run). The first six are the
+# survivors of the issue-20 audit; the coupled plant's RK4 weight is left to its owner.
+mutants=(
+  "triangle_open_right|include/fuzzypid/fuzzy/membership.hpp|s/return c == detail::infinity<Scalar>() ? h \* Scalar(1)/return c == detail::infinity<Scalar>() ? h * Scalar(0)/|bin:test_membership"
+  "d_on_measurement_uses_setpoint_rate|include/fuzzypid/pid/pid.hpp|s/d_raw = in.setpoint_rate \* Scalar(0) - in.measurement_rate;/d_raw = in.setpoint_rate - in.measurement_rate;/|bin:test_pid"
+  "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
+  "pid_config_drops_derivative_on|src/controller_file/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
+  "incremental_gain_update_ignored|src/controller_file/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
+  "tuner_swaps_output_scales|src/tune/tune.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune"
+  "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
+  # Our own: the core.
+  "triangle_left_edge_slope|include/fuzzypid/fuzzy/membership.hpp|s/h \* (x - a) \/ (b - a);/h * (x - a) \/ (c - a);/|bin:test_membership"
+  "trapezoid_right_edge_slope|include/fuzzypid/fuzzy/membership.hpp|s/h \* (d - x) \/ (d - c);/h * (d - x) \/ (d - b);/|bin:test_membership"
+  "integral_ignores_dt|include/fuzzypid/pid/pid.hpp|s/const Scalar increment = g.ki \* e \* dt_s;/const Scalar increment = g.ki * e;/|bin:test_pid"
+  "clamping_upper_side_drops_increment_check|include/fuzzypid/pid/pid.hpp|s/if (trial > hi \&\& increment > Scalar(0))/if (trial > hi)/|bin:test_pid"
+  "back_calculation_sign|include/fuzzypid/pid/pid.hpp|s/config_.tracking_gain_per_s \* (u - v) \* dt_s/config_.tracking_gain_per_s * (v - u) * dt_s/|bin:test_pid"
+  "incremental_uses_pid_gains|include/fuzzypid/control/fuzzy_pid.hpp|s/gain_update_ == GainUpdate::Absolute ? pid_.gains() : gains_/gain_update_ == GainUpdate::Absolute ? gains_ : pid_.gains()/|bin:test_fuzzy_pid"
+  "file_numbers_15_digits|src/controller_file/controller_file.cpp|s/\"%.17g\", v);/\"%.15g\", v);/|bin:test_controller_file"
+  # Our own: issue 20's output writer, export-header and rt_loop.
+  "writer_accepts_special_files|apps/common/output_files.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
+  "writer_ignores_inputs|apps/common/output_files.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
+  "writer_ignores_flush_errors|apps/common/output_files.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
+  "namespace_allows_std|src/controller_file/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
+  "float_range_unchecked|src/controller_file/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
+  "rt_loop_ignores_sigterm|apps/rt_loop/main.cpp|s/for (int sig : {SIGINT, SIGTERM, SIGHUP})/for (int sig : {SIGINT})/|build:rt_loop ctest:^rt_loop\.exit_codes"
+)
+
+restore_tests() {
+  if [ -n "${TESTS_FROM:-}" ]; then git checkout HEAD -- tests; fi
+}
+current=""
+revert() {
+  if [ -n "${current}" ]; then git checkout -- "${current}"; fi
+  current=""
+}
+trap 'revert; restore_tests' EXIT
+trap 'exit 130' INT TERM
+
+selected=("$@")
+wanted() {
+  [ ${#selected[@]} -eq 0 ] && return 0
+  local s
+  for s in "${selected[@]}"; do [ "$s" = "$1" ] && return 0; done
+  return 1
+}
+
+for m in "${mutants[@]}"; do
+  IFS='|' read -r id file expr guards <<<"${m}"
+  wanted "${id}" || continue
+  if ! git diff --quiet -- "${file}"; then
+    echo "mutate.sh: ${file} has uncommitted changes; commit or stash them first" >&2
+    exit 2
+  fi
+done
+if [ -n "${TESTS_FROM:-}" ]; then
+  git diff --quiet -- tests || { echo "mutate.sh: tests/ has uncommitted changes" >&2; exit 2; }
+  git checkout "${TESTS_FROM}" -- tests || exit 2
+fi
+
+killed=0
+total=0
+survivors=()
+for m in "${mutants[@]}"; do
+  IFS='|' read -r id file expr guards <<<"${m}"
+  wanted "${id}" || continue
+  current="${file}"
+  sed -i -e "${expr}" "${file}"
+  if git diff --quiet -- "${file}"; then
+    echo "mutate.sh: ${id}: the expression no longer matches ${file}" >&2
+    revert
+    exit 2
+  fi
+  total=$((total + 1))
+  targets=()
+  bins=()
+  regex=""
+  for g in ${guards}; do
+    case "${g}" in
+      bin:*) targets+=("${g#bin:}"); bins+=("${g#bin:}") ;;
+      build:*) targets+=("${g#build:}") ;;
+      ctest:*) regex="${g#ctest:}" ;;
+    esac
+  done
+  verdict="survived"
+  if ! ninja -C "${build}" "${targets[@]}" >"${build}/mutate_${id}.log" 2>&1; then
+    verdict="killed (build)"
+  else
+    for b in "${bins[@]}"; do
+      if ! "${build}/bin/${b}" >>"${build}/mutate_${id}.log" 2>&1; then
+        verdict="killed (${b})"
+        break
+      fi
+    done
+    if [ "${verdict}" = survived ] && [ -n "${regex}" ]; then
+      if ! ctest --test-dir "${build}" -R "${regex}" >>"${build}/mutate_${id}.log" 2>&1; then
+        verdict="killed (ctest ${regex})"
+      fi
+    fi
+  fi
+  revert
+  if [ "${verdict}" = survived ]; then survivors+=("${id}"); else killed=$((killed + 1)); fi
+  printf '%-44s %s\n' "${id}" "${verdict}"
+done
+# Rebuild what the mutants touched, from the restored sources.
+restore_tests
+echo "mutation score: ${killed}/${total} killed"
+[ ${#survivors[@]} -eq 0 ] || echo "survivors: ${survivors[*]}"
