@@ -1,6 +1,9 @@
-// libFuzzer target for the controller-file loader (fuzzypid/controller_file). Any input must be
-// accepted or rejected with a positioned error, never crash; an accepted file must round-trip
-// exactly (write, read, write gives the same text) and build a controller.
+// libFuzzer target for the two TOML readers: the controller-file loader (fuzzypid/controller_file)
+// and the condition-file reader (sim/condition_set.hpp, with the robot, path and plant keys). Any
+// input must be accepted or rejected with a positioned error, never crash; an accepted controller
+// file must round-trip exactly (write, read, write gives the same text) and build a controller; an
+// accepted condition file must hold only conditions that validate. One target for both keeps the
+// CI's fuzz time as it was.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -9,10 +12,33 @@
 
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/sim/condition_set.hpp"
+
+namespace {
+
+void check_conditions(std::string_view text) {
+  fuzzypid::sim::ConditionFile file;
+  fuzzypid::controller_file::Error error;
+  if (!fuzzypid::sim::parse_conditions(text, "dir/fuzz.toml", file, error)) {
+    if (error.file != "dir/fuzz.toml" || error.line < 1 || error.column < 1 ||
+        error.message.empty())
+      std::abort();
+    return;
+  }
+  if (file.sets.empty()) std::abort();
+  for (const auto& set : file.sets) {
+    if (set.conditions.empty()) std::abort();
+    for (const auto& c : set.conditions)
+      if (!c.validate().empty()) std::abort();
+  }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace cf = fuzzypid::controller_file;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
+  check_conditions(text);
   cf::ControllerSpec spec;
   cf::Error error;
   if (!cf::parse(text, "fuzz.toml", spec, error)) {

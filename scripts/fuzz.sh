@@ -33,9 +33,14 @@ for name in ${targets}; do
   if [ "${name}" = sim_ab_args ] || [ "${name}" = rt_loop_args ]; then max_len=512; fi
   # New inputs go to the work corpus; the checked-in seeds are only read. Artifacts (crash-*,
   # leak-*, timeout-*) land in build-fuzz/.
+  # The controller-file target reads condition files too: the shipped controller and condition
+  # files are its seeds as they are, not copies.
+  shared=()
+  if [ "${name}" = controller_file ]; then shared=(../controllers ../tuning); fi
   status=0
   (cd build-fuzz && "bin/fuzz_${name}" -max_total_time="${seconds}" -max_len="${max_len}" \
-    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "corpus-${name}" "../fuzz/corpus/${name}") \
+    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "corpus-${name}" "../fuzz/corpus/${name}" \
+    "${shared[@]}") \
     >"${log}" 2>&1 || status=$?
   tail -n 12 "${log}"
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "${log}" | tail -n 1)

@@ -186,6 +186,33 @@ TEST_F(ClosedLoopTest, ATickAllocatesNothing) {
   }
 }
 
+// Another arm on a path file with a continuous joint, coupled dynamics with gravity, a payload
+// mass and gravity feed-forward: still no allocation per tick.
+TEST(ClosedLoopAnyRobot, ATickAllocatesNothingWithCoupledGravityPayloadAndFeedForward) {
+  sim::RobotSetup setup;
+  setup.urdf = FUZZYPID_SOURCE_DIR "/tests/robot/data/continuous_wrist.urdf";
+  setup.path = FUZZYPID_SOURCE_DIR "/paths/ur5_deburring_contour.csv";
+  setup.tick_s = 0.01;
+  setup.armature_kgm2 = robot::JointVector{0.4, 0.4, 0.4, 0.1, 0.1, 0.1};
+  setup.ik_seed_rad = robot::JointVector{0.0, -1.3, 1.6, -0.9, -1.2, 0.3};
+  std::string error;
+  const auto ex = sim::Experiment::create(setup, sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(ex) << error;
+  sim::Condition cond;
+  cond.robot = setup;
+  cond.payload_kg = 2.0;
+  cond.dynamics = robot::PlantCoupling::Coupled;
+  cond.gravity = true;
+  cf::ControllerSpec spec = cf::paper_fuzzy();
+  spec.feedforward.gravity = true;
+  auto loop = sim::ClosedLoop::create(*ex, cond, spec, error);
+  ASSERT_TRUE(loop) << error;
+  const auto before = support::allocation_count();
+  for (std::size_t k = 0; k < loop->samples(); ++k)
+    (void)loop->tick(k, k + 1 < loop->samples());
+  EXPECT_EQ(support::allocation_count(), before);
+}
+
 // Fault injection (sim::TickInjection), reset_plant and the cyclic path.
 
 // Every value of two tick results has the same bits.
