@@ -1,5 +1,7 @@
 // The tuner (fuzzypid/tune): the optimiser finds a brute-forced optimum, never exceeds its budget,
 // and tuning is deterministic for a seed (and independent of the thread count).
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -162,6 +164,48 @@ TEST_F(TuneOnTheRobot, TheRecordedCostIsTheObjectiveOfTheResult) {
   const tune::Cost c = tune::evaluate(*experiment_, training_, r->controller, o.objective, 1);
   EXPECT_EQ(c.total, r->controller.tuning->training_cost);
   EXPECT_EQ(c.total, r->cost.total);
+}
+
+// Tuning pays for itself: at a small budget every family ends below the training cost of the
+// controller it starts from (the paper's gains, the base's units).
+TEST_F(TuneOnTheRobot, TuningLowersTheTrainingCostBelowThePapersControllers) {
+  tune::Options o;
+  o.budget = 200;
+  o.population = 20;
+  const double paper_pid =
+      tune::evaluate(*experiment_, training_, cf::paper_pid(), o.objective, 1).total;
+  const double paper_fuzzy =
+      tune::evaluate(*experiment_, training_, cf::paper_fuzzy(), o.objective, 1).total;
+  for (const cf::Family f : {cf::Family::Pid, cf::Family::Scheduled, cf::Family::Fuzzy}) {
+    o.family = f;
+    std::string error;
+    const auto r = tune::tune(*experiment_, training_, o, error);
+    ASSERT_TRUE(r) << error;
+    EXPECT_LT(r->cost.total, 0.5 * std::min(paper_pid, paper_fuzzy)) << cf::to_string(f);
+  }
+}
+
+// Each training condition runs on its own robot: a set of two arms tunes, and its cost is the
+// sum of each arm's own cost.
+TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
+  fuzzypid::sim::Condition er50, ur5;
+  er50.name = "er50";
+  ur5.name = "ur5";
+  ur5.robot.urdf = FUZZYPID_SOURCE_DIR "/urdf/ur5_class.urdf";
+  ur5.robot.path = FUZZYPID_SOURCE_DIR "/paths/ur5_deburring_contour.csv";
+  ur5.robot.armature_kgm2 = fuzzypid::robot::JointVector{0.4, 0.4, 0.4, 0.1, 0.1, 0.1};
+  const std::vector<fuzzypid::sim::Condition> both = {er50, ur5};
+  std::string error;
+  const auto set = fuzzypid::sim::ExperimentSet::create(both, {}, error);
+  ASSERT_TRUE(set) << error;
+  ASSERT_EQ(set->size(), 2u);
+  const cf::ControllerSpec pid = cf::paper_pid();
+  const cf::Objective objective;
+  const double sum = tune::evaluate(*set, both, pid, objective, 2).total;
+  const double a = tune::evaluate(set->of(0), {er50}, pid, objective, 1).total;
+  const double b = tune::evaluate(set->of(1), {ur5}, pid, objective, 1).total;
+  EXPECT_DOUBLE_EQ(sum, a + b);
+  EXPECT_NE(a, b);
 }
 
 TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {

@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Closed-loop quality of the shipped controllers, against the figures the documentation states.
+
+Runs sim_ab with every controller of docs/tuning.md's five-way table on tuning/robust.toml and
+checks each row of that table (set, controller): the summed ITAE within 0.5 % (the table prints
+four significant digits) and the worst overshoot within 0.1 percentage points. A controller that
+tracks worse, or a table that no longer says what the shipped files do, fails.
+
+usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR
+"""
+import collections
+import csv
+import os
+import re
+import subprocess
+import sys
+
+
+def documented(doc):
+    """Rows (set, controller) -> (itae, overshoot) of the first table under '### The five-way table'."""
+    lines = open(doc, encoding="utf-8").read().split("\n")
+    start = lines.index("### The five-way table")
+    rows = {}
+    for line in lines[start:]:
+        if rows and not line.startswith("|"):
+            break
+        m = re.match(r"^\| (training|held-out|stress) \| (\w+) \| \d+ \| ([0-9.e+-]+) \| [0-9.]+ \| "
+                     r"([0-9.]+) \|", line)
+        if m:
+            rows[(m.group(1), m.group(2))] = (float(m.group(3)), float(m.group(4)))
+    return rows
+
+
+def main():
+    sim_ab, src, work = sys.argv[1:4]
+    rows = documented(os.path.join(src, "docs", "tuning.md"))
+    if len(rows) != 15:
+        sys.exit(f"expected 15 rows in docs/tuning.md's five-way table, found {len(rows)}")
+    names = sorted({c for _, c in rows})
+    cmd = [sim_ab, "--quiet", "--conditions", os.path.join(src, "tuning", "robust.toml"),
+           "--out", os.path.join(work, "quality")]
+    for n in names:
+        cmd += ["--controller", os.path.join(src, "controllers", n + ".toml")]
+    run = subprocess.run(cmd, capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"sim_ab exited {run.returncode}: {run.stderr}")
+    out = os.path.join(work, "quality")
+    sets = {r["scenario"]: r["set"] for r in csv.DictReader(open(os.path.join(out, "conditions.csv")))}
+    itae = collections.defaultdict(float)
+    overshoot = collections.defaultdict(float)
+    for r in csv.DictReader(open(os.path.join(out, "metrics.csv"))):
+        key = (sets[r["scenario"]], r["controller"])
+        itae[key] += float(r["itae"])
+        overshoot[key] = max(overshoot[key], float(r["overshoot_pct"]))
+    failures = 0
+    for key, (want_itae, want_overshoot) in sorted(rows.items()):
+        got_itae, got_overshoot = itae[key], overshoot[key]
+        ok = abs(got_itae - want_itae) <= 5e-3 * want_itae and abs(got_overshoot - want_overshoot) <= 0.1
+        print(f"{key[0]:9s} {key[1]:16s} ITAE {got_itae:.4g} (documented {want_itae:.4g}), "
+              f"worst overshoot {got_overshoot:.1f} % (documented {want_overshoot:.1f} %)"
+              f"{'' if ok else '  <-- FAIL'}")
+        failures += 0 if ok else 1
+    if failures:
+        sys.exit(f"{failures} row(s) differ from docs/tuning.md")
+    print(f"all {len(rows)} documented rows hold")
+
+
+if __name__ == "__main__":
+    main()
