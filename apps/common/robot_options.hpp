@@ -130,6 +130,7 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
       ->check(finite_in(sim::kPayloadKgRange.lo, sim::kPayloadKgRange.hi))
       ->option_text("M");
   std::vector<std::string> names;
+  names.reserve(sim::kDynamicsNames.size());
   for (const auto& e : sim::kDynamicsNames)
     names.emplace_back(e.name);
   app.add_option_function<std::string>(
