@@ -8,10 +8,18 @@
 // blocks; SmallCapacity is the paper's shape (2 inputs, 3 outputs, 7 terms, 49 rules) for
 // microcontrollers. Memory: docs/rule_files.md (and sizeof in tests/unit/test_engine.cpp).
 //
-// Per evaluation (fuzzylite 6's semantics, its tolerance macheps set to 0):
+// Per evaluation (fuzzylite 6's semantics, its tolerance macheps set to 0; Engine::process):
 //   mu_it          = term t of input i at x_i (x_i clamped to the range if lock_range)
 //   proposition    = hedges applied right to left to mu_it ("x is very not A" = very(not(mu_A)));
-//                    a proposition whose last hedge is `any` is 1 before the other hedges
+//                    a proposition whose last hedge is `any` is 1 before the other hedges.
+//                    "y is A" on an OUTPUT y (chained systems) reads the degree of A in y's fuzzy
+//                    output so far: the output's aggregation folded from 0 over the activations
+//                    of A by the rules triggered before this one (the sum when the output has no
+//                    aggregation), fuzzylite's Aggregated::activationDegree
+//   blocks         = in file order; within a block (General activation) each rule's strength is
+//                    computed and the rule triggered before the next rule, so later rules see
+//                    earlier rules' conclusions; the other activation methods compute all of the
+//                    block's strengths first, then trigger the rules they select
 //   antecedent     = the rule's expression of propositions joined by `and` (its block's
 //                    conjunction) and `or` (its block's disjunction); `and` binds tighter, as in
 //                    fuzzylite, and parentheses group
@@ -30,9 +38,11 @@
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape terms): z_r is the
 //     abscissa where the term reaches w_r (fuzzylite's inverses), then as Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
-// allocates nothing. An output no rule concluded on takes its default value, or 0 with
-// Status::NoRuleFired when the default is NaN (fuzzylite's "default: nan"); an output whose
-// defuzzification has no area is 0 with NoRuleFired too (fuzzylite gives NaN).
+// allocates nothing. An output no rule concluded on takes its previous value when lock_previous
+// and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
+// the model stays immutable), else its default value, or 0 with Status::NoRuleFired when the
+// default is NaN (fuzzylite's "default: nan"); an output whose defuzzification has no area is 0
+// with NoRuleFired too (fuzzylite gives NaN).
 #pragma once
 
 #include <algorithm>
@@ -122,6 +132,12 @@ struct OutputSpec {
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
   bool lock_range = false;  // clamp the crisp output into [min, max]
+  // When no rule concluded on the output, keep the last finite value of this workspace
+  // (fuzzylite's lock-previous, FCL's DEFAULT := NC) instead of the default.
+  bool lock_previous = false;
+  // false: no aggregation operator (fuzzylite's `aggregation: none`, Sugeno outputs); only read
+  // where a chained antecedent asks for a term's degree, which is then the sum of activations.
+  bool has_aggregation = true;
   Scalar default_value = std::numeric_limits<Scalar>::quiet_NaN();  // when no rule fired
   Defuzzifier defuzzifier = Defuzzifier::Centroid;
   int resolution = 100;         // samples of the integral defuzzifiers
@@ -133,13 +149,14 @@ struct OutputSpec {
 };
 
 // One element of an antecedent in postfix order: a proposition pushes its degree, And/Or pop two
-// degrees and push their conjunction/disjunction.
+// degrees and push their conjunction/disjunction. OutputProposition tests an output variable
+// (chained systems; `input` then holds the output's index).
 struct Token {
-  enum class Kind : std::uint8_t { Proposition, And, Or };
+  enum class Kind : std::uint8_t { Proposition, And, Or, OutputProposition };
   static constexpr std::uint8_t kAnyTerm = 0xFF;  // "x is any": no term
   Kind kind = Kind::Proposition;
-  std::uint8_t input = 0;
-  std::uint8_t term = 0;  // index into the input's terms, or kAnyTerm
+  std::uint8_t input = 0;  // input index (output index for OutputProposition)
+  std::uint8_t term = 0;   // index into the input's terms, or kAnyTerm
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
 };
@@ -229,6 +246,7 @@ struct EngineModel {
   std::size_t num_tokens = 0;
   std::size_t num_conclusions = 0;
   std::size_t num_points = 0;
+  bool chained = false;  // some antecedent tests an output (set by add_rule)
   std::array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
   std::array<OutputSpec<Scalar, Cap>, Cap::outputs> outputs{};
   std::array<Rule<Scalar>, Cap::rules> rules{};
@@ -252,8 +270,10 @@ struct EngineModel {
     r.num_conclusions = static_cast<std::uint32_t>(n_conclusions);
     r.block = static_cast<std::uint32_t>(block);
     r.weight = weight;
-    for (std::size_t k = 0; k < n_tokens; ++k)
+    for (std::size_t k = 0; k < n_tokens; ++k) {
+      chained = chained || antecedent[k].kind == Token::Kind::OutputProposition;
       tokens[num_tokens++] = antecedent[k];
+    }
     for (std::size_t k = 0; k < n_conclusions; ++k)
       conclusions[num_conclusions++] = then[k];
     return true;
@@ -331,10 +351,17 @@ struct EngineModel {
     for (std::size_t o = 0; o < num_outputs; ++o) {
       const auto& out = outputs[o];
       const bool sugeno = is_sugeno(out.defuzzifier);
-      if (!(sugeno && !out.lock_range ? out.min < out.max : range_ok(out.min, out.max)))
+      // A weighted defuzzifier over constant/linear terms never reads the range (fuzzylite
+      // accepts any, e.g. the zero width of [0 0] some .fis exports write).
+      const bool range_unused =
+          sugeno && !out.lock_range &&
+          (out.num_terms == 0 || out.terms[0].kind != OutputTermKind::Membership);
+      if (!(range_unused                ? out.min <= out.max
+            : sugeno && !out.lock_range ? out.min < out.max
+                                        : range_ok(out.min, out.max)))
         return {
             "output range must be finite with min < max (Sugeno outputs without lock-range: "
-            "min < max)",
+            "min < max, or min <= max over constant/linear terms)",
             o, ModelError::Where::Output};
       if (out.num_terms > Cap::terms)
         return {"more output terms than the capacity", o, ModelError::Where::Output};
@@ -361,13 +388,13 @@ struct EngineModel {
         if (membership != tsukamoto && sugeno)
           return {
               "Sugeno defuzzifiers need constant/linear terms (or, for Tsukamoto, monotonic "
-              "Ramp, Sigmoid, SShape or ZShape terms), not a mix",
+              "Ramp, Sigmoid, SShape, ZShape or Concave terms), not a mix",
               o, ModelError::Where::Output};
         if (!sugeno && !membership)
           return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
                   ModelError::Where::Output};
         if (tsukamoto && !is_monotonic(term.membership))
-          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape or ZShape", o,
+          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape or Concave", o,
                   ModelError::Where::Output};
         if (membership && !term_ok(term.membership))
           return {"invalid output term parameters", o, ModelError::Where::Output};
@@ -399,6 +426,14 @@ struct EngineModel {
           const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
           if (!any && tok.term >= inputs[tok.input].num_terms)
             return {"rule names an unknown input term", r, ModelError::Where::Rule};
+          ++depth;
+        } else if (tok.kind == Token::Kind::OutputProposition) {
+          if (!chained || tok.input >= num_outputs || tok.num_hedges > kMaxHedges)
+            return {"rule names an unknown output in its antecedent", r, ModelError::Where::Rule};
+          const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
+          if (!any && tok.term >= outputs[tok.input].num_terms)
+            return {"rule names an unknown output term in its antecedent", r,
+                    ModelError::Where::Rule};
           ++depth;
         } else {
           if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
@@ -433,7 +468,12 @@ template <class Scalar>
 struct WorkspaceView {
   // [num_inputs * stride]: mu of term t of input i at [i * stride + t]
   Scalar* membership = nullptr;
-  std::size_t stride = 0;          // >= the largest number of input terms
+  std::size_t stride = 0;  // >= the largest number of input terms (and of output terms if chained)
+  // [num_outputs * stride] (chained models only): degree of term t in output o's fuzzy output
+  Scalar* degree = nullptr;
+  // [num_outputs]: the last finite value of each output, NaN before any (lock_previous); persists
+  // from one evaluation to the next
+  Scalar* previous = nullptr;
   Scalar* input = nullptr;         // [num_inputs]: inputs after locking
   Scalar* strength = nullptr;      // [num_rules]: rule firing strengths
   std::uint32_t* order = nullptr;  // [num_rules]: the rules that fire, in firing order
@@ -457,12 +497,22 @@ struct WorkspaceView {
     const std::size_t terms = model.max_output_terms();
     return membership != nullptr && input != nullptr && strength != nullptr && order != nullptr &&
            heap != nullptr && stack != nullptr && level != nullptr && activations != nullptr &&
-           stride >= model.max_input_terms() && activations_capacity >= acts &&
+           previous != nullptr && stride >= model.max_input_terms() &&
+           (!model.chained || (degree != nullptr && stride >= terms)) &&
+           activations_capacity >= acts &&
            (!exact_needed ||
             (exact.breakpoints_capacity >= 6 * acts + 2 && exact.lines_capacity >= 2 * acts &&
              exact.crossings_capacity >= terms * (terms > 0 ? terms - 1 : 0) / 2));
   }
 };
+
+template <class Scalar, std::size_t N>
+constexpr std::array<Scalar, N> nan_array() noexcept {
+  std::array<Scalar, N> a{};
+  for (auto& x : a)
+    x = std::numeric_limits<Scalar>::quiet_NaN();
+  return a;
+}
 
 // The view of a workspace that holds the buffers by the view's names as contiguous containers
 // (EngineWorkspace, control::DynamicWorkspace); `stride` as in WorkspaceView.
@@ -471,6 +521,8 @@ auto view_of(Workspace& w, std::size_t stride) noexcept
     -> WorkspaceView<typename decltype(Workspace::stack)::value_type> {
   return {w.membership.data(),
           stride,
+          w.degree.data(),
+          w.previous.data(),
           w.input.data(),
           w.strength.data(),
           w.order.data(),
@@ -491,6 +543,8 @@ template <class Scalar, class Cap = DefaultCapacity>
 struct EngineWorkspace {
   static constexpr std::size_t kActs = Cap::rules > Cap::terms ? Cap::rules : Cap::terms;
   std::array<Scalar, Cap::inputs * Cap::terms> membership{};
+  std::array<Scalar, Cap::outputs * Cap::terms> degree{};
+  std::array<Scalar, Cap::outputs> previous = nan_array<Scalar, Cap::outputs>();
   std::array<Scalar, Cap::inputs> input{};
   std::array<Scalar, Cap::rules> strength{};
   std::array<std::uint32_t, Cap::rules> order{};
@@ -515,14 +569,51 @@ Scalar hedge_right_to_left(const std::array<Hedge, kMaxHedges>& hedges, std::siz
   return x;
 }
 
-// "input is [hedges] term": the hedges right to left on the term's degree; 1 when the last hedge
-// is `any` (fuzzylite's Antecedent::activationDegree).
+// "variable is [hedges] term": the hedges right to left on the term's degree (an input's
+// membership, or an output's degree so far); 1 when the last hedge is `any` (fuzzylite's
+// Antecedent::activationDegree).
 template <class Scalar>
 Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   const std::size_t n = tok.num_hedges;
   if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
-  return hedge_right_to_left(tok.hedges, n, ws.membership[tok.input * ws.stride + tok.term]);
+  const Scalar* degrees = tok.kind == Token::Kind::OutputProposition ? ws.degree : ws.membership;
+  return hedge_right_to_left(tok.hedges, n, degrees[tok.input * ws.stride + tok.term]);
+}
+
+// Weight times the antecedent of rule r (postfix evaluation on ws.stack).
+template <class Scalar, class Model>
+Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
+  const Rule<Scalar>& rule = model.rules[r];
+  const RuleBlock& block = model.blocks[rule.block];
+  std::size_t sp = 0;
+  for (std::size_t k = 0; k < rule.num_tokens; ++k) {
+    const Token& tok = model.tokens[rule.first_token + k];
+    if (tok.kind == Token::Kind::And || tok.kind == Token::Kind::Or) {
+      const Scalar b = ws.stack[--sp];
+      const Scalar a = ws.stack[sp - 1];
+      ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
+                                                      : apply(block.disjunction, a, b);
+    } else {
+      ws.stack[sp++] = proposition(ws, tok);
+    }
+  }
+  return rule.weight * ws.stack[0];
+}
+
+// Adds rule r's conclusions to the outputs' term degrees that chained antecedents read
+// (fuzzylite's Consequent::modify into Aggregated, then activationDegree).
+template <class Scalar, class Model>
+void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
+  const Rule<Scalar>& rule = model.rules[r];
+  Scalar degree = ws.strength[r];
+  for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
+    const Conclusion& c = model.conclusions[rule.first_conclusion + k];
+    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
+    const auto& out = model.outputs[c.output];
+    Scalar& d = ws.degree[c.output * ws.stride + c.term];
+    d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
+  }
 }
 
 // The crisp value z with mu(z) = w of a monotonic term (fuzzylite's
@@ -548,6 +639,8 @@ Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
       const Scalar b = p[1] + (s ? falling : rising);
       return std::fabs(w - t(a, points)) < std::fabs(w - t(b, points)) ? a : b;
     }
+    case Shape::Concave:
+      return (p[0] - p[1]) / t(w, points) + Scalar(2) * p[1] - p[0];
     default:
       return t(w, points);
   }
@@ -572,15 +665,31 @@ bool compare(Comparison c, Scalar a, Scalar b) noexcept {
   return false;
 }
 
-// Fills ws.order with the rules that fire, block by block in firing order; returns their number.
+// Evaluates block b's rules and appends those that fire to ws.order[n ..) in firing order
+// (fuzzylite's Activation::activate); returns the new number of fired rules.
 template <class Scalar, class Model>
-std::size_t activate(const Model& model, const WorkspaceView<Scalar>& ws) noexcept {
-  std::size_t n = 0;
+std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t b,
+                           std::size_t n) noexcept {
   const Scalar zero = Scalar(0);
-  for (std::size_t b = 0; b < model.num_blocks; ++b) {
+  {
     const RuleBlock& block = model.blocks[b];
     const auto in_block = [&](std::size_t r) { return model.rules[r].block == b; };
     const Scalar threshold = static_cast<Scalar>(block.threshold);
+    if (block.activation == ActivationMethod::General) {
+      // Rule by rule: a chained antecedent sees the conclusions of the rules before it.
+      for (std::size_t r = 0; r < model.num_rules; ++r) {
+        if (!in_block(r)) continue;
+        ws.strength[r] = rule_strength(model, ws, r);
+        if (ws.strength[r] > zero) {
+          ws.order[n++] = static_cast<std::uint32_t>(r);
+          if (model.chained) trigger(model, ws, r);
+        }
+      }
+      return n;
+    }
+    for (std::size_t r = 0; r < model.num_rules; ++r)
+      if (in_block(r)) ws.strength[r] = rule_strength(model, ws, r);
+    const std::size_t first = n;
     switch (block.activation) {
       case ActivationMethod::Proportional: {
         Scalar sum = zero;
@@ -633,10 +742,11 @@ std::size_t activate(const Model& model, const WorkspaceView<Scalar>& ws) noexce
         break;
       }
       case ActivationMethod::General:
-        for (std::size_t r = 0; r < model.num_rules; ++r)
-          if (in_block(r) && ws.strength[r] > zero) ws.order[n++] = static_cast<std::uint32_t>(r);
         break;
     }
+    if (model.chained)
+      for (std::size_t f = first; f < n; ++f)
+        trigger(model, ws, ws.order[f]);
   }
   return n;
 }
@@ -663,24 +773,12 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
 
-  for (std::size_t r = 0; r < model.num_rules; ++r) {
-    const Rule<Scalar>& rule = model.rules[r];
-    const RuleBlock& block = model.blocks[rule.block];
-    std::size_t sp = 0;
-    for (std::size_t k = 0; k < rule.num_tokens; ++k) {
-      const Token& tok = model.tokens[rule.first_token + k];
-      if (tok.kind == Token::Kind::Proposition) {
-        ws.stack[sp++] = engine_detail::proposition(ws, tok);
-      } else {
-        const Scalar b = ws.stack[--sp];
-        const Scalar a = ws.stack[sp - 1];
-        ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
-                                                        : apply(block.disjunction, a, b);
-      }
-    }
-    ws.strength[r] = rule.weight * ws.stack[0];
-  }
-  const std::size_t fired_rules = engine_detail::activate(model, ws);
+  if (model.chained)
+    for (std::size_t k = 0; k < model.num_outputs * ws.stride; ++k)
+      ws.degree[k] = Scalar(0);
+  std::size_t fired_rules = 0;
+  for (std::size_t b = 0; b < model.num_blocks; ++b)
+    fired_rules = engine_detail::activate_block(model, ws, b, fired_rules);
 
   const bool merged = model.merges_activations();
   Status status = Status::Ok;
@@ -756,12 +854,15 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
           break;
       }
     }
-    if (!fired) y = out.default_value;
+    // fuzzylite's OutputVariable::defuzzify: the previous value only replaces an empty output.
+    if (!fired)
+      y = out.lock_previous && ws.previous[o] == ws.previous[o] ? ws.previous[o]
+                                                                : out.default_value;
+    if (y == y && out.lock_range) y = detail::clamp(y, out.min, out.max);
+    if (detail::is_finite(y)) ws.previous[o] = y;
     if (y != y) {
       y = Scalar(0);
       status = Status::NoRuleFired;
-    } else if (out.lock_range) {
-      y = detail::clamp(y, out.min, out.max);
     }
     outputs[o] = y;
   }
@@ -779,9 +880,11 @@ class Engine {
   // An invalid model leaves the engine unconfigured: evaluate() returns InvalidConfig.
   explicit Engine(const Model& model) noexcept { (void)set_model(model); }
 
+  // Also forgets the previous outputs (lock_previous).
   ModelError set_model(const Model& model) noexcept {
     const ModelError error = model.validate();
     if (!error) model_ = model;
+    ws_.previous = nan_array<Scalar, Cap::outputs>();
     configured_ = !error;
     return error;
   }
