@@ -994,7 +994,8 @@ TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
   EXPECT_EQ(ws.strength.size(), 49u);
   EXPECT_EQ(ws.membership.size(), 2u * 7u);
   std::size_t bytes = 0;
-  for (const auto* v : {&ws.membership, &ws.input, &ws.strength, &ws.stack, &ws.level})
+  for (const auto* v :
+       {&ws.membership, &ws.degree, &ws.previous, &ws.input, &ws.strength, &ws.stack, &ws.level})
     bytes += v->size() * sizeof(double);
   bytes += ws.activations.size() * sizeof(ws.activations[0]);
   bytes += (ws.order.size() + ws.heap.size()) * sizeof(std::uint32_t);

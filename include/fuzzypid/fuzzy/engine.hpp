@@ -35,7 +35,8 @@
 //     monotone).
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
 //     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
-//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape terms): z_r is the
+//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave terms): z_r is
+//   the
 //     abscissa where the term reaches w_r (fuzzylite's inverses), then as Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
