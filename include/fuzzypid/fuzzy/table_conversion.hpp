@@ -88,8 +88,9 @@ ModelError to_table_system(const EngineModel<Scalar, Cap>& m,
     if (v.defuzzifier != d || !is_sugeno(d))
       return {"table-system outputs are all weighted average or all weighted sum", o,
               Where::Output};
-    if (v.lock_range || v.default_value == v.default_value)
-      return {"table-system outputs have no lock-range and no default value", o, Where::Output};
+    if (v.lock_range || v.lock_previous || v.default_value == v.default_value)
+      return {"table-system outputs have no lock-range, lock-previous or default value", o,
+              Where::Output};
     for (std::size_t t = 0; t < v.num_terms; ++t)
       if (v.terms[t].kind != OutputTermKind::Constant)
         return {"table-system outputs need constant terms", o, Where::Output};
