@@ -365,8 +365,8 @@ class FclParser {
     std::size_t& count =
         input ? model_.inputs[current_].num_terms : model_.outputs[current_].num_terms;
     auto& names = input ? model_.inputs[current_].term_names : model_.outputs[current_].term_names;
-    for (std::size_t t = 0; t < count; ++t)
-      if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
+    // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
+    // the first, as fuzzylite's Variable::getTerm resolves it.
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     std::string type;

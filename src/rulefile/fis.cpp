@@ -314,8 +314,6 @@ class FisParser {
       VariableText::Mf mf;
       if (!text::parse_count(key.substr(2), mf.k) || mf.k < 1)
         return fail("malformed key '" + std::string(key) + "'");
-      for (const auto& other : v.mfs)
-        if (other.k == mf.k) return fail("duplicate " + std::string(key));
       // 'name' : 'type' , [p1 p2 ...]
       mf.line = line_;
       Scanner sc(value);
@@ -432,16 +430,12 @@ class FisParser {
       return fail_at(v.name_line, "variable name '" + v.name + "' longer than 31 bytes");
     if (!v.has_range) return fail_at(v.line, what + " has no Range");
     if (!v.has_num_mfs) return fail_at(v.line, what + " has no NumMFs");
-    if (v.num_mfs > Cap::terms)
+    // The MF lines are the terms, in line order, whatever their k and NumMFs say: MATLAB's
+    // readfis and fuzzylite read them so, and files in the wild repeat a k (`MF2` twice) or
+    // state a stale NumMFs.
+    if (v.mfs.size() > Cap::terms)
       return fail_at(v.num_mfs_line,
                      "more membership functions than the capacity (" + capacity_text() + ")");
-    if (v.mfs.size() != v.num_mfs)
-      return fail_at(v.num_mfs_line, "NumMFs=" + std::to_string(v.num_mfs) + " but " +
-                                         std::to_string(v.mfs.size()) + " MF lines follow");
-    for (const auto& mf : v.mfs)
-      if (mf.k > v.num_mfs)
-        return fail_at(mf.line,
-                       "MF" + std::to_string(mf.k) + " beyond NumMFs=" + std::to_string(v.num_mfs));
     // fuzzylite applies DefuzzMethod to every output whatever the Type: constant/linear terms
     // under a weighted one are Sugeno's, membership terms under it Tsukamoto's; a constant c
     // under an integral defuzzifier (a 'hybrid' export) is fuzzylite's Constant::membership, the
@@ -490,8 +484,6 @@ class FisParser {
             for (std::size_t c = 0; c < p.size(); ++c)
               term.coefficients[c] = p[c];
           }
-        } else if (type_ == "sugeno") {
-          why = "a sugeno output needs 'constant' or 'linear' terms, not '" + mf.type + "'";
         } else {
           term.kind = fuzzy::OutputTermKind::Membership;
           why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, model_,
@@ -509,14 +501,14 @@ class FisParser {
       (void)fuzzy::set_name(in.name, v.name.data(), v.name.size());
       in.min = v.min;
       in.max = v.max;
-      in.num_terms = v.num_mfs;
+      in.num_terms = v.mfs.size();
       lines_.inputs.push_back(v.line);
     } else {
       auto& out = model_.outputs[index - 1];
       (void)fuzzy::set_name(out.name, v.name.data(), v.name.size());
       out.min = v.min;
       out.max = v.max;
-      out.num_terms = v.num_mfs;
+      out.num_terms = v.mfs.size();
       out.defuzzifier = defuzzifier_;
       out.aggregation = aggregation_;
       out.has_aggregation = has_aggregation_;
@@ -570,9 +562,13 @@ class FisParser {
     if (outputs_.size() != num_outputs_)
       return fail_at(outputs_.rbegin()->second.line, "more [OutputN] sections than NumOutputs");
     if (!seen_rules_) return fail_at(0, "missing [Rules] section");
-    if (rules_.size() != num_rules_)
+    // More rule lines than NumRules: a stale count, read as fuzzylite reads it (every line; its
+    // own AllTerms.fis example states 16 and holds 20). Fewer: a truncated file, refused.
+    if (rules_.size() < num_rules_)
       return fail_at(num_rules_line_, "NumRules=" + std::to_string(num_rules_) + " but " +
                                           std::to_string(rules_.size()) + " rules follow");
+    if (rules_.size() > Cap::rules)
+      return fail_at(num_rules_line_, "more rules than the capacity (" + capacity_text() + ")");
     model_.num_blocks = 1;
     model_.blocks[0] = block_;
     for (const RuleText& rt : rules_) {

@@ -268,8 +268,8 @@ class FllParser {
                                : model_.outputs[model_.num_outputs - 1].num_terms;
     auto& names = input ? model_.inputs[model_.num_inputs - 1].term_names
                         : model_.outputs[model_.num_outputs - 1].term_names;
-    for (std::size_t t = 0; t < count; ++t)
-      if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
+    // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
+    // the first, as fuzzylite's Variable::getTerm resolves it.
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     if (input) {

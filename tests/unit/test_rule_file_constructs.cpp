@@ -382,6 +382,48 @@ TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithFuzzylitesInverse) {
   EXPECT_DOUBLE_EQ(y, (0.2 - 0.6) / 0.8 + 1.2 - 0.2);
 }
 
+TEST(RuleFileFis, MfLinesAreTheTermsWhateverTheirNumberAndNumMfsSay) {
+  // As MATLAB's readfis and fuzzylite: a repeated k and a stale NumMFs do not drop or reorder
+  // terms.
+  std::string fis =
+      replace(kSugenoFis, "NumMFs=1\nMF1='lo':'trimf',[0 0 1]\n[Input2]",
+              "NumMFs=1\nMF1='lo':'trimf',[0 0 1]\nMF1='hi':'trimf',[0 1 1]\n[Input2]");
+  fis = replace(fis, "1 0, 1 (1) : 1", "2 0, 1 (1) : 1");
+  const auto model = load("mfs.fis", fis);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->inputs[0].num_terms, 2u);
+  EXPECT_STREQ(model->inputs[0].term_names[1].data(), "hi");
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.75, 1.0};  // hi = 0.75, z is lo = 0: only rule 1 fires
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(x, &y), Status::Ok);
+  EXPECT_EQ(engine->rule_strength(0), 0.75);
+}
+
+TEST(RuleFileFis, RuleLinesBeyondAStaleNumRulesAreRead) {
+  const auto model = load("stale.fis", replace(kSugenoFis, "NumRules=2", "NumRules=1"));
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->num_rules, 2u);
+}
+
+TEST(RuleFileFll, TermsSharingANameAreKeptAndRulesMeanTheFirstAsInFuzzylite) {
+  fl::fuzzylite::setMachEps(0.0);
+  const std::string fll =
+      replace(kHold, "  term: k Linear 10 0\n", "  term: k Linear 10 0\n  term: k Constant 9\n");
+  const auto model = load("same.fll", fll);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->outputs[0].num_terms, 2u);
+  EXPECT_EQ(model->conclusions[0].term, 0u);
+  std::unique_ptr<fl::Engine> oracle(fl::FllImporter().fromString(fll));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.3;
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(&x, &y), Status::Ok);
+  oracle->getInputVariable(0)->setValue(x);
+  oracle->process();
+  EXPECT_EQ(y, oracle->getOutputVariable(0)->getValue());
+}
+
 // Where fuzzylite's FisImporter departs from MATLAB, fuzzypid keeps MATLAB's meaning.
 const std::string kSigns = R"([System]
 Name='signs'
