@@ -16,10 +16,11 @@
 //                    output so far: the output's aggregation folded from 0 over the activations
 //                    of A by the rules triggered before this one (the sum when the output has no
 //                    aggregation), fuzzylite's Aggregated::activationDegree
-//   blocks         = in file order; within a block (General activation) each rule's strength is
-//                    computed and the rule triggered before the next rule, so later rules see
-//                    earlier rules' conclusions; the other activation methods compute all of the
-//                    block's strengths first, then trigger the rules they select
+//   blocks         = in file order; within a block, General, Threshold, First and Last compute
+//                    each rule's strength and trigger it before the next rule (Last from the
+//                    block's end), so later rules see earlier rules' conclusions; Proportional,
+//                    Highest and Lowest compute all of the block's strengths first, then trigger
+//                    the rules they select (fuzzylite's Activation::activate)
 //   antecedent     = the rule's expression of propositions joined by `and` (its block's
 //                    conjunction) and `or` (its block's disjunction); `and` binds tighter, as in
 //                    fuzzylite, and parentheses group
@@ -666,88 +667,78 @@ bool compare(Comparison c, Scalar a, Scalar b) noexcept {
   return false;
 }
 
-// Evaluates block b's rules and appends those that fire to ws.order[n ..) in firing order
-// (fuzzylite's Activation::activate); returns the new number of fired rules.
+// Evaluates block b's rules and appends those that fire to ws.order[n ..) in firing order; returns
+// the new number of fired rules. The order of evaluation is fuzzylite's Activation::activate, which
+// matters when antecedents test outputs: General, Threshold, First and Last evaluate and trigger
+// rule by rule (Last from the block's last rule up), so a rule sees the conclusions of the rules
+// triggered before it; Proportional, Highest and Lowest evaluate all of the block's rules first.
 template <class Scalar, class Model>
 std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t b,
                            std::size_t n) noexcept {
   const Scalar zero = Scalar(0);
-  {
-    const RuleBlock& block = model.blocks[b];
-    const auto in_block = [&](std::size_t r) { return model.rules[r].block == b; };
-    const Scalar threshold = static_cast<Scalar>(block.threshold);
-    if (block.activation == ActivationMethod::General) {
-      // Rule by rule: a chained antecedent sees the conclusions of the rules before it.
-      for (std::size_t r = 0; r < model.num_rules; ++r) {
+  const RuleBlock& block = model.blocks[b];
+  const auto in_block = [&](std::size_t r) { return model.rules[r].block == b; };
+  const Scalar threshold = static_cast<Scalar>(block.threshold);
+  const auto fire = [&](std::size_t r) {
+    ws.order[n++] = static_cast<std::uint32_t>(r);
+    if (model.chained) trigger(model, ws, r);
+  };
+  switch (block.activation) {
+    case ActivationMethod::General:
+    case ActivationMethod::Threshold:
+    case ActivationMethod::First:
+    case ActivationMethod::Last: {
+      const bool last = block.activation == ActivationMethod::Last;
+      std::uint32_t taken = 0;
+      for (std::size_t k = 0; k < model.num_rules; ++k) {
+        const std::size_t r = last ? model.num_rules - 1 - k : k;
         if (!in_block(r)) continue;
-        ws.strength[r] = rule_strength(model, ws, r);
-        if (ws.strength[r] > zero) {
-          ws.order[n++] = static_cast<std::uint32_t>(r);
-          if (model.chained) trigger(model, ws, r);
+        const Scalar w = ws.strength[r] = rule_strength(model, ws, r);
+        bool fires = w > zero;
+        if (block.activation == ActivationMethod::Threshold)
+          fires = fires && compare(block.comparison, w, threshold);
+        else if (block.activation != ActivationMethod::General)
+          fires = fires && taken < block.count && w >= threshold;
+        if (fires) {
+          fire(r);
+          ++taken;
         }
       }
       return n;
     }
-    for (std::size_t r = 0; r < model.num_rules; ++r)
-      if (in_block(r)) ws.strength[r] = rule_strength(model, ws, r);
-    const std::size_t first = n;
-    switch (block.activation) {
-      case ActivationMethod::Proportional: {
-        Scalar sum = zero;
-        for (std::size_t r = 0; r < model.num_rules; ++r)
-          if (in_block(r)) sum += ws.strength[r];
-        for (std::size_t r = 0; r < model.num_rules; ++r) {
-          if (!in_block(r)) continue;
-          ws.strength[r] = ws.strength[r] / sum;
-          if (ws.strength[r] > zero) ws.order[n++] = static_cast<std::uint32_t>(r);
-        }
-        break;
+    case ActivationMethod::Proportional: {
+      Scalar sum = zero;
+      for (std::size_t r = 0; r < model.num_rules; ++r)
+        if (in_block(r)) sum += ws.strength[r] = rule_strength(model, ws, r);
+      for (std::size_t r = 0; r < model.num_rules; ++r) {
+        if (!in_block(r)) continue;
+        ws.strength[r] = ws.strength[r] / sum;
+        if (ws.strength[r] > zero) fire(r);
       }
-      case ActivationMethod::Threshold:
-        for (std::size_t r = 0; r < model.num_rules; ++r)
-          if (in_block(r) && ws.strength[r] > zero &&
-              compare(block.comparison, ws.strength[r], threshold))
-            ws.order[n++] = static_cast<std::uint32_t>(r);
-        break;
-      case ActivationMethod::First:
-      case ActivationMethod::Last: {
-        std::uint32_t taken = 0;
-        const bool first = block.activation == ActivationMethod::First;
-        for (std::size_t k = 0; k < model.num_rules && taken < block.count; ++k) {
-          const std::size_t r = first ? k : model.num_rules - 1 - k;
-          if (in_block(r) && ws.strength[r] > zero && ws.strength[r] >= threshold) {
-            ws.order[n++] = static_cast<std::uint32_t>(r);
-            ++taken;
-          }
-        }
-        break;
-      }
-      case ActivationMethod::Highest:
-      case ActivationMethod::Lowest: {
-        // The same heap operations as fuzzylite's std::priority_queue, so ties pop in its order.
-        const bool highest = block.activation == ActivationMethod::Highest;
-        const auto before = [&](std::uint32_t a, std::uint32_t c) {
-          return highest ? ws.strength[a] < ws.strength[c] : ws.strength[a] > ws.strength[c];
-        };
-        std::size_t size = 0;
-        for (std::size_t r = 0; r < model.num_rules; ++r) {
-          if (!in_block(r) || !(ws.strength[r] > zero)) continue;
-          ws.heap[size++] = static_cast<std::uint32_t>(r);
-          std::push_heap(ws.heap, ws.heap + size, before);
-        }
-        for (std::uint32_t taken = 0; size > 0 && taken < block.count; ++taken) {
-          ws.order[n++] = ws.heap[0];
-          std::pop_heap(ws.heap, ws.heap + size, before);
-          --size;
-        }
-        break;
-      }
-      case ActivationMethod::General:
-        break;
+      return n;
     }
-    if (model.chained)
-      for (std::size_t f = first; f < n; ++f)
-        trigger(model, ws, ws.order[f]);
+    case ActivationMethod::Highest:
+    case ActivationMethod::Lowest: {
+      // The same heap operations as fuzzylite's std::priority_queue, so ties pop in its order.
+      const bool highest = block.activation == ActivationMethod::Highest;
+      const auto before = [&](std::uint32_t a, std::uint32_t c) {
+        return highest ? ws.strength[a] < ws.strength[c] : ws.strength[a] > ws.strength[c];
+      };
+      std::size_t size = 0;
+      for (std::size_t r = 0; r < model.num_rules; ++r) {
+        if (!in_block(r)) continue;
+        ws.strength[r] = rule_strength(model, ws, r);
+        if (!(ws.strength[r] > zero)) continue;
+        ws.heap[size++] = static_cast<std::uint32_t>(r);
+        std::push_heap(ws.heap, ws.heap + size, before);
+      }
+      for (std::uint32_t taken = 0; size > 0 && taken < block.count; ++taken) {
+        fire(ws.heap[0]);
+        std::pop_heap(ws.heap, ws.heap + size, before);
+        --size;
+      }
+      return n;
+    }
   }
   return n;
 }
