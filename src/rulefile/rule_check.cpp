@@ -7,6 +7,7 @@
 #include <memory>
 #include <tuple>
 
+#include "fuzzypid/fuzzy/engine.hpp"
 #include "rules.hpp"
 #include "text.hpp"
 
