@@ -174,7 +174,8 @@ std::string write_membership(Format format, const fuzzy::Term<double>& t, const 
     type = fis ? "trapmf" : "Trapezoid";
     values = t.shape == Shape::LeftShoulder ? std::vector<double>{-inf, -inf, p[0], p[1]}
                                             : std::vector<double>{p[0], p[1], inf, inf};
-  } else if (fis && t.shape == Shape::Ramp) {
+  } else if (fis && t.shape == Shape::Ramp && p[0] != p[1]) {
+    // MATLAB's names; a Ramp of zero width (0 everywhere) has none and stays fuzzylite's rampmf.
     type = p[0] < p[1] ? "linsmf" : "linzmf";
     values = p[0] < p[1] ? std::vector<double>{p[0], p[1]} : std::vector<double>{p[1], p[0]};
   } else {

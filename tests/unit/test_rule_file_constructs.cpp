@@ -400,6 +400,20 @@ TEST(RuleFileFis, MfLinesAreTheTermsWhateverTheirNumberAndNumMfsSay) {
   EXPECT_EQ(engine->rule_strength(0), 0.75);
 }
 
+// Found by fuzz_fis: a zero-width rampmf (0 everywhere) was written as MATLAB's linzmf, which
+// needs a < b, so the export did not read back.
+TEST(RuleFileFis, AZeroWidthRampmfIsWrittenBackAsRampmf) {
+  std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='tsukamoto'");
+  fis = replace(fis, "Range=[0 0]", "Range=[0 1]");
+  fis = replace(fis, "MF1='c':'constant',[4]", "MF1='c':'rampmf',[1 1]");
+  const auto model = load("ramp.fis", fis);
+  ASSERT_TRUE(model);
+  std::string out, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, out, why)) << why;
+  EXPECT_NE(out.find("'rampmf',[1 1]"), std::string::npos) << out;
+  EXPECT_TRUE(load("again.fis", out));
+}
+
 TEST(RuleFileFis, RuleLinesBeyondAStaleNumRulesAreRead) {
   const auto model = load("stale.fis", replace(kSugenoFis, "NumRules=2", "NumRules=1"));
   ASSERT_TRUE(model);
