@@ -18,7 +18,6 @@
 #include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/fuzzy/table_conversion.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 
@@ -999,42 +998,6 @@ TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
   EXPECT_EQ(supervisor.infer(0.05, -0.12, ws, delta), Status::Ok);
   fuzzypid::fuzzy::DynamicWorkspace<double> wrong;  // not made for this model
   EXPECT_EQ(supervisor.infer(0.05, -0.12, wrong, delta), Status::InvalidConfig);
-}
-
-TEST(RuleFileTable, APaperShapedModelConvertsToTheTableSystem) {
-  for (const char* file : {"paper.fis", "paper.fll"}) {
-    SCOPED_TRACE(file);
-    auto model = std::make_unique<Model>();
-    LoadError error;
-    ASSERT_TRUE(fuzzypid::rulefile::load_rule_file(std::string(FUZZYPID_RULEBASES_DIR "/") + file,
-                                                   *model, error));
-    fuzzypid::paper::System<double> table{};
-    const auto why = fuzzypid::fuzzy::to_table_system(*model, table);
-    ASSERT_FALSE(why) << why.message;
-    EXPECT_TRUE(table.e.is_uniform());
-    EXPECT_TRUE(table.ec.is_uniform());
-    auto engine = std::make_unique<Engine<double>>(*model);
-    std::mt19937_64 rng(70);
-    double worst = 0;
-    for (int n = 0; n < 20000; ++n) {
-      const double in[2] = {uniform(rng, -0.4, 0.4), uniform(rng, -0.4, 0.4)};
-      double out[3];
-      const Status a = engine->evaluate(in, out);
-      const auto r = table.infer(in[0], in[1]);
-      ASSERT_EQ(a, r.status);
-      for (int o = 0; o < 3; ++o)
-        worst = std::max(worst, std::fabs(out[o] - r.output[o]));
-    }
-    std::cout << file << " as a table system: max |table - engine| = " << worst << "\n";
-    EXPECT_LE(worst, 1e-15);
-  }
-  // A Mamdani system is not of that shape, and says why.
-  const auto mamdani = parse(Format::Fis, fixture("mamdani_mix.fis"));
-  ASSERT_TRUE(mamdani);
-  fuzzypid::paper::System<double> table{};
-  const auto why = fuzzypid::fuzzy::to_table_system(*mamdani, table);
-  ASSERT_TRUE(why);
-  EXPECT_NE(std::string(why.message).find("two inputs"), std::string::npos) << why.message;
 }
 
 }  // namespace more
