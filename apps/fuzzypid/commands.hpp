@@ -12,6 +12,7 @@ namespace fuzzypid::cli {
 
 // Adds the subcommand to `app`; `run` is set to the function that runs it once parsed.
 void add_eval_command(CLI::App& app, std::function<int()>& run);
+void add_check_rules_command(CLI::App& app, std::function<int()>& run);  // check_rules.cpp
 
 #if FUZZYPID_HAVE_ROBOT
 void add_fk_command(CLI::App& app, std::function<int()>& run);

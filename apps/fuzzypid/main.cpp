@@ -15,6 +15,7 @@ int run(int argc, char** argv) {
   app.require_subcommand(1, 1);
   std::function<int()> run;
   fuzzypid::cli::add_eval_command(app, run);
+  fuzzypid::cli::add_check_rules_command(app, run);
 #if FUZZYPID_HAVE_ROBOT
   fuzzypid::cli::add_fk_command(app, run);
   fuzzypid::cli::add_ik_command(app, run);

@@ -277,7 +277,8 @@ class FclParser {
       const std::size_t dots = v.find("..");
       double lo = 0, hi = 0;
       if (dots == std::string::npos || !text::parse_number(text::trim(v.substr(0, dots)), lo) ||
-          !text::parse_number(text::trim(v.substr(dots + 2)), hi) || !(lo < hi))
+          !text::parse_number(text::trim(v.substr(dots + 2)), hi) ||
+          !(input ? lo < hi : lo <= hi))  // min == max where unused: EngineModel::validate
         return fail("RANGE must be (min .. max) with numbers min < max, got '" + value + "'");
       (input ? in.min : out.min) = lo;
       (input ? in.max : out.max) = hi;
@@ -286,11 +287,25 @@ class FclParser {
     if (kw == "term") return term(s, input);
     if (kw == "lock") {
       if (!value_of(s, value, false)) return false;
-      if (text::iequals(value, "RANGE")) {
-        (input ? in.lock_range : out.lock_range) = true;
-        return true;
+      // RANGE, PREVIOUS (outputs: keep the last value when no rule fires) or both, '|'-separated.
+      std::string flags = value;
+      bool range = false, previous = false;
+      for (std::size_t bar; !flags.empty();) {
+        bar = flags.find('|');
+        const std::string flag(text::trim(flags.substr(0, bar)));
+        flags = bar == std::string::npos ? std::string() : flags.substr(bar + 1);
+        if (text::iequals(flag, "RANGE")) {
+          range = true;
+        } else if (text::iequals(flag, "PREVIOUS") && !input) {
+          previous = true;
+        } else {
+          return fail("LOCK : " + value +
+                      " is not supported (RANGE, PREVIOUS or PREVIOUS | RANGE)");
+        }
       }
-      return fail("LOCK : " + value + " is not supported (RANGE only; the engine is stateless)");
+      if (range) (input ? in.lock_range : out.lock_range) = true;
+      if (previous) out.lock_previous = true;
+      return true;
     }
     if (input) return fail("unknown FUZZIFY statement '" + s + "'");
     if (kw == "method") {
@@ -308,8 +323,19 @@ class FclParser {
     }
     if (kw == "default") {
       if (!value_of(s, value, true)) return false;
-      if (value.find('|') != std::string::npos || text::iequals(value, "NC"))
-        return fail("DEFAULT := NC (keep the previous value) is not supported");
+      // `DEFAULT := NC` (IEC 61131-7: no change) keeps the previous value, NaN before any;
+      // fuzzylite writes `DEFAULT := v | NC`: v until a rule has fired, then the previous value.
+      const std::size_t bar = value.find('|');
+      if (bar != std::string::npos) {
+        if (!text::iequals(text::trim(value.substr(bar + 1)), "NC"))
+          return fail("DEFAULT := v | NC expected, got '" + value + "'");
+        out.lock_previous = true;
+        value = std::string(text::trim(value.substr(0, bar)));
+      }
+      if (text::iequals(value, "NC")) {
+        out.lock_previous = true;
+        value = "nan";
+      }
       double d = 0;
       if (!text::parse_number(value, d, true) || std::isinf(d))
         return fail("DEFAULT must be a finite number or nan, got '" + value + "'");
@@ -339,8 +365,8 @@ class FclParser {
     std::size_t& count =
         input ? model_.inputs[current_].num_terms : model_.outputs[current_].num_terms;
     auto& names = input ? model_.inputs[current_].term_names : model_.outputs[current_].term_names;
-    for (std::size_t t = 0; t < count; ++t)
-      if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
+    // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
+    // the first, as fuzzylite's Variable::getTerm resolves it.
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     std::string type;
@@ -462,6 +488,7 @@ class FclParser {
         out.aggregation = block_accu_;
         accu_seen_[o] = true;
       }
+      out.has_aggregation = accu_seen_[o];
       if (!fuzzy::is_sugeno(out.defuzzifier) && !accu_seen_[o])
         return fail_at(lines_.outputs[o], "output needs an ACCU (aggregation) method");
     }
@@ -545,8 +572,9 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
       s += "  TERM " + names.output_terms[o][t] + " := " + w + ";\n";
     }
     s += std::string("  METHOD : ") + fuzzy::names(v.defuzzifier).fcl + ";\n";
-    if (!sugeno) s += std::string("  ACCU : ") + fuzzy::names(v.aggregation).fcl + ";\n";
-    s += "  DEFAULT := " + format_number(v.default_value) + ";\n";
+    if (v.has_aggregation) s += std::string("  ACCU : ") + fuzzy::names(v.aggregation).fcl + ";\n";
+    s +=
+        "  DEFAULT := " + format_number(v.default_value) + (v.lock_previous ? " | NC" : "") + ";\n";
     if (v.lock_range) s += "  LOCK : RANGE;\n";
     s += "END_DEFUZZIFY\n";
   }

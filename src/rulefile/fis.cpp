@@ -7,6 +7,7 @@
 // a distinct number in 1..NumMFs but does not reorder the terms (a file listing MF2 before MF1
 // means what MATLAB reads).
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -39,6 +40,9 @@ struct VariableText {
   std::size_t num_mfs = 0;
   int num_mfs_line = 0;
   bool has_num_mfs = false;
+  // The keys fuzzylite's FisExporter writes (outputs: Default, LockPrevious, LockRange).
+  bool lock_range = false, lock_previous = false;
+  double default_value = std::numeric_limits<double>::quiet_NaN();
   struct Mf {
     int line = 0;
     std::size_t k = 0;
@@ -215,8 +219,10 @@ class FisParser {
     }
     if (key == "Type") {
       if (!quoted_value(key, value, str)) return false;
-      if (str != "mamdani" && str != "sugeno")
-        return fail("unsupported system Type '" + str + "' (mamdani or sugeno)");
+      // hybrid and tsukamoto: as fuzzylite writes them (Mamdani and Sugeno outputs side by side;
+      // weighted defuzzifiers over monotonic terms).
+      if (str != "mamdani" && str != "sugeno" && str != "hybrid" && str != "tsukamoto")
+        return fail("unsupported system Type '" + str + "' (mamdani, sugeno, hybrid, tsukamoto)");
       type_ = str;
       return true;
     }
@@ -224,22 +230,29 @@ class FisParser {
     if (key == "NumInputs") return count(num_inputs_, num_inputs_line_) && (has_inputs_ = true);
     if (key == "NumOutputs") return count(num_outputs_, num_outputs_line_) && (has_outputs_ = true);
     if (key == "NumRules") return count(num_rules_, num_rules_line_) && (has_rules_ = true);
+    // An empty method ('') is no operator, as fuzzylite reads it: refused later only where a rule
+    // or output needs it (EngineModel::validate, placed on that rule's or output's line).
     if (key == "AndMethod" || key == "ImpMethod") {
       if (!quoted_value(key, value, str)) return false;
-      TNorm& op = key == "AndMethod" ? block_.conjunction : block_.implication;
-      if (!fuzzy::parse(str, fuzzy::Naming::Fis, op))
+      const bool conj = key == "AndMethod";
+      TNorm& op = conj ? block_.conjunction : block_.implication;
+      (conj ? block_.has_conjunction : block_.has_implication) = !str.empty();
+      if (!str.empty() && !fuzzy::parse(str, fuzzy::Naming::Fis, op))
         return fail("unsupported " + std::string(key) + " '" + str + "'");
       return true;
     }
     if (key == "OrMethod") {
       if (!quoted_value(key, value, str)) return false;
-      if (!fuzzy::parse(str, fuzzy::Naming::Fis, block_.disjunction))
+      block_.has_disjunction = !str.empty();
+      if (!str.empty() && !fuzzy::parse(str, fuzzy::Naming::Fis, block_.disjunction))
         return fail("unsupported OrMethod '" + str + "'");
       return true;
     }
     if (key == "AggMethod") {
       if (!quoted_value(key, value, str)) return false;
-      if (!fuzzy::parse(str, fuzzy::Naming::Fis, aggregation_))
+      has_aggregation_ = !str.empty();
+      agg_line_ = line_;
+      if (!str.empty() && !fuzzy::parse(str, fuzzy::Naming::Fis, aggregation_))
         return fail("unsupported AggMethod '" + str + "'");
       return true;
     }
@@ -270,9 +283,24 @@ class FisParser {
       if (words.size() != 2 || !text::parse_number(words[0], v.min) ||
           !text::parse_number(words[1], v.max))
         return fail("Range must hold two numbers, got '" + std::string(value) + "'");
-      if (!(std::isfinite(v.min) && std::isfinite(v.max) && v.min < v.max))
+      // min == max is allowed where the range is unused (Sugeno outputs; EngineModel::validate).
+      if (!(std::isfinite(v.min) && std::isfinite(v.max) && v.min <= v.max))
         return fail("Range must be finite with min < max, got '" + std::string(value) + "'");
       v.has_range = true;
+      return true;
+    }
+    if (key == "Enabled" || key == "LockPrevious" || key == "LockRange") {
+      double flag = 0;
+      if (!text::parse_number(value, flag) || !(flag == 0 || flag == 1))
+        return fail(std::string(key) + " must be 0 or 1, got '" + std::string(value) + "'");
+      if (key == "Enabled")
+        return flag == 1 || fail("disabled variables (Enabled=0) are not supported");
+      (key == "LockRange" ? v.lock_range : v.lock_previous) = flag == 1;
+      return true;
+    }
+    if (key == "Default") {
+      if (!text::parse_number(value, v.default_value, true) || std::isinf(v.default_value))
+        return fail("Default must be a finite number or nan, got '" + std::string(value) + "'");
       return true;
     }
     if (key == "NumMFs") {
@@ -286,8 +314,6 @@ class FisParser {
       VariableText::Mf mf;
       if (!text::parse_count(key.substr(2), mf.k) || mf.k < 1)
         return fail("malformed key '" + std::string(key) + "'");
-      for (const auto& other : v.mfs)
-        if (other.k == mf.k) return fail("duplicate " + std::string(key));
       // 'name' : 'type' , [p1 p2 ...]
       mf.line = line_;
       Scanner sc(value);
@@ -404,17 +430,18 @@ class FisParser {
       return fail_at(v.name_line, "variable name '" + v.name + "' longer than 31 bytes");
     if (!v.has_range) return fail_at(v.line, what + " has no Range");
     if (!v.has_num_mfs) return fail_at(v.line, what + " has no NumMFs");
-    if (v.num_mfs > Cap::terms)
+    // The MF lines are the terms, in line order, whatever their k and NumMFs say: MATLAB's
+    // readfis and fuzzylite read them so, and files in the wild repeat a k (`MF2` twice) or
+    // state a stale NumMFs.
+    if (v.mfs.size() > Cap::terms)
       return fail_at(v.num_mfs_line,
                      "more membership functions than the capacity (" + capacity_text() + ")");
-    if (v.mfs.size() != v.num_mfs)
-      return fail_at(v.num_mfs_line, "NumMFs=" + std::to_string(v.num_mfs) + " but " +
-                                         std::to_string(v.mfs.size()) + " MF lines follow");
-    for (const auto& mf : v.mfs)
-      if (mf.k > v.num_mfs)
-        return fail_at(mf.line,
-                       "MF" + std::to_string(mf.k) + " beyond NumMFs=" + std::to_string(v.num_mfs));
-    const bool sugeno = type_ == "sugeno";
+    // fuzzylite applies DefuzzMethod to every output whatever the Type: constant/linear terms
+    // under a weighted one are Sugeno's, membership terms under it Tsukamoto's; a constant c
+    // under an integral defuzzifier (a 'hybrid' export) is fuzzylite's Constant::membership, the
+    // function c everywhere: Rectangle(-inf, inf) of height c.
+    const bool weighted = fuzzy::is_sugeno(defuzzifier_);
+    const bool constants_allowed = type_ == "sugeno" || type_ == "hybrid";
     for (std::size_t t = 0; t < v.mfs.size(); ++t) {
       const auto& mf = v.mfs[t];
       if (mf.name.size() > fuzzy::kMaxNameLength)
@@ -429,7 +456,7 @@ class FisParser {
         auto& term = out.terms[t];
         (void)fuzzy::set_name(out.term_names[t], mf.name.data(), mf.name.size());
         if (mf.type == "constant" || mf.type == "linear") {
-          if (!sugeno) why = "'" + mf.type + "' terms need Type='sugeno'";
+          if (!constants_allowed) why = "'" + mf.type + "' terms need Type='sugeno' or 'hybrid'";
           for (double x : mf.params)
             if (why.empty() && !std::isfinite(x)) why = "coefficients must be finite";
           std::vector<double> p = mf.params;
@@ -439,14 +466,24 @@ class FisParser {
           if (why.empty() && p.size() != want)
             why = "'" + mf.type + "' takes " + std::to_string(want) + " parameters, got " +
                   std::to_string(mf.params.size());
-          if (why.empty()) {
+          if (why.empty() && !weighted) {
+            if (mf.type == "linear")
+              why = "'linear' terms under DefuzzMethod='" +
+                    std::string(fuzzy::names(defuzzifier_).fis) + "' are not supported";
+            else if (!(p[0] >= 0))
+              why = "a negative 'constant' under an integral DefuzzMethod is not supported";
+            else {
+              term.membership.shape = fuzzy::Shape::Rectangle;
+              term.membership.p = {-std::numeric_limits<double>::infinity(),
+                                   std::numeric_limits<double>::infinity(), 0, 0};
+              term.membership.height = p[0];
+            }
+          } else if (why.empty()) {
             term.kind = mf.type == "constant" ? fuzzy::OutputTermKind::Constant
                                               : fuzzy::OutputTermKind::Linear;
             for (std::size_t c = 0; c < p.size(); ++c)
               term.coefficients[c] = p[c];
           }
-        } else if (sugeno) {
-          why = "a sugeno output needs 'constant' or 'linear' terms, not '" + mf.type + "'";
         } else {
           term.kind = fuzzy::OutputTermKind::Membership;
           why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, model_,
@@ -464,18 +501,25 @@ class FisParser {
       (void)fuzzy::set_name(in.name, v.name.data(), v.name.size());
       in.min = v.min;
       in.max = v.max;
-      in.num_terms = v.num_mfs;
+      in.num_terms = v.mfs.size();
       lines_.inputs.push_back(v.line);
     } else {
       auto& out = model_.outputs[index - 1];
       (void)fuzzy::set_name(out.name, v.name.data(), v.name.size());
       out.min = v.min;
       out.max = v.max;
-      out.num_terms = v.num_mfs;
+      out.num_terms = v.mfs.size();
       out.defuzzifier = defuzzifier_;
       out.aggregation = aggregation_;
+      out.has_aggregation = has_aggregation_;
+      out.lock_range = v.lock_range;
+      out.lock_previous = v.lock_previous;
+      out.default_value = v.default_value;
       out.resolution = options_.fis_resolution;
-      out.exact_centroid = options_.exact_centroid && !sugeno;
+      out.exact_centroid = options_.exact_centroid && !weighted;
+      if (!weighted && !has_aggregation_)
+        return fail_at(agg_line_, "AggMethod='' but output '" + v.name +
+                                      "' has an integral DefuzzMethod, which needs one");
       lines_.outputs.push_back(v.line);
     }
     return true;
@@ -487,8 +531,8 @@ class FisParser {
     if (!has_inputs_ || !has_outputs_ || !has_rules_)
       return fail_at(0, "[System] needs NumInputs, NumOutputs and NumRules");
     if (!has_defuzz_) return fail_at(0, "[System] has no DefuzzMethod");
-    const bool sugeno = type_ == "sugeno";
-    if (sugeno != fuzzy::is_sugeno(defuzzifier_))
+    const bool weighted = fuzzy::is_sugeno(defuzzifier_);
+    if (type_ == "mamdani" ? weighted : (type_ == "sugeno" || type_ == "tsukamoto") && !weighted)
       return fail_at(defuzz_line_, "DefuzzMethod does not fit Type='" + type_ + "'");
     if (num_inputs_ < 1 || num_inputs_ > Cap::inputs)
       return fail_at(num_inputs_line_, "NumInputs must be in 1.." + std::to_string(Cap::inputs));
@@ -518,9 +562,13 @@ class FisParser {
     if (outputs_.size() != num_outputs_)
       return fail_at(outputs_.rbegin()->second.line, "more [OutputN] sections than NumOutputs");
     if (!seen_rules_) return fail_at(0, "missing [Rules] section");
-    if (rules_.size() != num_rules_)
+    // More rule lines than NumRules: a stale count, read as fuzzylite reads it (every line; its
+    // own AllTerms.fis example states 16 and holds 20). Fewer: a truncated file, refused.
+    if (rules_.size() < num_rules_)
       return fail_at(num_rules_line_, "NumRules=" + std::to_string(num_rules_) + " but " +
                                           std::to_string(rules_.size()) + " rules follow");
+    if (rules_.size() > Cap::rules)
+      return fail_at(num_rules_line_, "more rules than the capacity (" + capacity_text() + ")");
     model_.num_blocks = 1;
     model_.blocks[0] = block_;
     for (const RuleText& rt : rules_) {
@@ -553,8 +601,10 @@ class FisParser {
         Conclusion c{static_cast<std::uint8_t>(o), t.term, t.num_hedges, t.hedges};
         conclusions.push_back(c);
       }
-      if (tokens.empty()) return fail("rule has no antecedent (all indices 0)");
       if (conclusions.empty()) return fail("rule has no consequent (all indices 0)");
+      // No input index (fuzzylite's .fis export of a rule testing an output, which .fis cannot
+      // write): fuzzylite fails to load such a rule and never fires it; neither do we.
+      if (tokens.empty()) continue;
       if (!model_.add_rule(tokens.data(), tokens.size(), conclusions.data(), conclusions.size(),
                            rt.weight, 0))
         return fail("rules exceed the capacity (" + capacity_text() + ")");
@@ -585,6 +635,8 @@ class FisParser {
   int defuzz_line_ = 0;
   fuzzy::RuleBlock block_{};
   SNorm aggregation_ = SNorm::Maximum;
+  bool has_aggregation_ = true;
+  int agg_line_ = 0;
   std::map<std::size_t, VariableText> inputs_;
   std::map<std::size_t, VariableText> outputs_;
   std::vector<RuleText> rules_;
@@ -678,9 +730,9 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
               std::string(text::name_of(v.name)) + "' differs from the first";
       return false;
     }
-    if (v.lock_range || v.default_value == v.default_value) {
+    if (v.lock_range || v.lock_previous || v.default_value == v.default_value) {
       error = "output '" + std::string(text::name_of(v.name)) +
-              "' has lock-range or a default value, which .fis cannot express";
+              "' has lock-range, lock-previous or a default value, which .fis cannot express";
       return false;
     }
     if (!(std::isfinite(v.min) && std::isfinite(v.max))) {
@@ -701,18 +753,34 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       return false;
     }
   }
+  if (m.chained) {
+    error = "a rule tests an output variable, which .fis cannot express";
+    return false;
+  }
   using text::format_number;
   const bool sugeno = fuzzy::is_sugeno(first.defuzzifier);
+  bool tsukamoto = false;
+  for (std::size_t o = 0; o < m.num_outputs; ++o)
+    tsukamoto = tsukamoto || (sugeno && m.outputs[o].num_terms > 0 &&
+                              m.outputs[o].terms[0].kind == fuzzy::OutputTermKind::Membership);
   std::string s = "[System]\n";
   s += "Name=" + text::quoted(text::name_of(m.name)) + "\n";
-  s += std::string("Type='") + (sugeno ? "sugeno" : "mamdani") + "'\nVersion=2.0\n";
+  s += std::string("Type='") +
+       (tsukamoto ? "tsukamoto"
+        : sugeno  ? "sugeno"
+                  : "mamdani") +
+       "'\nVersion=2.0\n";
   s += "NumInputs=" + std::to_string(m.num_inputs) + "\n";
   s += "NumOutputs=" + std::to_string(m.num_outputs) + "\n";
   s += "NumRules=" + std::to_string(m.num_rules) + "\n";
-  s += std::string("AndMethod='") + fuzzy::names(block.conjunction).fis + "'\n";
-  s += std::string("OrMethod='") + fuzzy::names(block.disjunction).fis + "'\n";
-  s += std::string("ImpMethod='") + fuzzy::names(block.implication).fis + "'\n";
-  s += std::string("AggMethod='") + fuzzy::names(first.aggregation).fis + "'\n";
+  s += std::string("AndMethod='") +
+       (block.has_conjunction ? fuzzy::names(block.conjunction).fis : "") + "'\n";
+  s += std::string("OrMethod='") +
+       (block.has_disjunction ? fuzzy::names(block.disjunction).fis : "") + "'\n";
+  s += std::string("ImpMethod='") +
+       (block.has_implication ? fuzzy::names(block.implication).fis : "") + "'\n";
+  s += std::string("AggMethod='") +
+       (first.has_aggregation ? fuzzy::names(first.aggregation).fis : "") + "'\n";
   s += std::string("DefuzzMethod='") + fuzzy::names(first.defuzzifier).fis + "'\n";
   const auto variable = [&](const char* kind, std::size_t index, const fuzzy::Name& name, double lo,
                             double hi, std::size_t n) {

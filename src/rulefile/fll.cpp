@@ -107,6 +107,7 @@ class FllParser {
         out.min = -inf;
         out.max = inf;
         out.exact_centroid = options_.exact_centroid;
+        out.has_aggregation = false;  // fuzzylite's default: none
         lines_.outputs.push_back(line_);
         defuzzifier_seen_.push_back(false);
         aggregation_seen_.push_back(false);
@@ -183,7 +184,9 @@ class FllParser {
       if (words.size() != 2 || !text::parse_number(words[0], lo) ||
           !text::parse_number(words[1], hi))
         return fail("range takes two numbers, got '" + std::string(value) + "'");
-      if (!(lo < hi)) return fail("range must have min < max, got '" + std::string(value) + "'");
+      // min == max is allowed where the range is unused (Sugeno outputs; EngineModel::validate).
+      if (!(input ? lo < hi : lo <= hi))
+        return fail("range must have min < max, got '" + std::string(value) + "'");
       (input ? in.min : out.min) = lo;
       (input ? in.max : out.max) = hi;
       return true;
@@ -193,6 +196,7 @@ class FllParser {
     if (input) return fail("unknown InputVariable property '" + std::string(key) + "'");
     if (key == "aggregation" || key == "accumulation") {
       aggregation_seen_.back() = value != "none";
+      out.has_aggregation = value != "none";
       if (value != "none" && !fuzzy::parse(value, fuzzy::Naming::Fuzzylite, out.aggregation))
         return fail("unsupported " + std::string(key) + " '" + std::string(value) + "'");
       return true;
@@ -205,12 +209,7 @@ class FllParser {
       out.default_value = d;
       return true;
     }
-    if (key == "lock-previous" || key == "lock-valid") {
-      bool lock = false;
-      if (!boolean(value, lock)) return false;
-      return lock ? fail(std::string(key) + ": true is not supported (the engine is stateless)")
-                  : true;
-    }
+    if (key == "lock-previous" || key == "lock-valid") return boolean(value, out.lock_previous);
     return fail("unknown OutputVariable property '" + std::string(key) + "'");
   }
 
@@ -269,8 +268,8 @@ class FllParser {
                                : model_.outputs[model_.num_outputs - 1].num_terms;
     auto& names = input ? model_.inputs[model_.num_inputs - 1].term_names
                         : model_.outputs[model_.num_outputs - 1].term_names;
-    for (std::size_t t = 0; t < count; ++t)
-      if (text::name_of(names[t]) == name) return fail("duplicate term name '" + name + "'");
+    // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
+    // the first, as fuzzylite's Variable::getTerm resolves it.
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     if (input) {
@@ -476,14 +475,15 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
     s += "  range: " + format_number(v.min) + " " + format_number(v.max) + "\n";
     s += std::string("  lock-range: ") + (v.lock_range ? "true" : "false") + "\n";
     s += std::string("  aggregation: ") +
-         (sugeno ? "none" : fuzzy::names(v.aggregation).fuzzylite) + "\n";
+         (!v.has_aggregation ? "none" : fuzzy::names(v.aggregation).fuzzylite) + "\n";
     s += std::string("  defuzzifier: ") + fuzzy::names(v.defuzzifier).fuzzylite +
          (!sugeno ? " " + std::to_string(v.resolution)
           : v.num_terms > 0 && v.terms[0].kind == fuzzy::OutputTermKind::Membership
               ? std::string(" Tsukamoto")
               : std::string(" TakagiSugeno")) +
          "\n";
-    s += "  default: " + format_number(v.default_value) + "\n  lock-previous: false\n";
+    s += "  default: " + format_number(v.default_value) +
+         "\n  lock-previous: " + (v.lock_previous ? "true" : "false") + "\n";
     for (std::size_t t = 0; t < v.num_terms; ++t) {
       const auto& term = v.terms[t];
       std::string w;

@@ -117,15 +117,21 @@ class Parser {
     int input = -1;
     for (std::size_t i = 0; i < model_.num_inputs; ++i)
       if (text::name_of(model_.inputs[i].name) == var) input = static_cast<int>(i);
-    if (input < 0) {
-      for (std::size_t o = 0; o < model_.num_outputs; ++o)
-        if (text::name_of(model_.outputs[o].name) == var)
-          return "output variable '" + var + "' in an antecedent is not supported";
-      return "rule names unknown input variable '" + var + "'";
-    }
+    // An output in an antecedent (chained systems) reads that output's fuzzy output so far.
+    bool output = false;
+    for (std::size_t o = 0; input < 0 && o < model_.num_outputs; ++o)
+      if (text::name_of(model_.outputs[o].name) == var) {
+        input = static_cast<int>(o);
+        output = true;
+      }
+    if (input < 0) return "rule names unknown variable '" + var + "'";
     if (!is("is")) return "expected 'is' after '" + var + "'";
     ++k_;
-    Token t{Token::Kind::Proposition, static_cast<std::uint8_t>(input), 0, 0, {}};
+    Token t{output ? Token::Kind::OutputProposition : Token::Kind::Proposition,
+            static_cast<std::uint8_t>(input),
+            0,
+            0,
+            {}};
     Hedge h{};
     while (hedge(h)) {
       if (t.num_hedges == fuzzy::kMaxHedges)
@@ -139,16 +145,21 @@ class Parser {
       }
     }
     if (k_ >= w_.size()) return "rule ends after '" + var + " is'";
-    const auto& in = model_.inputs[static_cast<std::size_t>(input)];
+    const std::size_t index = static_cast<std::size_t>(input);
+    const std::size_t num_terms =
+        output ? model_.outputs[index].num_terms : model_.inputs[index].num_terms;
+    const auto& term_names =
+        output ? model_.outputs[index].term_names : model_.inputs[index].term_names;
     const std::string& term = w_[k_++];
-    for (std::size_t j = 0; j < in.num_terms; ++j) {
-      if (text::name_of(in.term_names[j]) == term) {
+    for (std::size_t j = 0; j < num_terms; ++j) {
+      if (text::name_of(term_names[j]) == term) {
         t.term = static_cast<std::uint8_t>(j);
         tokens_.push_back(t);
         return {};
       }
     }
-    return "rule names unknown term '" + term + "' of input '" + var + "'";
+    return "rule names unknown term '" + term + "' of " + (output ? "output" : "input") + " '" +
+           var + "'";
   }
 
   std::string conclusion() {
@@ -258,12 +269,15 @@ std::string write_rule(const Model& m, std::size_t r, const ExportNames& names) 
   std::vector<Piece> stack;
   for (std::size_t k = 0; k < rule.num_tokens; ++k) {
     const Token& t = m.tokens[rule.first_token + k];
-    if (t.kind == Token::Kind::Proposition) {
-      std::string s = names.inputs[t.input] + " is " + hedges_text(t.hedges, t.num_hedges);
-      if (t.term != Token::kAnyTerm) s += names.input_terms[t.input][t.term];
+    const bool output = t.kind == Token::Kind::OutputProposition;
+    if (t.kind == Token::Kind::Proposition || output) {
+      std::string s = (output ? names.outputs : names.inputs)[t.input] + " is " +
+                      hedges_text(t.hedges, t.num_hedges);
+      if (t.term != Token::kAnyTerm)
+        s += (output ? names.output_terms : names.input_terms)[t.input][t.term];
       while (!s.empty() && s.back() == ' ')
         s.pop_back();
-      stack.push_back({s, t.kind});
+      stack.push_back({s, Token::Kind::Proposition});
       continue;
     }
     Piece b = stack.back();

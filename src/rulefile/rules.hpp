@@ -4,7 +4,8 @@
 //   rule        := "if" expression "then" conclusion {"and" conclusion} ["with" weight]
 //   expression  := conjunction {"or" conjunction}          (left to right)
 //   conjunction := primary {"and" primary}                 ("and" binds tighter than "or")
-//   primary     := "(" expression ")" | input "is" {hedge} (term | "any")
+//   primary     := "(" expression ")" | variable "is" {hedge} (term | "any")
+//                  (an input, or an output: chained systems, see fuzzy/engine.hpp)
 //   conclusion  := output "is" {hedge} term
 //   hedge       := "not" | "seldom" | "somewhat" | "very" | "extremely" | "any"
 #pragma once

@@ -153,8 +153,9 @@ std::string make_membership(Format format, std::string_view type, const std::vec
     for (std::size_t k = 0; k < spec->n; ++k)
       term.p[k] = p[static_cast<std::size_t>(from[k])];
   }
-  if (!(std::isfinite(term.height) && term.height >= 0 && term.height <= 1))
-    return "term height must be in [0, 1]";
+  // fuzzylite accepts heights above 1 (and writes them for a hybrid's constants, see fis.cpp).
+  if (!(std::isfinite(term.height) && term.height >= 0))
+    return "term height must be a finite number >= 0";
   if (!term.valid()) return shape_error(type, term.shape);
   return {};
 }
@@ -173,7 +174,8 @@ std::string write_membership(Format format, const fuzzy::Term<double>& t, const 
     type = fis ? "trapmf" : "Trapezoid";
     values = t.shape == Shape::LeftShoulder ? std::vector<double>{-inf, -inf, p[0], p[1]}
                                             : std::vector<double>{p[0], p[1], inf, inf};
-  } else if (fis && t.shape == Shape::Ramp) {
+  } else if (fis && t.shape == Shape::Ramp && p[0] != p[1]) {
+    // MATLAB's names; a Ramp of zero width (0 everywhere) has none and stays fuzzylite's rampmf.
     type = p[0] < p[1] ? "linsmf" : "linzmf";
     values = p[0] < p[1] ? std::vector<double>{p[0], p[1]} : std::vector<double>{p[1], p[0]};
   } else {

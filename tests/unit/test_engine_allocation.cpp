@@ -35,12 +35,15 @@ std::unique_ptr<Model> load(const std::string& path, const LoadOptions& options 
 TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
   LoadOptions exact;
   exact.exact_centroid = true;
-  const std::unique_ptr<Model> models[] = {load(FUZZYPID_RULEBASES_DIR "/paper.fis"),
-                                           load(FUZZYPID_RULEBASES_DIR "/paper.fll"),
-                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis"),
-                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis", exact),
-                                           load(FUZZYPID_RULEFILES_DIR "/mamdani_ops.fll"),
-                                           load(FUZZYPID_RULEFILES_DIR "/sugeno_linear.fll")};
+  const std::unique_ptr<Model> models[] = {
+      load(FUZZYPID_RULEBASES_DIR "/paper.fis"), load(FUZZYPID_RULEBASES_DIR "/paper.fll"),
+      load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis"),
+      load(FUZZYPID_RULEFILES_DIR "/mamdani_mix.fis", exact),
+      load(FUZZYPID_RULEFILES_DIR "/mamdani_ops.fll"),
+      load(FUZZYPID_RULEFILES_DIR "/sugeno_linear.fll"),
+      // chained outputs; lock-previous in the workspace
+      load(FUZZYPID_RULEFILES_DIR "/corpus/chained_dimmer_two_blocks.fll"),
+      load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_lock_previous_heater.fll")};
   for (const auto& model : models) {
     ASSERT_TRUE(model);
     auto engine = std::make_unique<fuzzypid::fuzzy::Engine<double>>(*model);

@@ -9,50 +9,10 @@
 
 #include <array>
 #include <cstddef>
-#include <cstdint>
-#include <vector>
 
 #include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/fuzzy/engine_workspace.hpp"
 #include "fuzzypid/status.hpp"
-
-namespace fuzzypid::fuzzy {
-
-// A workspace sized to one model (set-up allocates; evaluation does not).
-template <class Scalar>
-struct DynamicWorkspace {
-  std::vector<Scalar> membership, input, strength, stack, level, breakpoints, lines, crossings;
-  std::vector<Activation<Scalar>> activations;
-  std::vector<std::uint32_t> order, heap;
-  std::size_t stride = 0;
-
-  DynamicWorkspace() = default;
-  template <class Model>
-  explicit DynamicWorkspace(const Model& model) {
-    stride = detail::max<std::size_t>(1, model.max_input_terms());
-    const std::size_t terms = model.max_output_terms();
-    const std::size_t acts = detail::max<std::size_t>(1, detail::max(model.num_rules, terms));
-    bool exact = false;
-    for (std::size_t o = 0; o < model.num_outputs; ++o)
-      exact = exact || model.outputs[o].exact_centroid;
-    membership.assign(detail::max<std::size_t>(1, model.num_inputs) * stride, Scalar(0));
-    input.assign(detail::max<std::size_t>(1, model.num_inputs), Scalar(0));
-    strength.assign(detail::max<std::size_t>(1, model.num_rules), Scalar(0));
-    order.assign(detail::max<std::size_t>(1, model.num_rules), 0);
-    heap.assign(detail::max<std::size_t>(1, model.num_rules), 0);
-    stack.assign(detail::max<std::size_t>(1, model.max_rule_tokens()), Scalar(0));
-    level.assign(detail::max<std::size_t>(1, terms), Scalar(0));
-    activations.assign(acts, Activation<Scalar>{});
-    if (exact) {
-      breakpoints.assign(6 * acts + 2, Scalar(0));
-      lines.assign(2 * acts, Scalar(0));
-      crossings.assign(terms * (terms > 0 ? terms - 1 : 0) / 2 + 1, Scalar(0));
-    }
-  }
-
-  WorkspaceView<Scalar> view() noexcept { return view_of(*this, stride); }
-};
-
-}  // namespace fuzzypid::fuzzy
 
 namespace fuzzypid::control {
 

@@ -58,12 +58,13 @@ struct LoadOptions {
 
 // Write a valid model as text, numbers at full precision (%.17g) so that reading it back gives
 // the same model. Fails (with `error` set) when the format cannot express the model: .fis has one
-// rule block, a single defuzzifier and aggregation for all outputs, no lock-range, finite default
-// or term height, and only rules whose connectives are all `and` or all `or` over distinct inputs;
-// no format has singleton or shoulder terms other than as trapezoids with infinite feet. .fll and
-// .fcl need names of letters, digits, '_' and '.': other names are written sanitised the way
-// fuzzylite does (other characters dropped), with "_2", "_3", ... appended where two would then
-// coincide. The load options (exact centroid, .fis resolution) are not stored.
+// rule block, a single defuzzifier and aggregation for all outputs, no lock-range, lock-previous,
+// finite default or term height, no output in an antecedent, and only rules whose connectives are
+// all `and` or all `or` over distinct inputs; no format has singleton or shoulder terms other than
+// as trapezoids with infinite feet. .fll and .fcl need names of letters, digits, '_' and '.': other
+// names are written sanitised the way fuzzylite does (other characters dropped), with "_2", "_3",
+// ... appended where two would then coincide. The load options (exact centroid, .fis resolution)
+// are not stored.
 [[nodiscard]] bool to_fll(const Model& m, std::string& out, std::string& error);
 [[nodiscard]] bool to_fis(const Model& m, std::string& out, std::string& error);
 [[nodiscard]] bool to_fcl(const Model& m, std::string& out, std::string& error);

@@ -1,0 +1,428 @@
+// The model of a run-time-sized fuzzy inference engine with a capacity fixed at compile time:
+// inputs and outputs with their terms, rule blocks with their operators, rules as postfix
+// antecedents and conclusions. Plain, immutable data: evaluation (fuzzy/engine.hpp) reads it and
+// writes only into a workspace (fuzzy/engine_workspace.hpp), so one model serves many workspaces.
+//
+// Capacity is the template parameter `Cap` (EngineCapacity<...>): inputs, outputs, terms per
+// variable, rules, rule blocks, antecedent tokens and conclusions of all rules, points of Discrete
+// terms. DefaultCapacity holds 8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 rule
+// blocks; SmallCapacity is the paper's shape (2 inputs, 3 outputs, 7 terms, 49 rules) for
+// microcontrollers. Memory: docs/rule_files.md (sizeof printed by tests/unit/test_rule_file.cpp,
+// RuleFileCapacity).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "fuzzypid/fuzzy/defuzzify.hpp"
+#include "fuzzypid/fuzzy/membership.hpp"
+#include "fuzzypid/fuzzy/operators.hpp"
+#include "fuzzypid/scalar.hpp"
+
+namespace fuzzypid::fuzzy {
+
+// The compile-time capacity of an engine model.
+template <std::size_t Inputs, std::size_t Outputs, std::size_t Terms, std::size_t Rules,
+          std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points>
+struct EngineCapacity {
+  static_assert(Inputs >= 1 && Inputs <= 255 && Outputs >= 1 && Outputs <= 255,
+                "inputs and outputs: 1..255");
+  static_assert(Terms >= 1 && Terms <= 255, "terms per variable: 1..255");
+  static_assert(Rules >= 1 && Blocks >= 1 && Tokens >= 1 && Conclusions >= 1, "empty capacity");
+  static constexpr std::size_t inputs = Inputs;
+  static constexpr std::size_t outputs = Outputs;
+  static constexpr std::size_t terms = Terms;              // per variable
+  static constexpr std::size_t rules = Rules;              // in all blocks
+  static constexpr std::size_t blocks = Blocks;            // rule blocks
+  static constexpr std::size_t tokens = Tokens;            // antecedent tokens of all rules
+  static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
+  static constexpr std::size_t points = Points;            // (x, y) pairs of all Discrete terms
+  static constexpr std::size_t rule_tokens = 63;           // tokens of one antecedent
+};
+
+using DefaultCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
+using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
+
+// The default capacity under short names.
+inline constexpr std::size_t kMaxInputs = DefaultCapacity::inputs;
+inline constexpr std::size_t kMaxOutputs = DefaultCapacity::outputs;
+inline constexpr std::size_t kMaxTerms = DefaultCapacity::terms;
+inline constexpr std::size_t kMaxRules = DefaultCapacity::rules;
+inline constexpr std::size_t kMaxNameLength = 31;
+inline constexpr std::size_t kMaxHedges = 4;  // per proposition
+
+// A NUL-terminated name of at most kMaxNameLength bytes (any bytes but NUL).
+using Name = std::array<char, kMaxNameLength + 1>;
+
+// Copies `length` bytes of `text` into `name`; false (name unchanged) when too long.
+inline bool set_name(Name& name, const char* text, std::size_t length) noexcept {
+  if (length > kMaxNameLength) return false;
+  for (std::size_t k = 0; k < length; ++k)
+    name[k] = text[k];
+  name[length] = '\0';
+  return true;
+}
+
+template <class Scalar, class Cap = DefaultCapacity>
+struct InputSpec {
+  Name name{};
+  Scalar min = Scalar(0);
+  Scalar max = Scalar(1);
+  bool lock_range = false;    // clamp the input into [min, max] before fuzzifying
+  std::size_t num_terms = 0;  // 0 allowed: an input no rule uses
+  std::array<Term<Scalar>, Cap::terms> terms{};
+  std::array<Name, Cap::terms> term_names{};
+};
+
+enum class OutputTermKind : std::uint8_t {
+  Membership,  // a membership function (Mamdani)
+  Constant,    // z = coefficients[0]
+  Linear,      // z = sum_i coefficients[i] x_i + coefficients[num_inputs]
+};
+
+template <class Scalar, class Cap = DefaultCapacity>
+struct OutputTerm {
+  OutputTermKind kind = OutputTermKind::Membership;
+  Term<Scalar> membership{};
+  std::array<Scalar, Cap::inputs + 1> coefficients{};
+};
+
+template <class Scalar, class Cap = DefaultCapacity>
+struct OutputSpec {
+  Name name{};
+  Scalar min = Scalar(0);
+  Scalar max = Scalar(1);
+  bool lock_range = false;  // clamp the crisp output into [min, max]
+  // When no rule concluded on the output, keep the last finite value of this workspace
+  // (fuzzylite's lock-previous, FCL's DEFAULT := NC) instead of the default.
+  bool lock_previous = false;
+  // false: no aggregation operator (fuzzylite's `aggregation: none`, Sugeno outputs); only read
+  // where a chained antecedent asks for a term's degree, which is then the sum of activations.
+  bool has_aggregation = true;
+  Scalar default_value = std::numeric_limits<Scalar>::quiet_NaN();  // when no rule fired
+  Defuzzifier defuzzifier = Defuzzifier::Centroid;
+  int resolution = 100;         // samples of the integral defuzzifiers
+  bool exact_centroid = false;  // Centroid in closed form instead of sampled
+  SNorm aggregation = SNorm::Maximum;
+  std::size_t num_terms = 0;
+  std::array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
+  std::array<Name, Cap::terms> term_names{};
+};
+
+// One element of an antecedent in postfix order: a proposition pushes its degree, And/Or pop two
+// degrees and push their conjunction/disjunction. OutputProposition tests an output variable
+// (chained systems; `input` then holds the output's index).
+struct Token {
+  enum class Kind : std::uint8_t { Proposition, And, Or, OutputProposition };
+  static constexpr std::uint8_t kAnyTerm = 0xFF;  // "x is any": no term
+  Kind kind = Kind::Proposition;
+  std::uint8_t input = 0;  // input index (output index for OutputProposition)
+  std::uint8_t term = 0;   // index into the input's terms, or kAnyTerm
+  std::uint8_t num_hedges = 0;
+  std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
+};
+
+// "output is [hedges] term".
+struct Conclusion {
+  std::uint8_t output = 0;
+  std::uint8_t term = 0;
+  std::uint8_t num_hedges = 0;
+  std::array<Hedge, kMaxHedges> hedges{};
+};
+
+template <class Scalar>
+struct Rule {
+  std::uint32_t first_token = 0;  // antecedent: tokens[first_token .. + num_tokens), postfix
+  std::uint32_t num_tokens = 0;
+  std::uint32_t first_conclusion = 0;  // conclusions[first_conclusion .. + num_conclusions)
+  std::uint32_t num_conclusions = 0;
+  std::uint32_t block = 0;
+  Scalar weight = Scalar(1);
+};
+
+// The operators of a rule block. A block without a conjunction (disjunction) may not use `and`
+// (`or`); one without implication may not conclude on a Mamdani output.
+// Which of a block's rules fire (fuzzylite's activation methods), given their strengths w_r:
+//   General        every rule with w_r > 0, in rule order
+//   Proportional   w_r / sum of the block's w, then as General
+//   Threshold      rules whose w_r compares true with `threshold` (and w_r > 0)
+//   First, Last    the first (last) `count` rules with w_r > 0 and w_r >= threshold
+//   Highest        the `count` rules of largest w_r > 0, largest first (ties as fuzzylite's
+//   Lowest         heap orders them); Lowest: smallest first
+enum class ActivationMethod : std::uint8_t {
+  General,
+  Proportional,
+  Threshold,
+  First,
+  Last,
+  Highest,
+  Lowest
+};
+enum class Comparison : std::uint8_t {
+  LessThan,
+  LessThanOrEqualTo,
+  EqualTo,
+  NotEqualTo,
+  GreaterThanOrEqualTo,
+  GreaterThan
+};
+inline constexpr const char* kActivationNames[] = {"General", "Proportional", "Threshold", "First",
+                                                   "Last",    "Highest",      "Lowest"};
+inline constexpr const char* kComparisonNames[] = {"<", "<=", "==", "!=", ">=", ">"};
+
+struct RuleBlock {
+  Name name{};
+  TNorm conjunction = TNorm::Minimum;
+  SNorm disjunction = SNorm::Maximum;
+  TNorm implication = TNorm::Minimum;
+  bool has_conjunction = true;
+  bool has_disjunction = true;
+  bool has_implication = true;
+  ActivationMethod activation = ActivationMethod::General;
+  Comparison comparison = Comparison::GreaterThan;  // Threshold
+  std::uint32_t count = 1;                          // First, Last, Highest, Lowest
+  double threshold = 0.0;                           // Threshold, First, Last
+};
+
+// Why a model failed validation: what is wrong, and which input, output or rule (index) it
+// concerns.
+struct ModelError {
+  enum class Where : std::uint8_t { Model, Input, Output, Rule };
+  const char* message = nullptr;  // nullptr when valid
+  std::size_t index = 0;
+  Where where = Where::Model;
+  explicit operator bool() const noexcept { return message != nullptr; }
+};
+
+template <class Scalar, class Cap = DefaultCapacity>
+struct EngineModel {
+  FUZZYPID_ASSERT_SCALAR(Scalar);
+  using Capacity = Cap;
+
+  Name name{};
+  std::size_t num_inputs = 0;
+  std::size_t num_outputs = 0;
+  std::size_t num_rules = 0;
+  std::size_t num_blocks = 1;
+  std::size_t num_tokens = 0;
+  std::size_t num_conclusions = 0;
+  std::size_t num_points = 0;
+  bool chained = false;  // some antecedent tests an output (set by add_rule)
+  std::array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
+  std::array<OutputSpec<Scalar, Cap>, Cap::outputs> outputs{};
+  std::array<Rule<Scalar>, Cap::rules> rules{};
+  std::array<RuleBlock, Cap::blocks> blocks{};
+  std::array<Token, Cap::tokens> tokens{};
+  std::array<Conclusion, Cap::conclusions> conclusions{};
+  std::array<Scalar, 2 * Cap::points> points{};  // (x, y) pairs of the Discrete terms
+
+  // Appends a rule to block `block` from its postfix antecedent and its conclusions; false (model
+  // unchanged) when a capacity would be exceeded.
+  bool add_rule(const Token* antecedent, std::size_t n_tokens, const Conclusion* then,
+                std::size_t n_conclusions, Scalar weight = Scalar(1),
+                std::size_t block = 0) noexcept {
+    if (num_rules == Cap::rules || n_tokens > Cap::rule_tokens ||
+        num_tokens + n_tokens > Cap::tokens || num_conclusions + n_conclusions > Cap::conclusions)
+      return false;
+    Rule<Scalar>& r = rules[num_rules++];
+    r.first_token = static_cast<std::uint32_t>(num_tokens);
+    r.num_tokens = static_cast<std::uint32_t>(n_tokens);
+    r.first_conclusion = static_cast<std::uint32_t>(num_conclusions);
+    r.num_conclusions = static_cast<std::uint32_t>(n_conclusions);
+    r.block = static_cast<std::uint32_t>(block);
+    r.weight = weight;
+    for (std::size_t k = 0; k < n_tokens; ++k) {
+      chained = chained || antecedent[k].kind == Token::Kind::OutputProposition;
+      tokens[num_tokens++] = antecedent[k];
+    }
+    for (std::size_t k = 0; k < n_conclusions; ++k)
+      conclusions[num_conclusions++] = then[k];
+    return true;
+  }
+
+  // The largest number of terms of any input / output, and of tokens of any rule.
+  std::size_t max_input_terms() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < num_inputs; ++i)
+      n = detail::max(n, inputs[i].num_terms);
+    return n;
+  }
+  std::size_t max_output_terms() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t o = 0; o < num_outputs; ++o)
+      n = detail::max(n, outputs[o].num_terms);
+    return n;
+  }
+  std::size_t max_rule_tokens() const noexcept {
+    std::size_t n = 0;
+    for (std::size_t r = 0; r < num_rules; ++r)
+      n = detail::max(n, static_cast<std::size_t>(rules[r].num_tokens));
+    return n;
+  }
+
+  // True when every block shares one implication, Minimum or Product: Maximum aggregation then
+  // keeps one activation per output term.
+  bool merges_activations() const noexcept {
+    for (std::size_t b = 0; b < num_blocks; ++b)
+      if (blocks[b].implication != blocks[0].implication ||
+          (blocks[b].implication != TNorm::Minimum && blocks[b].implication != TNorm::Product))
+        return false;
+    return true;
+  }
+
+  // Everything evaluate() relies on; the readers check the same things with line numbers first
+  // and call this last.
+  ModelError validate() const noexcept {
+    if (num_inputs < 1 || num_inputs > Cap::inputs) return {"number of inputs out of capacity", 0};
+    if (num_outputs < 1 || num_outputs > Cap::outputs)
+      return {"number of outputs out of capacity", 0};
+    if (num_rules > Cap::rules) return {"more rules than the capacity", 0};
+    if (num_blocks < 1 || num_blocks > Cap::blocks)
+      return {"number of rule blocks out of capacity", 0};
+    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions || num_points > Cap::points)
+      return {"rule or point storage out of capacity", 0};
+    const auto range_ok = [](Scalar lo, Scalar hi) {
+      return detail::is_finite(lo) && detail::is_finite(hi) && lo < hi;
+    };
+    const auto term_ok = [&](const Term<Scalar>& t) {
+      if (!t.valid()) return false;
+      if (t.shape != Shape::Discrete) return true;
+      if (static_cast<std::size_t>(t.first) + t.count > num_points) return false;
+      for (std::size_t k = 0; k < t.count; ++k) {
+        const Scalar x = points[2 * (t.first + k)];
+        const Scalar y = points[2 * (t.first + k) + 1];
+        if (!detail::is_finite(x) || !detail::is_finite(y)) return false;
+        if (k > 0 && !(points[2 * (t.first + k - 1)] < x)) return false;
+      }
+      return true;
+    };
+    for (std::size_t i = 0; i < num_inputs; ++i) {
+      const auto& in = inputs[i];
+      // An input's range only matters for lock_range (FCL files may leave it -inf .. inf).
+      if (!(in.lock_range ? range_ok(in.min, in.max) : in.min < in.max))
+        return {"input range must be min < max (finite with lock-range)", i,
+                ModelError::Where::Input};
+      if (in.num_terms > Cap::terms)
+        return {"more input terms than the capacity", i, ModelError::Where::Input};
+      for (std::size_t t = 0; t < in.num_terms; ++t)
+        if (!term_ok(in.terms[t]))
+          return {"invalid input term parameters", i, ModelError::Where::Input};
+    }
+    const bool merged = merges_activations();
+    for (std::size_t o = 0; o < num_outputs; ++o) {
+      const auto& out = outputs[o];
+      const bool sugeno = is_sugeno(out.defuzzifier);
+      // A weighted defuzzifier over constant/linear terms never reads the range (fuzzylite
+      // accepts any, e.g. the zero width of [0 0] some .fis exports write).
+      const bool range_unused =
+          sugeno && !out.lock_range &&
+          (out.num_terms == 0 || out.terms[0].kind != OutputTermKind::Membership);
+      if (!(range_unused                ? out.min <= out.max
+            : sugeno && !out.lock_range ? out.min < out.max
+                                        : range_ok(out.min, out.max)))
+        return {
+            "output range must be finite with min < max (Sugeno outputs without lock-range: "
+            "min < max, or min <= max over constant/linear terms)",
+            o, ModelError::Where::Output};
+      if (out.num_terms > Cap::terms)
+        return {"more output terms than the capacity", o, ModelError::Where::Output};
+      if (!sugeno && (out.resolution < 1 || out.resolution > 100000000))
+        return {"resolution must be in 1..1e8", o, ModelError::Where::Output};
+      if (out.default_value == out.default_value && !detail::is_finite(out.default_value))
+        return {"default value must be finite or NaN", o, ModelError::Where::Output};
+      if (!sugeno && out.exact_centroid) {
+        if (out.defuzzifier != Defuzzifier::Centroid)
+          return {"the exact centroid applies to the centroid only", o, ModelError::Where::Output};
+        if (!(out.aggregation == SNorm::UnboundedSum ||
+              (out.aggregation == SNorm::Maximum && merged)))
+          return {
+              "the exact centroid needs Maximum or UnboundedSum aggregation and one "
+              "Minimum or Product implication",
+              o, ModelError::Where::Output};
+      }
+      // A weighted defuzzifier over monotonic membership terms is Tsukamoto's method.
+      const bool tsukamoto =
+          sugeno && out.num_terms > 0 && out.terms[0].kind == OutputTermKind::Membership;
+      for (std::size_t t = 0; t < out.num_terms; ++t) {
+        const auto& term = out.terms[t];
+        const bool membership = term.kind == OutputTermKind::Membership;
+        if (membership != tsukamoto && sugeno)
+          return {
+              "Sugeno defuzzifiers need constant/linear terms (or, for Tsukamoto, monotonic "
+              "Ramp, Sigmoid, SShape, ZShape or Concave terms), not a mix",
+              o, ModelError::Where::Output};
+        if (!sugeno && !membership)
+          return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
+                  ModelError::Where::Output};
+        if (tsukamoto && !is_monotonic(term.membership))
+          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape or Concave", o,
+                  ModelError::Where::Output};
+        if (membership && !term_ok(term.membership))
+          return {"invalid output term parameters", o, ModelError::Where::Output};
+        if (membership && out.exact_centroid && !is_piecewise_linear(term.membership))
+          return {"the exact centroid needs piecewise-linear terms of height 1", o,
+                  ModelError::Where::Output};
+        if (!membership)
+          for (std::size_t c = 0; c <= num_inputs; ++c)
+            if (!detail::is_finite(term.coefficients[c]))
+              return {"non-finite output coefficient", o, ModelError::Where::Output};
+      }
+    }
+    for (std::size_t r = 0; r < num_rules; ++r) {
+      const auto& rule = rules[r];
+      if (!(rule.weight >= Scalar(0) && rule.weight <= Scalar(1)))
+        return {"rule weight must be in [0, 1]", r, ModelError::Where::Rule};
+      if (rule.block >= num_blocks) return {"rule of an unknown block", r, ModelError::Where::Rule};
+      const RuleBlock& block = blocks[rule.block];
+      if (static_cast<std::size_t>(rule.first_token) + rule.num_tokens > num_tokens ||
+          rule.num_tokens > Cap::rule_tokens ||
+          static_cast<std::size_t>(rule.first_conclusion) + rule.num_conclusions > num_conclusions)
+        return {"rule refers to storage it does not own", r, ModelError::Where::Rule};
+      std::size_t depth = 0;
+      for (std::size_t k = 0; k < rule.num_tokens; ++k) {
+        const Token& tok = tokens[rule.first_token + k];
+        if (tok.kind == Token::Kind::Proposition) {
+          if (tok.input >= num_inputs || tok.num_hedges > kMaxHedges)
+            return {"rule names an unknown input", r, ModelError::Where::Rule};
+          const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
+          if (!any && tok.term >= inputs[tok.input].num_terms)
+            return {"rule names an unknown input term", r, ModelError::Where::Rule};
+          ++depth;
+        } else if (tok.kind == Token::Kind::OutputProposition) {
+          if (!chained || tok.input >= num_outputs || tok.num_hedges > kMaxHedges)
+            return {"rule names an unknown output in its antecedent", r, ModelError::Where::Rule};
+          const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
+          if (!any && tok.term >= outputs[tok.input].num_terms)
+            return {"rule names an unknown output term in its antecedent", r,
+                    ModelError::Where::Rule};
+          ++depth;
+        } else {
+          if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
+          if (tok.kind == Token::Kind::And ? !block.has_conjunction : !block.has_disjunction)
+            return {"rule uses 'and'/'or' but its block has no conjunction/disjunction", r,
+                    ModelError::Where::Rule};
+          --depth;
+        }
+      }
+      if (depth != 1) return {"malformed antecedent", r, ModelError::Where::Rule};
+      if (rule.num_conclusions == 0) return {"rule has no consequent", r, ModelError::Where::Rule};
+      for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
+        const Conclusion& c = conclusions[rule.first_conclusion + k];
+        if (c.output >= num_outputs || c.term >= outputs[c.output].num_terms ||
+            c.num_hedges > kMaxHedges)
+          return {"rule names an unknown output term", r, ModelError::Where::Rule};
+        for (std::size_t j = 0; j < k; ++j)
+          if (conclusions[rule.first_conclusion + j].output == c.output)
+            return {"rule concludes twice on one output", r, ModelError::Where::Rule};
+        if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
+          return {"a Mamdani output needs an implication operator in the rule's block", r,
+                  ModelError::Where::Rule};
+      }
+    }
+    return {};
+  }
+};
+
+}  // namespace fuzzypid::fuzzy

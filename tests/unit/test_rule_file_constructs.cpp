@@ -1,0 +1,521 @@
+// The constructs fuzzylite 6 reads beyond MATLAB's (chained outputs, hybrid and Tsukamoto .fis,
+// lock-previous / NC, zero-width unused ranges, empty methods, the Enabled key) as specifications
+// of the engine and the readers, and the two places where fuzzylite's .fis importer departs from
+// MATLAB (docs/rule_files.md, "Where fuzzylite differs"), each shown against fuzzylite itself.
+// The corpus comparison (tests/oracle/test_corpus.cpp) checks the same files point by point.
+#include <fl/Headers.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "fuzzypid/control/engine_supervisor.hpp"
+#include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
+
+namespace {
+
+using fuzzypid::Status;
+using fuzzypid::fuzzy::Engine;
+using fuzzypid::rulefile::LoadError;
+using fuzzypid::rulefile::Model;
+
+std::unique_ptr<Model> load(const std::string& name, const std::string& text) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  const std::string ext = name.substr(name.rfind('.'));
+  const bool ok = ext == ".fis"   ? fuzzypid::rulefile::parse_fis(text, name, *model, error)
+                  : ext == ".fll" ? fuzzypid::rulefile::parse_fll(text, name, *model, error)
+                                  : fuzzypid::rulefile::parse_fcl(text, name, *model, error);
+  EXPECT_TRUE(ok) << error.to_string();
+  return ok ? std::move(model) : nullptr;
+}
+
+LoadError refusal(const std::string& name, const std::string& text) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  const std::string ext = name.substr(name.rfind('.'));
+  const bool ok = ext == ".fis"   ? fuzzypid::rulefile::parse_fis(text, name, *model, error)
+                  : ext == ".fll" ? fuzzypid::rulefile::parse_fll(text, name, *model, error)
+                                  : fuzzypid::rulefile::parse_fcl(text, name, *model, error);
+  EXPECT_FALSE(ok);
+  return error;
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? s : s.replace(at, from.size(), to);
+}
+
+// One input x on [0, 1] with `lo` (Ramp 1 0) and `hi` (Ramp 0 1); two Sugeno outputs.
+const std::string kChain = R"(Engine: chain
+InputVariable: x
+  range: 0 1
+  term: lo Ramp 1 0
+  term: hi Ramp 0 1
+OutputVariable: a
+  range: 0 1
+  aggregation: Maximum
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: nan
+  term: one Constant 1
+  term: two Constant 2
+OutputVariable: b
+  range: 0 1
+  aggregation: none
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: nan
+  term: k Constant 10
+RuleBlock: first
+  conjunction: Minimum
+  disjunction: Maximum
+  activation: General
+  rule: if a is one then b is k with 0.5
+  rule: if x is lo then a is one
+  rule: if x is hi then a is one with 0.5
+  rule: if a is one then b is k
+RuleBlock: second
+  conjunction: Minimum
+  activation: General
+  rule: if a is one and x is hi then b is k with 0.25
+)";
+
+TEST(RuleFileChained, AnAntecedentOnAnOutputReadsTheDegreeOfTheRulesTriggeredBeforeIt) {
+  const auto model = load("chain.fll", kChain);
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->chained);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.25;  // lo = 0.75, hi = 0.25
+  double y[2] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  // Rule 1 runs before any conclusion on `a`: degree 0, it does not fire. Rules 2 and 3 give
+  // `one` the degrees 0.75 and 0.125, folded by a's Maximum: 0.75. Rule 4 reads 0.75; the second
+  // block reads it too: min(0.75, 0.25) * 0.25.
+  EXPECT_EQ(engine->rule_strength(0), 0.0);
+  EXPECT_EQ(engine->rule_strength(3), 0.75);
+  EXPECT_EQ(engine->rule_strength(4), 0.0625);
+  EXPECT_DOUBLE_EQ(y[0], 1.0);
+  EXPECT_DOUBLE_EQ(y[1], 10.0);
+}
+
+TEST(RuleFileChained, EqualsFuzzyliteRuleOrderIncluded) {
+  fl::fuzzylite::setMachEps(0.0);
+  const auto model = load("chain.fll", kChain);
+  ASSERT_TRUE(model);
+  std::unique_ptr<fl::Engine> oracle(fl::FllImporter().fromString(kChain));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  for (double x = -0.1; x <= 1.1; x += 0.01) {
+    double y[2] = {};
+    (void)engine->evaluate(&x, y);
+    oracle->getInputVariable(0)->setValue(x);
+    oracle->process();
+    for (int o = 0; o < 2; ++o) {
+      const double expected = oracle->getOutputVariable(o)->getValue();
+      EXPECT_EQ(y[o], std::isnan(expected) ? 0.0 : expected) << "x = " << x << ", output " << o;
+    }
+  }
+}
+
+TEST(RuleFileChained, WithoutAggregationTheDegreesOfATermAddUp) {
+  // b has no aggregation (none): two activations of k, 0.5 and 0.25, read as 0.75 by a third rule.
+  std::string text = replace(kChain, "  rule: if a is one and x is hi then b is k with 0.25\n",
+                             "  rule: if x is lo then b is k with 0.5\n"
+                             "  rule: if x is lo then b is k with 0.25\n"
+                             "  rule: if b is k then a is two\n");
+  const auto model = load("sum.fll", text);
+  ASSERT_TRUE(model);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.0;  // lo = 1
+  double y[2] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  // Rule 4 of the first block already gave k the degree 1 (a is one = 1): 1 + 0.5 + 0.25.
+  EXPECT_EQ(engine->rule_strength(6), 1.75);
+}
+
+TEST(RuleFileChained, FisRulesWithoutAnInputIndexNeverFireAsInFuzzylite) {
+  const std::string fis = R"([System]
+Name='export'
+Type='mamdani'
+NumInputs=1
+NumOutputs=2
+NumRules=2
+AndMethod='min'
+OrMethod='max'
+ImpMethod='min'
+AggMethod='max'
+DefuzzMethod='centroid'
+[Input1]
+Name='x'
+Range=[0 1]
+NumMFs=1
+MF1='all':'trapmf',[0 0 1 1]
+[Output1]
+Name='y'
+Range=[0 1]
+NumMFs=1
+MF1='mid':'trimf',[0 0.5 1]
+[Output2]
+Name='z'
+Range=[0 1]
+NumMFs=1
+MF1='mid':'trimf',[0 0.5 1]
+[Rules]
+1, 1 0 (1) : 1
+0, 0 1 (1) : 1
+)";
+  const auto model = load("export.fis", fis);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->num_rules, 1u);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.5;
+  double y[2] = {};
+  EXPECT_EQ(engine->evaluate(&x, y), Status::NoRuleFired);
+  EXPECT_NEAR(y[0], 0.5, 1e-12);
+  EXPECT_EQ(y[1], 0.0);
+}
+
+// Output `y` fires only for x in the term `on` (0.2 .. 0.6); elsewhere it keeps its last value.
+const std::string kHold = R"(Engine: hold
+InputVariable: x
+  range: 0 1
+  term: on Triangle 0.2 0.4 0.6
+OutputVariable: y
+  range: 0 10
+  aggregation: none
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: 3
+  lock-previous: true
+  term: k Linear 10 0
+RuleBlock: rules
+  activation: General
+  rule: if x is on then y is k
+)";
+
+TEST(RuleFileLockPrevious, AnOutputNoRuleFiresForKeepsTheWorkspacesLastValue) {
+  const auto model = load("hold.fll", kHold);
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->outputs[0].lock_previous);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  double y = 0;
+  const double outside = 0.9, inside = 0.25, inside2 = 0.5;
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::Ok);
+  EXPECT_EQ(y, 3.0);  // nothing to keep yet: the default
+  EXPECT_EQ(engine->evaluate(&inside, &y), Status::Ok);
+  EXPECT_EQ(y, 2.5);  // 10 * 0.25
+  EXPECT_EQ(engine->evaluate(&inside2, &y), Status::Ok);
+  EXPECT_EQ(y, 5.0);
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::Ok);
+  EXPECT_EQ(y, 5.0);  // kept
+  // A second workspace of the same immutable model has its own history.
+  fuzzypid::fuzzy::DynamicWorkspace<double> other(*model);
+  EXPECT_EQ(fuzzypid::fuzzy::evaluate(*model, other.view(), &outside, &y), Status::Ok);
+  EXPECT_EQ(y, 3.0);
+  // Setting the model again forgets the history.
+  ASSERT_FALSE(engine->set_model(*model));
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::Ok);
+  EXPECT_EQ(y, 3.0);
+}
+
+TEST(RuleFileLockPrevious, WithADefaultOfNanTheFirstEmptyEvaluationReportsNoRuleFired) {
+  const auto model = load("hold.fll", replace(kHold, "default: 3", "default: nan"));
+  ASSERT_TRUE(model);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  double y = 1;
+  const double outside = 0.9, inside = 0.4;
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::NoRuleFired);
+  EXPECT_EQ(y, 0.0);
+  EXPECT_EQ(engine->evaluate(&inside, &y), Status::Ok);
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::Ok);
+  EXPECT_EQ(y, 4.0);
+}
+
+const std::string kFcl = R"(FUNCTION_BLOCK hold
+VAR_INPUT
+  x : REAL;
+END_VAR
+VAR_OUTPUT
+  y : REAL;
+END_VAR
+FUZZIFY x
+  RANGE := (0 .. 1);
+  TERM on := Triangle 0.2 0.4 0.6;
+END_FUZZIFY
+DEFUZZIFY y
+  RANGE := (0 .. 10);
+  TERM k := 7;
+  METHOD : COGS;
+  DEFAULT := NC;
+END_DEFUZZIFY
+RULEBLOCK rules
+  RULE 1 : IF x IS on THEN y IS k;
+END_RULEBLOCK
+END_FUNCTION_BLOCK
+)";
+
+TEST(RuleFileLockPrevious, FclDefaultNcIsTheStandardsNoChange) {
+  const auto model = load("hold.fcl", kFcl);
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->outputs[0].lock_previous);
+  EXPECT_TRUE(std::isnan(model->outputs[0].default_value));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  double y = 0;
+  const double outside = 0.9, inside = 0.3;
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::NoRuleFired);
+  EXPECT_EQ(engine->evaluate(&inside, &y), Status::Ok);
+  EXPECT_EQ(engine->evaluate(&outside, &y), Status::Ok);
+  EXPECT_EQ(y, 7.0);
+  // Exported, it reads back the same (fuzzylite's `DEFAULT := nan | NC`).
+  std::string fcl, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, why)) << why;
+  EXPECT_NE(fcl.find("DEFAULT := nan | NC;"), std::string::npos) << fcl;
+  const auto again = load("again.fcl", fcl);
+  ASSERT_TRUE(again);
+  EXPECT_TRUE(again->outputs[0].lock_previous);
+}
+
+const std::string kSugenoFis = R"([System]
+Name='s'
+Type='sugeno'
+NumInputs=2
+NumOutputs=1
+NumRules=2
+AndMethod=''
+OrMethod='max'
+ImpMethod=''
+AggMethod=''
+DefuzzMethod='wtaver'
+[Input1]
+Name='x'
+Enabled=1
+Range=[0 1]
+NumMFs=1
+MF1='lo':'trimf',[0 0 1]
+[Input2]
+Name='z'
+Range=[0 1]
+NumMFs=1
+MF1='lo':'trimf',[0 0 1]
+[Output1]
+Name='y'
+Enabled=1
+Range=[0 0]
+LockPrevious=0
+LockRange=0
+Default=nan
+NumMFs=1
+MF1='c':'constant',[4]
+[Rules]
+1 0, 1 (1) : 1
+1 1, 1 (1) : 2
+)";
+
+TEST(RuleFileFis, ZeroWidthUnusedRangeEmptyMethodsAndEnabledKeysLoad) {
+  const auto model = load("s.fis", kSugenoFis);
+  ASSERT_TRUE(model);
+  EXPECT_FALSE(model->blocks[0].has_conjunction);
+  EXPECT_FALSE(model->outputs[0].has_aggregation);
+  EXPECT_EQ(model->outputs[0].min, model->outputs[0].max);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.5, 0.5};
+  double y = 0;
+  EXPECT_EQ(engine->evaluate(x, &y), Status::Ok);
+  EXPECT_EQ(y, 4.0);
+}
+
+TEST(RuleFileFis, AnEmptyMethodARuleNeedsIsRefusedOnThatRulesLine) {
+  const LoadError e = refusal("s.fis", replace(kSugenoFis, "1 1, 1 (1) : 2", "1 1, 1 (1) : 1"));
+  EXPECT_EQ(e.line, 34) << e.to_string();
+  EXPECT_NE(e.message.find("no conjunction"), std::string::npos) << e.to_string();
+}
+
+TEST(RuleFileFis, AZeroWidthRangeIsRefusedWhereItIsUsed) {
+  const LoadError e = refusal("s.fis", replace(kSugenoFis, "LockRange=0", "LockRange=1"));
+  EXPECT_NE(e.message.find("output range"), std::string::npos) << e.to_string();
+  EXPECT_EQ(e.line, 23) << e.to_string();  // [Output1]
+}
+
+TEST(RuleFileFis, DisabledVariablesAreRefusedByName) {
+  const LoadError e =
+      refusal("s.fis", replace(kSugenoFis, "Enabled=1\nRange=[0 1]", "Enabled=0\nRange=[0 1]"));
+  EXPECT_EQ(e.line, 14) << e.to_string();
+  EXPECT_NE(e.message.find("Enabled=0"), std::string::npos) << e.to_string();
+}
+
+TEST(RuleFileFis, HybridConstantsUnderAnIntegralDefuzzifierAreFuzzylitesConstantFunctions) {
+  // fuzzylite applies DefuzzMethod to every output; the centroid of the constant functions
+  // min(c, w) over the range, sampled, is (nearly) the range's middle whatever fires.
+  std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='hybrid'");
+  fis = replace(fis, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'");
+  fis = replace(fis, "AggMethod=''", "AggMethod='max'");
+  fis = replace(fis, "ImpMethod=''", "ImpMethod='min'");
+  fis = replace(fis, "Range=[0 0]", "Range=[0 8]");
+  const auto model = load("h.fis", fis);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->outputs[0].terms[0].membership.shape, fuzzypid::fuzzy::Shape::Rectangle);
+  EXPECT_EQ(model->outputs[0].terms[0].membership.height, 4.0);
+  fl::fuzzylite::setMachEps(0.0);
+  std::unique_ptr<fl::Engine> oracle(fl::FisImporter().fromString(fis));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.3, 0.9};
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(x, &y), Status::Ok);
+  oracle->getInputVariable(0)->setValue(x[0]);
+  oracle->getInputVariable(1)->setValue(x[1]);
+  oracle->process();
+  EXPECT_EQ(y, oracle->getOutputVariable(0)->getValue());
+  EXPECT_NEAR(y, 4.0, 1e-9);
+}
+
+TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithFuzzylitesInverse) {
+  std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='tsukamoto'");
+  fis = replace(fis, "Range=[0 0]", "Range=[0 1]");
+  fis = replace(fis, "MF1='c':'constant',[4]", "MF1='c':'concavemf',[0.2 0.6]");
+  const auto model = load("t.fis", fis);
+  ASSERT_TRUE(model);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.5, 1.0};  // rule 1 fires with w = 0.5 (rule 2: z is lo = 0)
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(x, &y), Status::Ok);
+  // z = (i - e) / mu(w) + 2e - i with mu(0.5) = (0.6 - 0.2) / (1.2 - 0.2 - 0.5) = 0.8.
+  EXPECT_DOUBLE_EQ(y, (0.2 - 0.6) / 0.8 + 1.2 - 0.2);
+}
+
+TEST(RuleFileFis, MfLinesAreTheTermsWhateverTheirNumberAndNumMfsSay) {
+  // As MATLAB's readfis and fuzzylite: a repeated k and a stale NumMFs do not drop or reorder
+  // terms.
+  std::string fis =
+      replace(kSugenoFis, "NumMFs=1\nMF1='lo':'trimf',[0 0 1]\n[Input2]",
+              "NumMFs=1\nMF1='lo':'trimf',[0 0 1]\nMF1='hi':'trimf',[0 1 1]\n[Input2]");
+  fis = replace(fis, "1 0, 1 (1) : 1", "2 0, 1 (1) : 1");
+  const auto model = load("mfs.fis", fis);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->inputs[0].num_terms, 2u);
+  EXPECT_STREQ(model->inputs[0].term_names[1].data(), "hi");
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.75, 1.0};  // hi = 0.75, z is lo = 0: only rule 1 fires
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(x, &y), Status::Ok);
+  EXPECT_EQ(engine->rule_strength(0), 0.75);
+}
+
+// Found by fuzz_fis: a zero-width rampmf (0 everywhere) was written as MATLAB's linzmf, which
+// needs a < b, so the export did not read back.
+TEST(RuleFileFis, AZeroWidthRampmfIsWrittenBackAsRampmf) {
+  std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='tsukamoto'");
+  fis = replace(fis, "Range=[0 0]", "Range=[0 1]");
+  fis = replace(fis, "MF1='c':'constant',[4]", "MF1='c':'rampmf',[1 1]");
+  const auto model = load("ramp.fis", fis);
+  ASSERT_TRUE(model);
+  std::string out, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, out, why)) << why;
+  EXPECT_NE(out.find("'rampmf',[1 1]"), std::string::npos) << out;
+  EXPECT_TRUE(load("again.fis", out));
+}
+
+TEST(RuleFileFis, RuleLinesBeyondAStaleNumRulesAreRead) {
+  const auto model = load("stale.fis", replace(kSugenoFis, "NumRules=2", "NumRules=1"));
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->num_rules, 2u);
+}
+
+TEST(RuleFileFll, TermsSharingANameAreKeptAndRulesMeanTheFirstAsInFuzzylite) {
+  fl::fuzzylite::setMachEps(0.0);
+  const std::string fll =
+      replace(kHold, "  term: k Linear 10 0\n", "  term: k Linear 10 0\n  term: k Constant 9\n");
+  const auto model = load("same.fll", fll);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->outputs[0].num_terms, 2u);
+  EXPECT_EQ(model->conclusions[0].term, 0u);
+  std::unique_ptr<fl::Engine> oracle(fl::FllImporter().fromString(fll));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.3;
+  double y = 0;
+  ASSERT_EQ(engine->evaluate(&x, &y), Status::Ok);
+  oracle->getInputVariable(0)->setValue(x);
+  oracle->process();
+  EXPECT_EQ(y, oracle->getOutputVariable(0)->getValue());
+}
+
+// Where fuzzylite's FisImporter departs from MATLAB, fuzzypid keeps MATLAB's meaning.
+const std::string kSigns = R"([System]
+Name='signs'
+Type='mamdani'
+NumInputs=1
+NumOutputs=1
+NumRules=2
+AndMethod='min'
+OrMethod='max'
+ImpMethod='min'
+AggMethod='max'
+DefuzzMethod='centroid'
+[Input1]
+Name='e'
+Range=[-1 1]
+NumMFs=2
+MF1='-P':'trimf',[-2 -1 0]
+MF2='P':'trimf',[0 1 2]
+[Output1]
+Name='u'
+Range=[-1 1]
+NumMFs=2
+MF1='-P':'trimf',[-2 -1 0]
+MF2='P':'trimf',[0 1 2]
+[Rules]
+1, 1 (1) : 1
+2, 2 (1) : 1
+)";
+
+TEST(RuleFileFuzzyliteDifferences, MinusPAndPStayTwoTermsWhereFuzzyliteMergesThem) {
+  fl::fuzzylite::setMachEps(0.0);
+  const auto model = load("signs.fis", kSigns);
+  ASSERT_TRUE(model);
+  EXPECT_STREQ(model->inputs[0].term_names[0].data(), "-P");
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double e = 0.5;
+  double u = 0;
+  ASSERT_EQ(engine->evaluate(&e, &u), Status::Ok);
+  EXPECT_GT(u, 0.3);  // "P" fires, "-P" does not: a positive command
+  // fuzzylite strips '-' from names: both terms become 'P' and both rules resolve to the first
+  // (MATLAB's '-P'), so at e = 0.5 no rule fires.
+  std::unique_ptr<fl::Engine> mangled(fl::FisImporter().fromString(kSigns));
+  mangled->getInputVariable(0)->setValue(e);
+  mangled->process();
+  EXPECT_TRUE(std::isnan(mangled->getOutputVariable(0)->getValue()));
+  // Renamed so no two names coincide, fuzzylite agrees with us.
+  std::string renamed = kSigns;
+  while (renamed.find("'-P'") != std::string::npos)
+    renamed = replace(renamed, "'-P'", "'N'");
+  std::unique_ptr<fl::Engine> fair(fl::FisImporter().fromString(renamed));
+  fair->getInputVariable(0)->setValue(e);
+  fair->process();
+  EXPECT_EQ(fair->getOutputVariable(0)->getValue(), u);
+}
+
+TEST(RuleFileFuzzyliteDifferences, Matlab1xZeroPaddingIsNotATermHeight) {
+  fl::fuzzylite::setMachEps(0.0);
+  // MATLAB 1.x pads every parameter list to the longest (here trapmf's 4).
+  const std::string padded =
+      replace(replace(kSigns, "[-2 -1 0]", "[-2 -1 0 0]"), "[0 1 2]", "[0 1 2 0]");
+  const auto model = load("padded.fis", padded);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->inputs[0].terms[0].height, 1.0);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double e = -0.5;
+  double u = 0;
+  ASSERT_EQ(engine->evaluate(&e, &u), Status::Ok);
+  // fuzzylite takes the pad as the height: every term is 0 everywhere, no rule fires.
+  std::unique_ptr<fl::Engine> oracle(fl::FisImporter().fromString(padded));
+  oracle->getInputVariable(0)->setValue(e);
+  oracle->process();
+  EXPECT_TRUE(std::isnan(oracle->getOutputVariable(0)->getValue()));
+  // Unpadded, fuzzylite agrees with us.
+  std::unique_ptr<fl::Engine> fair(
+      fl::FisImporter().fromString(replace(replace(kSigns, "'-P'", "'N'"), "'-P'", "'N'")));
+  fair->getInputVariable(0)->setValue(e);
+  fair->process();
+  EXPECT_EQ(fair->getOutputVariable(0)->getValue(), u);
+}
+
+}  // namespace
