@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Closed-loop quality of the shipped controllers, against the figures the documentation states.
 
-Runs sim_ab with every controller of docs/tuning.md's five-way table on tuning/robust.toml and
-checks each row of that table (set, controller): the summed ITAE within 0.5 % (the table prints
-four significant digits) and the worst overshoot within 0.1 percentage points. A controller that
-tracks worse, or a table that no longer says what the shipped files do, fails.
+Runs sim_ab with every controller of a documented table (controllers/NAME.toml) on its condition
+file and checks each row (set, controller): the summed ITAE within 0.5 % (the tables print four
+significant digits) and the worst overshoot within 0.1 percentage points. A controller that tracks
+worse, or a table that no longer says what the shipped files do, fails.
 
-usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR
+usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR [DOC HEADING CONDITIONS ROWS]
+  (default: docs/tuning.md, "### The five-way table", tuning/robust.toml, 15 rows)
 """
 import collections
 import csv
@@ -16,10 +17,10 @@ import subprocess
 import sys
 
 
-def documented(doc):
-    """Rows (set, controller) -> (itae, overshoot) of the first table under '### The five-way table'."""
+def documented(doc, heading):
+    """Rows (set, controller) -> (itae, overshoot) of the first table under `heading`."""
     lines = open(doc, encoding="utf-8").read().split("\n")
-    start = lines.index("### The five-way table")
+    start = lines.index(heading)
     rows = {}
     for line in lines[start:]:
         if rows and not line.startswith("|"):
@@ -33,18 +34,21 @@ def documented(doc):
 
 def main():
     sim_ab, src, work = sys.argv[1:4]
-    rows = documented(os.path.join(src, "docs", "tuning.md"))
-    if len(rows) != 15:
-        sys.exit(f"expected 15 rows in docs/tuning.md's five-way table, found {len(rows)}")
+    doc, heading, conditions, expected = "docs/tuning.md", "### The five-way table", \
+        "tuning/robust.toml", 15
+    if len(sys.argv) > 4:
+        doc, heading, conditions, expected = sys.argv[4], sys.argv[5], sys.argv[6], int(sys.argv[7])
+    rows = documented(os.path.join(src, doc), heading)
+    if len(rows) != expected:
+        sys.exit(f"expected {expected} rows in {doc}'s table '{heading}', found {len(rows)}")
     names = sorted({c for _, c in rows})
-    cmd = [sim_ab, "--quiet", "--conditions", os.path.join(src, "tuning", "robust.toml"),
-           "--out", os.path.join(work, "quality")]
+    out = os.path.join(work, "quality-" + os.path.basename(conditions).split(".")[0])
+    cmd = [sim_ab, "--quiet", "--conditions", os.path.join(src, conditions), "--out", out]
     for n in names:
         cmd += ["--controller", os.path.join(src, "controllers", n + ".toml")]
     run = subprocess.run(cmd, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"sim_ab exited {run.returncode}: {run.stderr}")
-    out = os.path.join(work, "quality")
     sets = {r["scenario"]: r["set"] for r in csv.DictReader(open(os.path.join(out, "conditions.csv")))}
     itae = collections.defaultdict(float)
     overshoot = collections.defaultdict(float)
@@ -61,7 +65,7 @@ def main():
               f"{'' if ok else '  <-- FAIL'}")
         failures += 0 if ok else 1
     if failures:
-        sys.exit(f"{failures} row(s) differ from docs/tuning.md")
+        sys.exit(f"{failures} row(s) differ from {doc}")
     print(f"all {len(rows)} documented rows hold")
 
 
