@@ -59,9 +59,10 @@ using Name = std::array<char, kMaxNameLength + 1>;
 // Copies `length` bytes of `text` into `name`; false (name unchanged) when too long.
 inline bool set_name(Name& name, const char* text, std::size_t length) noexcept {
   if (length > kMaxNameLength) return false;
-  for (std::size_t k = 0; k < length; ++k)
+  std::size_t k = 0;
+  for (; k < length; ++k)
     name[k] = text[k];
-  name[length] = '\0';
+  name[k] = '\0';  // k = length <= kMaxNameLength: the last element at most
   return true;
 }
 
