@@ -51,7 +51,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!cf::parse(written, "written.toml", back, error)) std::abort();
   if (cf::to_toml(back) != written) std::abort();
   std::string build_error;
-  if (!cf::JointControllers::create(spec, cf::Vector{1, 1, 1, 1, 1, 1}, build_error))
-    std::abort();
+  if (!cf::JointControllers::create(spec, cf::Vector{1, 1, 1, 1, 1, 1}, build_error)) std::abort();
   return 0;
 }

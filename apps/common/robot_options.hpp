@@ -154,12 +154,11 @@ inline std::string check_robot_options(const RobotOptions& o) {
 // What a run used, for stderr: the URDF, the path and the armature.
 inline void print_robot_note(const char* tool, const sim::Experiment& ex) {
   const auto& a = ex.armature_kgm2();
-  std::fprintf(stderr,
-               "%s: robot %s (%s -> %s), path %s, tick %g ms, armature %g,%g,%g,%g,%g,%g kg·m²\n",
-               tool, ex.urdf_file().c_str(), ex.model().root_link().c_str(),
-               ex.model().tip_link().c_str(),
-               ex.setup().path.empty() ? "the section 6 line A -> B" : ex.setup().path.c_str(),
-               ex.options().tick_s * 1e3, a[0], a[1], a[2], a[3], a[4], a[5]);
+  std::fprintf(
+      stderr, "%s: robot %s (%s -> %s), path %s, tick %g ms, armature %g,%g,%g,%g,%g,%g kg·m²\n",
+      tool, ex.urdf_file().c_str(), ex.model().root_link().c_str(), ex.model().tip_link().c_str(),
+      ex.setup().path.empty() ? "the section 6 line A -> B" : ex.setup().path.c_str(),
+      ex.options().tick_s * 1e3, a[0], a[1], a[2], a[3], a[4], a[5]);
 }
 
 }  // namespace fuzzypid::cli

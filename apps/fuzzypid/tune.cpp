@@ -99,8 +99,10 @@ int run_tune(const TuneOptions& t) {
   for (const std::string& text : t.boxes) {
     cf::SearchBox b;
     if (!parse_box(text, b)) {
-      std::fprintf(stderr, "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, -300 <= MIN <= MAX <= 300)\n",
-                   text.c_str());
+      std::fprintf(
+          stderr,
+          "fuzzypid tune: --box %s: expected NAME=MIN:MAX (log10, -300 <= MIN <= MAX <= 300)\n",
+          text.c_str());
       return 2;
     }
     bool found = false;

@@ -73,6 +73,10 @@ std::string fmt(double v) {
   return buf;
 }
 
+// Every file sim_ab may write into --out (a run or a sweep).
+const std::vector<std::string> kOutputNames = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
+                                               "conditions.csv", "settings.txt", "sweep.csv"};
+
 struct NamedController {
   std::string name;
   std::string source;  // the file, or "built-in"
@@ -131,9 +135,9 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
                  fmt(A[1]).c_str(), fmt(A[2]).c_str(), fmt(A[3]).c_str(), fmt(A[4]).c_str(),
                  fmt(A[5]).c_str());
     const auto& J = ex.nominal_inertia();
-    std::fprintf(f, "%snominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", prefix.c_str(),
-                 fmt(J[0]).c_str(), fmt(J[1]).c_str(), fmt(J[2]).c_str(), fmt(J[3]).c_str(),
-                 fmt(J[4]).c_str(), fmt(J[5]).c_str());
+    std::fprintf(f, "%snominal_inertia_kgm2=%s,%s,%s,%s,%s,%s\n", prefix.c_str(), fmt(J[0]).c_str(),
+                 fmt(J[1]).c_str(), fmt(J[2]).c_str(), fmt(J[3]).c_str(), fmt(J[4]).c_str(),
+                 fmt(J[5]).c_str());
   }
   if (!o.conditions_file.empty()) std::fprintf(f, "conditions=%s\n", o.conditions_file.c_str());
   for (const auto& c : controllers) {
@@ -271,12 +275,10 @@ int main(int argc, char** argv) {
   {
     std::vector<std::string> inputs = o.controllers;
     inputs.push_back(o.conditions_file);
-    inputs.push_back(o.robot.setup.urdf.empty() ? robot::default_urdf_path()
-                                                : o.robot.setup.urdf);
+    inputs.push_back(o.robot.setup.urdf.empty() ? robot::default_urdf_path() : o.robot.setup.urdf);
     if (!o.robot.setup.path.empty()) inputs.push_back(o.robot.setup.path);
-    const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
-                                            "conditions.csv", "settings.txt", "sweep.csv"};
-    if (const std::string bad = cli::check_output_dir(o.out_dir, names, inputs); !bad.empty()) {
+    if (const std::string bad = cli::check_output_dir(o.out_dir, kOutputNames, inputs);
+        !bad.empty()) {
       std::fprintf(stderr, "sim_ab: --out: %s\n", bad.c_str());
       return 2;
     }
@@ -346,10 +348,7 @@ int main(int argc, char** argv) {
   for (const Run& r : runs)
     for (const std::string& input : {r.condition.robot.urdf, r.condition.robot.path})
       if (!input.empty()) {
-        const std::vector<std::string> names = {"trajectory.csv", "metrics.csv",
-                                                "endeffector.csv", "conditions.csv",
-                                                "settings.txt", "sweep.csv"};
-        if (const std::string bad = cli::check_output_dir(o.out_dir, names, {input});
+        if (const std::string bad = cli::check_output_dir(o.out_dir, kOutputNames, {input});
             !bad.empty()) {
           std::fprintf(stderr, "sim_ab: --out: %s\n", bad.c_str());
           return 2;
@@ -460,9 +459,9 @@ int main(int argc, char** argv) {
         std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n", cond.name.c_str(),
                      cname, i + 1, fmt(m[i].settling_time_s).c_str(),
                      fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
-                     fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(),
-                     fmt(m[i].itae).c_str(), fmt(m[i].max_abs_error_after_1s_rad).c_str(),
-                     r.controller_faults, r.no_rule_ticks[i], r.clamped_gain_ticks[i]);
+                     fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
+                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.controller_faults,
+                     r.no_rule_ticks[i], r.clamped_gain_ticks[i]);
       }
       const Summary s = summarize(m);
       if (!o.quiet)
@@ -499,7 +498,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (no_rule_runs != 0 && o.strict_rules) {
-    std::fprintf(stderr, "sim_ab: %zu run(s) in which a supervisor fired no rule (--strict-rules)\n",
+    std::fprintf(stderr,
+                 "sim_ab: %zu run(s) in which a supervisor fired no rule (--strict-rules)\n",
                  no_rule_runs);
     return 1;
   }

@@ -173,8 +173,10 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
         std::array<double, 2> v{};
         if (!parse_list(s, v) || !sim::kNoisePositionRange.contains(v[0]) ||
             !sim::kNoiseVelocityRange.contains(v[1]))
-          throw CLI::ValidationError("--noise", "expected SIGMA_Q,SIGMA_QD within 0 .. 1 rad and "
-                                                "0 .. 100 rad/s: " + s);
+          throw CLI::ValidationError("--noise",
+                                     "expected SIGMA_Q,SIGMA_QD within 0 .. 1 rad and "
+                                     "0 .. 100 rad/s: " +
+                                         s);
         o.noise = v;
       },
       "Gaussian measurement noise on angles (rad) and velocities (rad/s)");
@@ -247,9 +249,9 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   // The paper-controller options shape the built-in pid and fuzzy only: with controller files
   // they would be ignored.
   if (!o.controllers.empty()) {
-    for (const char* name : {"--gain-units", "--pid-form", "--derivative", "--gain-update",
-                             "--tables", "--and", "--error-scale", "--error-rate-scale",
-                             "--output-scale", "--gains"})
+    for (const char* name :
+         {"--gain-units", "--pid-form", "--derivative", "--gain-update", "--tables", "--and",
+          "--error-scale", "--error-rate-scale", "--output-scale", "--gains"})
       if (app.count(name) > 0) {
         std::fprintf(stderr,
                      "sim_ab: %s sets the built-in paper controllers; with --controller FILE the "
@@ -297,7 +299,8 @@ std::vector<sim::Condition> scenario_conditions(const Options& o) {
     if (o.seed) c.seed = *o.seed;
     c.reverse = c.reverse || o.reverse;
     o.robot.apply(c);
-    if (o.start_mm) c.robot.start_m = {{o.start_mm->x() / 1e3, o.start_mm->y() / 1e3, o.start_mm->z() / 1e3}};
+    if (o.start_mm)
+      c.robot.start_m = {{o.start_mm->x() / 1e3, o.start_mm->y() / 1e3, o.start_mm->z() / 1e3}};
     if (o.end_mm) c.robot.end_m = {{o.end_mm->x() / 1e3, o.end_mm->y() / 1e3, o.end_mm->z() / 1e3}};
   }
   return out;

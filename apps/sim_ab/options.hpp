@@ -10,8 +10,8 @@
 #include <Eigen/Core>
 
 #include "fuzzypid/sim/condition.hpp"
-#include "robot_options.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "robot_options.hpp"
 
 namespace fuzzypid::sim_ab {
 

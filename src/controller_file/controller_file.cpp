@@ -186,8 +186,9 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
       for (const toml::node& entry : *files) {
         const auto* ft = entry.as_table();
         if (ft == nullptr)
-          t->fail(entry, "trained_on entries must be { kind = \"urdf|path\", file = \"...\", "
-                         "fnv1a64 = \"...\" }");
+          t->fail(entry,
+                  "trained_on entries must be { kind = \"urdf|path\", file = \"...\", "
+                  "fnv1a64 = \"...\" }");
         TableReader fr(*ft, file);
         TrainedOn f;
         f.kind = fr.text("kind");

@@ -177,7 +177,8 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
         "// Gravity feed-forward ([feedforward] gravity = true): this header holds the feedback\n"
         "// part only. Each tick the target must add g^_i(q_desired) to joint i's torque, in N·m:\n"
         "// the gravity torque of its nominal rigid-body model (no payload) at the reference\n"
-        "// angles, e.g. from a recursive Newton-Euler pass with zero velocity (kGravityFeedforward).\n";
+        "// angles, e.g. from a recursive Newton-Euler pass with zero velocity "
+        "(kGravityFeedforward).\n";
   h += "#pragma once\n\n#include <limits>\n\n";
   h += "#include \"fuzzypid/pid/pid.hpp\"\n";
   if (spec.family == Family::Fuzzy)

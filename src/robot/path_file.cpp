@@ -110,9 +110,8 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = line.find(',', start);
-      const std::string field =
-          trim(std::string_view(line).substr(start, comma == std::string::npos ? std::string::npos
-                                                                                : comma - start));
+      const std::string field = trim(std::string_view(line).substr(
+          start, comma == std::string::npos ? std::string::npos : comma - start));
       if (count == 7) {
         error = where(source, line_no) + "more than 7 fields";
         return false;
@@ -191,17 +190,19 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
     return fail(PathStatus::InvalidSpec, table.source + ": a path needs at least two rows");
   const double duration = table.time_s.back() - table.time_s.front();
   if (duration / tick_s > 1e7)
-    return fail(PathStatus::InvalidSpec,
-                table.source + ": more than 1e7 ticks (" + num(duration) + " s at " +
-                    num(tick_s) + " s a tick)");
+    return fail(PathStatus::InvalidSpec, table.source + ": more than 1e7 ticks (" + num(duration) +
+                                             " s at " + num(tick_s) + " s a tick)");
+
+  // "file:line: row at t = T s: ", for the message of a failing row (built only then).
+  const auto row_at = [&table](std::size_t k) {
+    return where(table.source, table.line[k]) + "row at t = " + num(table.time_s[k]) + " s: ";
+  };
 
   // 1. Joint samples of the rows.
   std::vector<JointVector> q(n);
   const bool analytic = ik.has_analytic();
   for (std::size_t k = 0; k < n; ++k) {
     const auto& v = table.values[k];
-    const std::string row = where(table.source, table.line[k]) + "row at t = " +
-                            num(table.time_s[k]) + " s: ";
     if (table.kind == PathKind::Joint) {
       for (std::size_t j = 0; j < kNumJoints; ++j)
         q[k][j] = v[j];
@@ -228,18 +229,16 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
     if (status != IkStatus::Ok && status != IkStatus::Singular) {
       r.ik_status = status;
       r.first_failure = k;
-      return fail(PathStatus::IkFailed,
-                  row + "pose (" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ") m, rpy (" +
-                      num(v[3]) + ", " + num(v[4]) + ", " + num(v[5]) + ") rad: " + solver +
-                      " refused it: " + to_string(status));
+      return fail(PathStatus::IkFailed, row_at(k) + "pose (" + num(v[0]) + ", " + num(v[1]) + ", " +
+                                            num(v[2]) + ") m, rpy (" + num(v[3]) + ", " +
+                                            num(v[4]) + ", " + num(v[5]) + ") rad: " + solver +
+                                            " refused it: " + to_string(status));
     }
     q[k] = sol;
   }
 
   // 2. Continuous joints unwrapped; limits and speeds checked row by row.
   for (std::size_t k = 0; k < n; ++k) {
-    const std::string row = where(table.source, table.line[k]) + "row at t = " +
-                            num(table.time_s[k]) + " s: ";
     for (std::size_t j = 0; j < kNumJoints; ++j) {
       if (is_continuous(model, j)) {
         if (k > 0) q[k][j] -= 2.0 * kPi * std::round((q[k][j] - q[k - 1][j]) / (2.0 * kPi));
@@ -250,7 +249,7 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
       if (q[k][j] < lo - 1e-9 || q[k][j] > hi + 1e-9) {
         r.first_failure = k;
         return fail(PathStatus::InvalidSpec,
-                    row + "joint " + std::to_string(j + 1) + " at " + num(q[k][j]) +
+                    row_at(k) + "joint " + std::to_string(j + 1) + " at " + num(q[k][j]) +
                         " rad is outside its URDF limits [" + num(lo) + ", " + num(hi) + "]");
       }
     }
@@ -262,7 +261,7 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
       if (speed > limit * (1.0 + 1e-9)) {
         r.first_failure = k;
         return fail(PathStatus::JointJump,
-                    row + "joint " + std::to_string(j + 1) + " moves at " + num(speed) +
+                    row_at(k) + "joint " + std::to_string(j + 1) + " moves at " + num(speed) +
                         " rad/s from the previous row, above its URDF velocity limit " +
                         num(limit) + " rad/s");
       }

@@ -77,8 +77,8 @@ std::optional<Experiment> Experiment::create(const robot::RobotModel& model,
     if (planned.first_failure < planned.poses.size()) {
       const robot::Pose& p = planned.poses[planned.first_failure];
       error += " (t = " + num(planned.time_s[planned.first_failure]) + " s, tool at (" +
-               num(p.position_m.x()) + ", " + num(p.position_m.y()) + ", " +
-               num(p.position_m.z()) + ") m; solver " +
+               num(p.position_m.x()) + ", " + num(p.position_m.y()) + ", " + num(p.position_m.z()) +
+               ") m; solver " +
                (ik.has_analytic() ? "closed-form IK" : "KDL Newton-Raphson (joint-limited)") +
                "); another arm than the ER50-C20 needs its own path (--path FILE)";
     }
@@ -285,8 +285,8 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   if (limits.record) result.rows.reserve(ticks * kJoints);
   // The bounds and K0 exactly as the joints hold them (continuous SI form).
   const bool supervised = controller.family != controller_file::Family::Pid;
-  const control::FuzzyPidConfig<double> bounds = controller_file::fuzzy_pid_config(
-      controller, std::numeric_limits<double>::infinity());
+  const control::FuzzyPidConfig<double> bounds =
+      controller_file::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
   };

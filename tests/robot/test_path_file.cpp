@@ -50,8 +50,9 @@ TEST(PathFile, ReadsJointAndPoseHeadersWithCommentsAndSpaces) {
 
 TEST(PathFile, RefusesMalformedFilesNamingTheLine) {
   EXPECT_NE(parse_error("t,a,b\n0,1,2\n").find("p.csv:1: unknown header"), std::string::npos);
-  EXPECT_NE(parse_error(kJoint + "0,0,0,0,0,0,0\n0,0,0,0,0,0,0\n").find("p.csv:3: time 0 s does "
-                                                                         "not increase"),
+  EXPECT_NE(parse_error(kJoint + "0,0,0,0,0,0,0\n0,0,0,0,0,0,0\n")
+                .find("p.csv:3: time 0 s does "
+                      "not increase"),
             std::string::npos);
   EXPECT_NE(parse_error(kJoint + "0,0,0,0,0,0,0\n1,0,nan,0,0,0,0\n").find("p.csv:3: field 3"),
             std::string::npos);
@@ -71,11 +72,10 @@ TEST(PathFile, RollPitchYawIsUrdfFixedAxis) {
   const Eigen::Matrix3d r = rotation_from_rpy(0.0, 0.0, kPi / 2);
   EXPECT_NEAR(r(1, 0), 1.0, 1e-15);
   const Eigen::Matrix3d full = rotation_from_rpy(0.1, 0.2, 0.3);
-  const Eigen::Matrix3d expected =
-      (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
-       Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()) *
-       Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY()) *
+                                    Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
+                                       .toRotationMatrix();
   EXPECT_LT((full - expected).norm(), 1e-15);
 }
 
@@ -86,8 +86,7 @@ TEST(PathFile, InterpolationPassesThroughRowsAndItsVelocityIsItsDerivative) {
     const double t = 0.1 * k;
     char row[256];
     std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t,
-                  0.3 * std::sin(t), -0.5 + 0.1 * t, 0.2 * std::cos(2 * t), 0.0, 0.1 * t * t,
-                  -0.2);
+                  0.3 * std::sin(t), -0.5 + 0.1 * t, 0.2 * std::cos(2 * t), 0.0, 0.1 * t * t, -0.2);
     text += row;
   }
   PathTable table;
@@ -116,8 +115,8 @@ TEST(PathFile, InterpolationPassesThroughRowsAndItsVelocityIsItsDerivative) {
 TEST(PathFile, TheRunLastsThePathsDurationInWholeTicks) {
   PathTable table;
   std::string error;
-  ASSERT_TRUE(parse_path_csv(kJoint + "1,0,-1,1,0,0,0\n1.234,0,-1,1,0,0,0.01\n", "p.csv", table,
-                             error));
+  ASSERT_TRUE(
+      parse_path_csv(kJoint + "1,0,-1,1,0,0,0\n1.234,0,-1,1,0,0,0.01\n", "p.csv", table, error));
   const InverseKinematics ik(ur5());
   const JointPathResult p = joint_path_from_table(ik, ur5(), table, 0.05, JointVector{});
   ASSERT_TRUE(p.ok()) << p.message;
@@ -212,11 +211,12 @@ TEST(PathFile, AContinuousJointCrossingPiIsUnwrappedNotTurnedBack) {
   const JointPathResult p = joint_path_from_table(ik, *r.model, t, 0.05, JointVector{});
   ASSERT_TRUE(p.ok()) << p.message;
   EXPECT_NEAR(p.position_rad.back()[5], -3.0 + 2 * kPi, 1e-12);
-  for (std::size_t k = 0; k < p.time_s.size(); ++k) EXPECT_GT(p.velocity_rad_s[k][5], 0.5);
+  for (std::size_t k = 0; k < p.time_s.size(); ++k)
+    EXPECT_GT(p.velocity_rad_s[k][5], 0.5);
   // The same rows on a revolute joint limited to +/-2 pi would ask for a turn back at 62 rad/s:
   // refused by the velocity limit.
-  const JointPathResult limited = joint_path_from_table(InverseKinematics(ur5()), ur5(), t, 0.05,
-                                                        JointVector{});
+  const JointPathResult limited =
+      joint_path_from_table(InverseKinematics(ur5()), ur5(), t, 0.05, JointVector{});
   EXPECT_FALSE(limited.ok());
 }
 

@@ -291,8 +291,8 @@ TEST(ControllerFile, AFileIsReadWithABoundedSize) {
 TEST(ControllerFile, ANominalGainOutsideItsOwnBoundsIsRefusedAtLoad) {
   cf::ControllerSpec spec;
   cf::Error error;
-  EXPECT_FALSE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_k0_outside_bounds.toml", spec,
-                        error));
+  EXPECT_FALSE(
+      cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_k0_outside_bounds.toml", spec, error));
   EXPECT_NE(error.message.find("gains.kp = 50.0 lies outside [bounds] 0.0 .. 10.0"),
             std::string::npos)
       << error.to_string();

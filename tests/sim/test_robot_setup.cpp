@@ -135,16 +135,15 @@ TEST(ConditionFile, BadRobotKeysAreErrorsWithTheirPosition) {
   const auto error_of = [](const std::string& condition) {
     ConditionFile f;
     cf::Error e;
-    EXPECT_FALSE(parse_conditions("[sets.s]\nconditions = [\n  " + condition + "\n]\n", "c.toml",
-                                  f, e))
+    EXPECT_FALSE(
+        parse_conditions("[sets.s]\nconditions = [\n  " + condition + "\n]\n", "c.toml", f, e))
         << condition;
     return e.to_string();
   };
   EXPECT_NE(error_of("{ name = \"g\", gravity = true }").find("c.toml:3:"), std::string::npos);
   EXPECT_NE(error_of("{ name = \"g\", gravity = true }").find("gravity needs the coupled"),
             std::string::npos);
-  EXPECT_NE(error_of("{ name = \"a\", armature = [1, 2, 3] }").find("6 values"),
-            std::string::npos);
+  EXPECT_NE(error_of("{ name = \"a\", armature = [1, 2, 3] }").find("6 values"), std::string::npos);
   EXPECT_NE(error_of("{ name = \"p\", payload_kg = -1.0 }").find("'payload_kg' must be within"),
             std::string::npos);
   EXPECT_NE(error_of("{ name = \"t\", tick_ms = 0.0 }").find("'tick_ms' must be within"),
@@ -234,15 +233,16 @@ TEST(ClosedLoop, APayloadMassLoadsThePlantNotTheControllersModel) {
   const auto q = ex->path().position_rad.front();
   const robot::JointVector j0 = ex->plant_model(light).inertia_diagonal(q);
   const robot::JointVector j1 = ex->plant_model(heavy).inertia_diagonal(q);
-  EXPECT_GT(j1[0], j0[0] + 1.0);   // 50 kg about 1.5 m from the base axis
-  EXPECT_EQ(j1[5], j0[5]);         // a point mass on the last axis adds nothing to it
+  EXPECT_GT(j1[0], j0[0] + 1.0);  // 50 kg about 1.5 m from the base axis
+  EXPECT_EQ(j1[5], j0[5]);        // a point mass on the last axis adds nothing to it
   const cf::ControllerSpec pid = default_controller(ExperimentOptions{}, cf::Family::Pid);
   const RunResult a = ex->run(light, pid);
   const RunResult b = ex->run(heavy, pid);
   ASSERT_TRUE(a.ok && b.ok);
   EXPECT_NE(total_itae(a.rows, 0.05), total_itae(b.rows, 0.05));
   // The controller sees the same first tick: its model has no payload.
-  for (std::size_t i = 0; i < robot::kNumJoints; ++i) EXPECT_EQ(a.rows[i].u, b.rows[i].u);
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+    EXPECT_EQ(a.rows[i].u, b.rows[i].u);
 }
 
 }  // namespace

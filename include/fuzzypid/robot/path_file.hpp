@@ -43,10 +43,10 @@ enum class PathKind : std::uint8_t { Joint, Cartesian };
 
 struct PathTable {
   PathKind kind = PathKind::Joint;
-  std::string source;                          // file name, for messages
-  std::vector<double> time_s;                  // strictly increasing
-  std::vector<std::array<double, 6>> values;   // q1..q6 (rad) or x, y, z (m), roll, pitch, yaw
-  std::vector<std::size_t> line;               // file line of each row (1-based)
+  std::string source;                         // file name, for messages
+  std::vector<double> time_s;                 // strictly increasing
+  std::vector<std::array<double, 6>> values;  // q1..q6 (rad) or x, y, z (m), roll, pitch, yaw
+  std::vector<std::size_t> line;              // file line of each row (1-based)
 };
 
 // The largest path file read (rows beyond this are refused, not read).
@@ -68,9 +68,8 @@ inline constexpr std::size_t kMaxPathFileBytes = 64u << 20;
 // The joint reference of `table` at ticks of `tick_s` (see the file comment). `seed` seeds the
 // first Cartesian row. On failure status != Ok and message names the row.
 [[nodiscard]] JointPathResult joint_path_from_table(const InverseKinematics& ik,
-                                                    const RobotModel& model,
-                                                    const PathTable& table, double tick_s,
-                                                    const JointVector& seed);
+                                                    const RobotModel& model, const PathTable& table,
+                                                    double tick_s, const JointVector& seed);
 
 // The same path played backwards in time: sample k of the result is sample n - 1 - k of `path`,
 // times t' = t_end - t (+ t_0), velocities negated.

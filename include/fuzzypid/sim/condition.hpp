@@ -67,15 +67,15 @@ struct FieldRange {
   [[nodiscard]] constexpr bool contains(double v) const noexcept { return v >= lo && v <= hi; }
 };
 inline constexpr FieldRange kPayloadScaleRange{"payload_scale", 1e-3, 1e3};
-inline constexpr FieldRange kFrictionRange{"friction", 0.0, 1e4};           // 1/s
-inline constexpr FieldRange kTorqueLimitRange{"torque_limit", 0.0, 1e6};    // rad/s²
-inline constexpr FieldRange kContactRange{"contact", -1e4, 1e4};            // rad/s²
-inline constexpr FieldRange kNoisePositionRange{"noise[0]", 0.0, 1.0};      // rad
-inline constexpr FieldRange kNoiseVelocityRange{"noise[1]", 0.0, 100.0};    // rad/s
-inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0}; // rad
-inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};        // kg
-inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};           // ms
-inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};           // kg·m²
+inline constexpr FieldRange kFrictionRange{"friction", 0.0, 1e4};            // 1/s
+inline constexpr FieldRange kTorqueLimitRange{"torque_limit", 0.0, 1e6};     // rad/s²
+inline constexpr FieldRange kContactRange{"contact", -1e4, 1e4};             // rad/s²
+inline constexpr FieldRange kNoisePositionRange{"noise[0]", 0.0, 1.0};       // rad
+inline constexpr FieldRange kNoiseVelocityRange{"noise[1]", 0.0, 100.0};     // rad/s
+inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0};  // rad
+inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};         // kg
+inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};            // ms
+inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // kg·m²
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;

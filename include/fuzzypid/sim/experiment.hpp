@@ -89,7 +89,7 @@ struct RunResult {
   // less than the bounds allow).
   std::array<std::size_t, robot::kNumJoints> no_rule_ticks{};
   std::array<std::size_t, robot::kNumJoints> clamped_gain_ticks{};
-  bool diverged = false;            // stopped early: |e| exceeded RunLimits::max_error_rad
+  bool diverged = false;  // stopped early: |e| exceeded RunLimits::max_error_rad
 };
 
 struct RunLimits {
