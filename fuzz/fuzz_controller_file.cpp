@@ -11,14 +11,14 @@
 #include <string_view>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
 
 namespace {
 
 void check_conditions(std::string_view text) {
   fuzzypid::sim::ConditionFile file;
-  fuzzypid::controller_file::Error error;
+  fuzzypid::FileError error;
   if (!fuzzypid::sim::parse_conditions(text, "dir/fuzz.toml", file, error)) {
     if (error.file != "dir/fuzz.toml" || error.line < 1 || error.column < 1 ||
         error.message.empty())
@@ -37,20 +37,21 @@ void check_conditions(std::string_view text) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   check_conditions(text);
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   if (!cf::parse(text, "fuzz.toml", spec, error)) {
     if (error.file != "fuzz.toml" || error.line < 1 || error.column < 1 || error.message.empty())
       std::abort();
     return 0;
   }
   const std::string written = cf::to_toml(spec);
-  cf::ControllerSpec back;
+  ctl::ControllerSpec back;
   if (!cf::parse(written, "written.toml", back, error)) std::abort();
   if (cf::to_toml(back) != written) std::abort();
   std::string build_error;
-  if (!cf::JointControllers::create(spec, cf::Vector{1, 1, 1, 1, 1, 1}, build_error)) std::abort();
+  if (!ctl::JointControllers::create(spec, ctl::Vector{1, 1, 1, 1, 1, 1}, build_error)) std::abort();
   return 0;
 }

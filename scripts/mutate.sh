@@ -22,8 +22,8 @@ mutants=(
   "triangle_open_right|include/fuzzypid/fuzzy/membership.hpp|s/return c == detail::infinity<Scalar>() ? h \* Scalar(1)/return c == detail::infinity<Scalar>() ? h * Scalar(0)/|bin:test_membership"
   "d_on_measurement_uses_setpoint_rate|include/fuzzypid/pid/pid.hpp|s/d_raw = in.setpoint_rate \* Scalar(0) - in.measurement_rate;/d_raw = in.setpoint_rate - in.measurement_rate;/|bin:test_pid"
   "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
-  "pid_config_drops_derivative_on|src/controller_file/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
-  "incremental_gain_update_ignored|src/controller_file/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
+  "pid_config_drops_derivative_on|src/controller/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
+  "incremental_gain_update_ignored|src/controller/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
   "tuner_swaps_output_scales|src/tune/tune.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune"
   "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
   # Our own: the core.
@@ -38,8 +38,8 @@ mutants=(
   "writer_accepts_special_files|apps/common/output_files.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
   "writer_ignores_inputs|apps/common/output_files.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
   "writer_ignores_flush_errors|apps/common/output_files.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
-  "namespace_allows_std|src/controller_file/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
-  "float_range_unchecked|src/controller_file/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
+  "namespace_allows_std|src/codegen/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
+  "float_range_unchecked|src/codegen/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "rt_loop_ignores_sigterm|apps/rt_loop/main.cpp|s/for (int sig : {SIGINT, SIGTERM, SIGHUP})/for (int sig : {SIGINT})/|build:rt_loop ctest:^rt_loop\.exit_codes"
 )
 

@@ -15,7 +15,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
-#include "fuzzypid/controller_file/export_header.hpp"
+#include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
@@ -29,10 +29,11 @@ namespace fuzzypid::cli {
 namespace {
 
 namespace cf = controller_file;
+namespace ctl = controller;
 
 constexpr double kMaxLog10 = 300.0;
 
-bool parse_box(const std::string& text, cf::SearchBox& box) {
+bool parse_box(const std::string& text, ctl::SearchBox& box) {
   const auto eq = text.find('=');
   const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
   if (eq == std::string::npos || colon == std::string::npos) return false;
@@ -54,7 +55,7 @@ struct TuneOptions {
   std::string family_name, conditions, set = "training", out, base_file;
   std::uint64_t budget = 16000, seed = 1, population = 0;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  cf::Objective objective;
+  ctl::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
 };
@@ -67,7 +68,7 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
     return kExitUsage;
   }
-  const cf::Family family = *cf::parse_enum(cf::kFamilyNames, t.family_name);
+  const ctl::Family family = *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
   tune::Options opt;
   opt.family = family;
   opt.budget = t.budget;
@@ -75,10 +76,10 @@ int run_tune(const TuneOptions& t) {
   opt.threads = t.threads;
   opt.population = t.population;
   opt.objective = t.objective;
-  opt.base = cf::paper_pid();
+  opt.base = ctl::paper_pid();
   opt.base.description.clear();
   if (!t.base_file.empty()) {
-    cf::Error err;
+    fuzzypid::FileError err;
     if (!cf::load(t.base_file, opt.base, err)) {
       std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
       return 1;
@@ -97,7 +98,7 @@ int run_tune(const TuneOptions& t) {
   }
   opt.box = tune::default_box(family);
   for (const std::string& text : t.boxes) {
-    cf::SearchBox b;
+    ctl::SearchBox b;
     if (!parse_box(text, b)) {
       std::fprintf(
           stderr,
@@ -114,13 +115,13 @@ int run_tune(const TuneOptions& t) {
     }
     if (!found) {
       std::fprintf(stderr, "fuzzypid tune: --box: the %s family has no parameter '%s'\n",
-                   cf::to_string(family), b.name.c_str());
+                   ctl::to_string(family), b.name.c_str());
       return 2;
     }
   }
 
   sim::ConditionFile file;
-  cf::Error err;
+  fuzzypid::FileError err;
   if (!sim::load_conditions(t.conditions, file, err)) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
     return 1;
@@ -156,7 +157,7 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 cf::to_string(family), training->conditions.size(), t.set.c_str(), t.budget,
+                 ctl::to_string(family), training->conditions.size(), t.set.c_str(), t.budget,
                  t.seed, t.threads);
     double last = -1.0;
     opt.progress = [last](const tune::Progress& p) mutable {
@@ -199,7 +200,7 @@ int run_tune(const TuneOptions& t) {
   }
   result->controller.tuning->set = t.set;
   result->controller.description =
-      "tuned " + std::string(cf::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
+      "tuned " + std::string(ctl::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
   if (const std::string bad = write_output_file(t.out, cf::to_toml(result->controller), "tune");
       !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
@@ -210,7 +211,7 @@ int run_tune(const TuneOptions& t) {
               ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
               "penalty %.6g, %zu faulted runs) -> %s\n",
-              cf::to_string(family), result->evaluations, t.budget, result->wall_s, rate,
+              ctl::to_string(family), result->evaluations, t.budget, result->wall_s, rate,
               rate * static_cast<double>(training->conditions.size()), result->cost.total,
               result->cost.itae, result->cost.overshoot_penalty, result->cost.faulted_runs,
               t.out.c_str());
@@ -232,8 +233,8 @@ int run_export_header(const ExportOptions& o) {
       return kExitUsage;
     }
   }
-  cf::ControllerSpec spec;
-  cf::Error err;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError err;
   if (!cf::load(in, spec, err)) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
     return 1;
@@ -245,11 +246,11 @@ int run_export_header(const ExportOptions& o) {
                  in.c_str(), spec.supervisor.rule_file.c_str());
     return 1;
   }
-  if (const std::string bad = cf::check_float_range(spec); !bad.empty()) {
+  if (const std::string bad = fuzzypid::codegen::check_float_range(spec); !bad.empty()) {
     std::fprintf(stderr, "fuzzypid export-header: %s: %s\n", in.c_str(), bad.c_str());
     return 1;
   }
-  const std::string text = cf::export_header(spec, ns, in);
+  const std::string text = fuzzypid::codegen::export_header(spec, ns, in);
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
     return std::ferror(stdout) ? 1 : 0;
@@ -271,11 +272,11 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
       "as a controller file (docs/tuning.md). Progress goes to stderr.");
   std::vector<std::string> family_names;
-  family_names.reserve(cf::kFamilyNames.size());
-  for (const auto& e : cf::kFamilyNames)
+  family_names.reserve(ctl::kFamilyNames.size());
+  for (const auto& e : ctl::kFamilyNames)
     family_names.emplace_back(e.name);
   cmd->add_option("--family", t->family_name,
-                  "controller family (" + cf::names_of(cf::kFamilyNames) + ")")
+                  "controller family (" + fuzzypid::names_of(ctl::kFamilyNames) + ")")
       ->required()
       ->check(CLI::IsMember(family_names));
   cmd->add_option("--conditions", t->conditions,
@@ -328,7 +329,7 @@ void add_export_header_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--namespace", o->ns,
                   "namespace of the generated code: C++ identifiers joined by ::, no keyword or "
                   "reserved name (default fuzzypid_controller)")
-      ->check([](const std::string& s) { return cf::check_namespace(s); });
+      ->check([](const std::string& s) { return fuzzypid::codegen::check_namespace(s); });
   cmd->callback([&run, o, out] {
     o->out_given = out->count() > 0;
     run = [o] { return run_export_header(*o); };

@@ -70,6 +70,7 @@ namespace cli = fuzzypid::cli;
 namespace robot = fuzzypid::robot;
 namespace sim = fuzzypid::sim;
 namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
 
 using fuzzypid::rt_loop::kTool;
 using fuzzypid::rt_loop::Options;
@@ -298,11 +299,11 @@ int run(int argc, char** argv) {
     return cli::kExitFailure;
   }
   cli::print_robot_note(kTool, *experiment);
-  cf::ControllerSpec spec = sim::default_controller(
-      options, o.controller == "fuzzy" ? cf::Family::Fuzzy : cf::Family::Pid);
+  ctl::ControllerSpec spec = sim::default_controller(
+      options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
   spec.units.tick_s = paper_tick_s;
   if (o.controller != "pid" && o.controller != "fuzzy") {
-    cf::Error file_error;
+    fuzzypid::FileError file_error;
     if (!cf::load(o.controller, spec, file_error)) {
       std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
       return cli::kExitFailure;

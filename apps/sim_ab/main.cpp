@@ -33,6 +33,7 @@ namespace {
 using namespace fuzzypid;
 namespace fs = std::filesystem;
 namespace cf = controller_file;
+namespace ctl = controller;
 
 // The output files of a run, written and committed as a whole by cli::OutputSet: a unique
 // temporary directory that replaces --out in one rename, with --out locked meanwhile, so that a
@@ -80,7 +81,7 @@ const std::vector<std::string> kOutputNames = {"trajectory.csv", "metrics.csv", 
 struct NamedController {
   std::string name;
   std::string source;  // the file, or "built-in"
-  cf::ControllerSpec spec;
+  ctl::ControllerSpec spec;
 };
 
 struct Run {
@@ -143,30 +144,30 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
   for (const auto& c : controllers) {
     const auto& s = c.spec;
     std::fprintf(f, "controller.%s=%s family=%s units=%s,%s gains=%s,%s,%s", c.name.c_str(),
-                 c.source.c_str(), cf::to_string(s.family), cf::to_string(s.units.gains),
-                 cf::to_string(s.units.form), fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(),
+                 c.source.c_str(), ctl::to_string(s.family), ctl::to_string(s.units.gains),
+                 ctl::to_string(s.units.form), fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(),
                  fmt(s.gains.kd).c_str());
-    if (s.family != cf::Family::Pid)
+    if (s.family != ctl::Family::Pid)
       std::fprintf(
           f, " error_scale=%s error_rate_scale=%s output_scale=%s,%s,%s",
           fmt(s.supervisor.error_scale).c_str(), fmt(s.supervisor.error_rate_scale).c_str(),
           fmt(s.supervisor.output_scale[0]).c_str(), fmt(s.supervisor.output_scale[1]).c_str(),
           fmt(s.supervisor.output_scale[2]).c_str());
-    if (s.family == cf::Family::Fuzzy && s.supervisor.rule_file.empty())
+    if (s.family == ctl::Family::Fuzzy && s.supervisor.rule_file.empty())
       std::fprintf(f, " gain_update=%s rule_base=%s and=%s",
-                   cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update),
-                   cf::to_string(s.supervisor.rule_base),
-                   cf::name_of(cf::kConjunctionNames, s.supervisor.conjunction));
-    if (s.family == cf::Family::Fuzzy && !s.supervisor.rule_file.empty()) {
+                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update),
+                   ctl::to_string(s.supervisor.rule_base),
+                   fuzzypid::name_of(ctl::kConjunctionNames, s.supervisor.conjunction));
+    if (s.family == ctl::Family::Fuzzy && !s.supervisor.rule_file.empty()) {
       // What ran: the rule file (resolved against the controller file's folder) and its hash.
       const std::string rules =
           (fs::path(c.source).parent_path() / s.supervisor.rule_file).lexically_normal().string();
       std::fprintf(f, " gain_update=%s rule_file=%s rule_file_fnv1a64=%s",
-                   cf::name_of(cf::kGainUpdateNames, s.supervisor.gain_update), rules.c_str(),
+                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update), rules.c_str(),
                    cf::file_hash(rules).c_str());
     }
     if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
-    std::fprintf(f, " derivative=%s\n", cf::name_of(cf::kDerivativeSourceNames, s.pid.derivative));
+    std::fprintf(f, " derivative=%s\n", fuzzypid::name_of(ctl::kDerivativeSourceNames, s.pid.derivative));
   }
 }
 
@@ -288,7 +289,7 @@ int main(int argc, char** argv) {
   std::vector<NamedController> controllers;
   for (const std::string& path : o.controllers) {
     NamedController c;
-    cf::Error err;
+    fuzzypid::FileError err;
     if (!cf::load(path, c.spec, err)) {
       std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
       return 1;
@@ -305,16 +306,16 @@ int main(int argc, char** argv) {
   }
   if (controllers.empty()) {
     controllers.push_back(
-        {"pid", "built-in", sim::default_controller(o.experiment, cf::Family::Pid)});
+        {"pid", "built-in", sim::default_controller(o.experiment, ctl::Family::Pid)});
     controllers.push_back(
-        {"fuzzy", "built-in", sim::default_controller(o.experiment, cf::Family::Fuzzy)});
+        {"fuzzy", "built-in", sim::default_controller(o.experiment, ctl::Family::Fuzzy)});
   }
 
   // Conditions: a file's sets, or the scenario(s) with the overrides.
   std::vector<Run> runs;
   if (!o.conditions_file.empty()) {
     sim::ConditionFile file;
-    cf::Error err;
+    fuzzypid::FileError err;
     if (!sim::load_conditions(o.conditions_file, file, err)) {
       std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
       return 1;
@@ -369,7 +370,7 @@ int main(int argc, char** argv) {
     const sim::Experiment& ex = experiments->experiment(k);
     if (!o.quiet) cli::print_robot_note("sim_ab", ex);
     for (const auto& c : controllers)
-      if (c.spec.units.form == cf::PidForm::PerTick &&
+      if (c.spec.units.form == ctl::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
         std::fprintf(stderr,
                      "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "

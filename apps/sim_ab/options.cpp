@@ -14,7 +14,7 @@ namespace fuzzypid::sim_ab {
 
 namespace {
 
-namespace cf = controller_file;
+namespace ctl = controller;
 
 // Finite numbers only (CLI11 would accept "nan" and "inf").
 const CLI::Validator kFinite(
@@ -65,15 +65,15 @@ CLI::Option* add_list(CLI::App& app, const std::string& name, std::array<double,
 
 template <class Enum, std::size_t N>
 CLI::Option* add_enum(CLI::App& app, const std::string& name, Enum& target,
-                      const std::array<cf::EnumName<Enum>, N>& table, const std::string& help) {
+                      const std::array<fuzzypid::EnumName<Enum>, N>& table, const std::string& help) {
   std::vector<std::string> names;
   names.reserve(N);
   for (const auto& e : table)
     names.emplace_back(e.name);
   return app
       .add_option_function<std::string>(
-          name, [&target, &table](const std::string& s) { target = *cf::parse_enum(table, s); },
-          help + " (" + cf::names_of(table) + "; default " + cf::name_of(table, target) + ")")
+          name, [&target, &table](const std::string& s) { target = *fuzzypid::parse_enum(table, s); },
+          help + " (" + fuzzypid::names_of(table) + "; default " + fuzzypid::name_of(table, target) + ")")
       ->check(CLI::IsMember(names));
 }
 
@@ -186,15 +186,15 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   app.add_flag("--reverse", o.reverse, "follow the path B -> A");
 
   // The paper's default controllers.
-  add_enum(app, "--gain-units", e.gain_units, cf::kGainUnitsNames,
+  add_enum(app, "--gain-units", e.gain_units, ctl::kGainUnitsNames,
            "u is rad/s² scaled by the nominal inertia, or a torque in N·m");
-  add_enum(app, "--pid-form", e.pid_form, cf::kPidFormNames, "units of Ki, Kd");
-  add_enum(app, "--derivative", e.derivative, cf::kDerivativeSourceNames,
+  add_enum(app, "--pid-form", e.pid_form, ctl::kPidFormNames, "units of Ki, Kd");
+  add_enum(app, "--derivative", e.derivative, ctl::kDerivativeSourceNames,
            "de/dt from velocities or from errors");
-  add_enum(app, "--gain-update", e.gain_update, cf::kGainUpdateNames,
+  add_enum(app, "--gain-update", e.gain_update, ctl::kGainUpdateNames,
            "K = K0 + dK (Eq. 6) or K += dK");
-  add_enum(app, "--tables", e.tables, cf::kPaperTablesNames, "rule tables");
-  add_enum(app, "--and", e.conjunction, cf::kConjunctionNames, "fuzzy conjunction");
+  add_enum(app, "--tables", e.tables, ctl::kPaperTablesNames, "rule tables");
+  add_enum(app, "--and", e.conjunction, ctl::kConjunctionNames, "fuzzy conjunction");
   app.add_option("--error-scale", e.error_scale, "Ke (default 1)")->check(kFinite);
   app.add_option("--error-rate-scale", e.error_rate_scale, "Kec (default 1)")->check(kFinite);
   add_list(app, "--output-scale", e.output_scale,

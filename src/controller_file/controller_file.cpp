@@ -7,16 +7,19 @@
 #include <filesystem>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
-#include "fuzzypid/controller_file/toml_reader.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid_support/toml_reader.hpp"
 
 namespace fuzzypid::controller_file {
 
-namespace {
+using namespace controller;
+using support::number_of;
+using support::parse_toml;
+using support::read_text;
+using support::ReadError;
+using support::TableReader;
 
-bool positive_finite(double v) {
-  return std::isfinite(v) && v > 0.0;
-}
+namespace {
 
 std::string triple_text(double a, double b, double c) {
   return "[" + format_double(a) + ", " + format_double(b) + ", " + format_double(c) + "]";
@@ -238,63 +241,12 @@ std::string format_double(double v) {
   return s;
 }
 
-ControllerSpec paper_pid() {
-  ControllerSpec s;
-  s.family = Family::Pid;
-  s.description = "the paper's fixed PID (section 6: Kp = 4, Ki = 0.001, Kd = 100 per tick)";
-  return s;
-}
-
-ControllerSpec paper_fuzzy() {
-  ControllerSpec s;
-  s.family = Family::Fuzzy;
-  s.description =
-      "the paper's fuzzy PID (section 6 gains, Tables 2-4 as printed, unit scales, Eq. 6)";
-  return s;
-}
-
-std::string validate(const ControllerSpec& s) {
-  if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
-  if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
-    return "gains must be finite and >= 0";
-  const auto& sup = s.supervisor;
-  if (s.family != Family::Pid) {
-    if (!positive_finite(sup.error_scale) || !positive_finite(sup.error_rate_scale))
-      return "error_scale and error_rate_scale must be finite and > 0";
-    for (double v : sup.output_scale) {
-      if (!std::isfinite(v)) return "output_scale must be finite";
-      if (s.family == Family::Scheduled && !(v > 0.0))
-        return "the scheduled family's output_scale (gain ratios) must be > 0";
-    }
-  }
-  if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
-    return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
-  const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
-  const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
-  for (int k = 0; k < 3; ++k)
-    if (!(lo[k] >= 0.0) || std::isinf(lo[k]) || !(hi[k] >= lo[k]))
-      return "gain bounds must satisfy 0 <= gain_min <= gain_max";
-  // The supervised families clamp the retuned gains into [bounds] every tick; a nominal K0
-  // outside them would be clamped on every tick without a word.
-  if (s.family != Family::Pid) {
-    const double k0[3] = {s.gains.kp, s.gains.ki, s.gains.kd};
-    const char* names[3] = {"kp", "ki", "kd"};
-    for (int k = 0; k < 3; ++k)
-      if (k0[k] < lo[k] || k0[k] > hi[k])
-        return std::string("gains.") + names[k] + " = " + format_double(k0[k]) +
-               " lies outside [bounds] " + format_double(lo[k]) + " .. " + format_double(hi[k]);
-  }
-  if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
-    return "derivative_filter_s must be finite and >= 0";
-  return {};
-}
-
-bool parse(std::string_view text, const std::string& source, ControllerSpec& spec, Error& error) {
+bool parse(std::string_view text, const std::string& source, ControllerSpec& spec, FileError& error) {
   try {
     const toml::table root = parse_toml(text, source);
     ControllerSpec s = read_spec(root, source);
     if (const std::string bad = validate(s); !bad.empty()) {
-      error = Error{source, 1, 1, bad};
+      error = FileError{source, 1, 1, bad};
       return false;
     }
     spec = std::move(s);
@@ -305,7 +257,7 @@ bool parse(std::string_view text, const std::string& source, ControllerSpec& spe
   }
 }
 
-bool load(const std::string& path, ControllerSpec& spec, Error& error) {
+bool load(const std::string& path, ControllerSpec& spec, FileError& error) {
   try {
     const std::string text = read_text(path);
     return parse(text, path, spec, error);

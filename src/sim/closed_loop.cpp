@@ -38,7 +38,7 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
     return std::nullopt;
   }
   if (experiment.path(condition, error) == nullptr) return std::nullopt;
-  auto joints = controller_file::JointControllers::create(
+  auto joints = controller::JointControllers::create(
       controller, experiment.output_limit(condition, controller.units.gains), error);
   if (!joints) return std::nullopt;
   return create(experiment, condition, std::move(*joints), error);
@@ -46,7 +46,7 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
 
 std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
                                              const Condition& condition,
-                                             controller_file::JointControllers controller,
+                                             controller::JointControllers controller,
                                              std::string& error) {
   if (std::string bad = condition.validate(); !bad.empty()) {
     error = "condition " + condition.name + ": " + bad;
@@ -64,7 +64,7 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
 
 ClosedLoop::ClosedLoop(const Experiment& experiment, const Condition& condition,
                        const robot::JointPathResult& path,
-                       controller_file::JointControllers controller)
+                       controller::JointControllers controller)
     : experiment_(&experiment),
       path_(&path),
       condition_(condition),
@@ -141,7 +141,7 @@ TickResult ClosedLoop::tick(const PathSample& sample, const TickInjection& injec
   r.theta_dot = plant_.velocity();
   for (std::size_t i = 0; i < robot::kNumJoints; ++i)
     r.theta_d[i] = shifted(sample.theta_d[i], injection.reference_offset_rad[i]);
-  controller_file::Input in;
+  controller::Input in;
   in.desired_position_rad = r.theta_d;
   in.desired_velocity_rad_s = r.theta_d_dot;
   in.measured_position_rad = r.theta;

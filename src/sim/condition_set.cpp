@@ -5,15 +5,15 @@
 #include <filesystem>
 #include <set>
 
-#include "fuzzypid/controller_file/toml_reader.hpp"
+#include "fuzzypid_support/toml_reader.hpp"
 #include "fuzzypid/sim/random.hpp"
 
 namespace fuzzypid::sim {
 
 namespace {
 
-using controller_file::ReadError;
-using controller_file::TableReader;
+using support::ReadError;
+using support::TableReader;
 
 // A file named in the condition file: relative names resolve against the file's folder.
 std::string resolve(const std::string& name, const std::string& condition_file) {
@@ -41,7 +41,7 @@ void read_robot(TableReader& r, Condition& c) {
       r.fail(*a, "'armature' must list 6 values (kg·m²), found " + std::to_string(a->size()));
     robot::JointVector v{};
     for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-      v[i] = controller_file::number_of(r, *a->get(i), "'armature[" + std::to_string(i) + "]'");
+      v[i] = support::number_of(r, *a->get(i), "'armature[" + std::to_string(i) + "]'");
       if (!(v[i] >= 0.0 && v[i] <= kMaxArmatureKgm2))
         r.fail(*a->get(i), "'armature' values must be within 0 .. 1e6 kg·m²");
     }
@@ -53,7 +53,7 @@ void read_robot(TableReader& r, Condition& c) {
       r.fail(*a, "'ik_seed' must list 6 joint angles (rad), found " + std::to_string(a->size()));
     robot::JointVector v{};
     for (std::size_t i = 0; i < robot::kNumJoints; ++i)
-      v[i] = controller_file::number_of(r, *a->get(i), "'ik_seed[" + std::to_string(i) + "]'");
+      v[i] = support::number_of(r, *a->get(i), "'ik_seed[" + std::to_string(i) + "]'");
     s.ik_seed_rad = v;
   }
   if (r.has("payload_kg")) {
@@ -74,8 +74,8 @@ void read_fields(TableReader& r, Condition& c) {
   if (r.has("noise")) {
     const toml::array* a = r.array("noise", true);
     if (a->size() != 2) r.fail(*a, "'noise' must be [SIGMA_Q, SIGMA_QD]");
-    c.noise_position_rad = controller_file::number_of(r, *a->get(0), "'noise[0]'");
-    c.noise_velocity_rad_s = controller_file::number_of(r, *a->get(1), "'noise[1]'");
+    c.noise_position_rad = support::number_of(r, *a->get(0), "'noise[0]'");
+    c.noise_velocity_rad_s = support::number_of(r, *a->get(1), "'noise[1]'");
   }
   c.seed = r.count("seed", c.seed);
   c.reverse = r.flag("reverse", c.reverse);
@@ -86,7 +86,7 @@ Condition read_condition(const toml::node& node, const std::string& file,
                          const Condition& defaults) {
   const toml::table* t = node.as_table();
   if (t == nullptr)
-    throw ReadError{controller_file::Error{file, static_cast<int>(node.source().begin.line),
+    throw ReadError{fuzzypid::FileError{file, static_cast<int>(node.source().begin.line),
                                            static_cast<int>(node.source().begin.column),
                                            "a condition must be a table"}};
   TableReader r(*t, file);
@@ -120,8 +120,8 @@ std::pair<double, double> range(TableReader& r, const char* key, double lo, doub
   }
   const toml::array* a = r.array(key, true);
   if (a->size() != 2) r.fail(*a, std::string("'") + key + "' must be [min, max]");
-  const double mn = controller_file::number_of(r, *a->get(0), std::string("'") + key + "[0]'");
-  const double mx = controller_file::number_of(r, *a->get(1), std::string("'") + key + "[1]'");
+  const double mn = support::number_of(r, *a->get(0), std::string("'") + key + "[0]'");
+  const double mx = support::number_of(r, *a->get(1), std::string("'") + key + "[1]'");
   if (mx < mn) r.fail(*a, std::string("'") + key + "' is reversed");
   return {mn, mx};
 }
@@ -177,9 +177,9 @@ std::string ConditionFile::set_names() const {
 }
 
 bool parse_conditions(std::string_view text, const std::string& source, ConditionFile& file,
-                      controller_file::Error& error) {
+                      fuzzypid::FileError& error) {
   try {
-    const toml::table root = controller_file::parse_toml(text, source);
+    const toml::table root = support::parse_toml(text, source);
     TableReader r(root, source);
     auto sets = r.table("sets", true);
     ConditionFile out;
@@ -217,9 +217,9 @@ bool parse_conditions(std::string_view text, const std::string& source, Conditio
   }
 }
 
-bool load_conditions(const std::string& path, ConditionFile& file, controller_file::Error& error) {
+bool load_conditions(const std::string& path, ConditionFile& file, fuzzypid::FileError& error) {
   try {
-    const std::string text = controller_file::read_text(path);
+    const std::string text = support::read_text(path);
     return parse_conditions(text, path, file, error);
   } catch (const ReadError& e) {
     error = e.error;

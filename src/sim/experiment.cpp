@@ -6,7 +6,7 @@
 #include <limits>
 #include <utility>
 
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/robot/ik.hpp"
 #include "fuzzypid/robot/path_file.hpp"
@@ -32,23 +32,23 @@ bool is_bundled_urdf(const std::string& urdf) {
 
 }  // namespace
 
-ControllerSpec default_controller(const ExperimentOptions& o, controller_file::Family family) {
-  ControllerSpec s = family == controller_file::Family::Fuzzy ? controller_file::paper_fuzzy()
-                                                              : controller_file::paper_pid();
+ControllerSpec default_controller(const ExperimentOptions& o, controller::Family family) {
+  ControllerSpec s = family == controller::Family::Fuzzy ? controller::paper_fuzzy()
+                                                              : controller::paper_pid();
   s.family = family;
   s.units.gains = o.gain_units;
   s.units.form = o.pid_form;
   s.units.tick_s = o.tick_s;
   s.gains = o.gains;
   s.pid.derivative = o.derivative;
-  if (family != controller_file::Family::Pid) {
+  if (family != controller::Family::Pid) {
     s.supervisor.error_scale = o.error_scale;
     s.supervisor.error_rate_scale = o.error_rate_scale;
     s.supervisor.output_scale = o.output_scale;
     s.supervisor.gain_update = o.gain_update;
     s.supervisor.rule_base = o.tables == paper::Tables::Corrected
-                                 ? controller_file::RuleBase::PaperCorrected
-                                 : controller_file::RuleBase::PaperPrinted;
+                                 ? controller::RuleBase::PaperCorrected
+                                 : controller::RuleBase::PaperPrinted;
     s.supervisor.conjunction = o.conjunction;
   }
   return s;
@@ -253,25 +253,25 @@ robot::JointVector Experiment::torque_from_command(const robot::JointVector& u,
 }
 
 std::array<pid::Pid<double>, kJoints> Experiment::make_pid(const robot::JointVector& limit) const {
-  const ControllerSpec spec = default_controller(options_, controller_file::Family::Pid);
+  const ControllerSpec spec = default_controller(options_, controller::Family::Pid);
   std::array<pid::Pid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] = pid::Pid<double>(controller_file::pid_config(spec, u_max));
+    joints[i] = pid::Pid<double>(controller::pid_config(spec, u_max));
   }
   return joints;
 }
 
 std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
     const robot::JointVector& limit) const {
-  const ControllerSpec spec = default_controller(options_, controller_file::Family::Fuzzy);
+  const ControllerSpec spec = default_controller(options_, controller::Family::Fuzzy);
   std::array<paper::FuzzyPid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
     joints[i] =
-        paper::FuzzyPid<double>(&supervisor_, controller_file::fuzzy_pid_config(spec, u_max));
+        paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, u_max));
   }
   return joints;
 }
@@ -284,9 +284,9 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   const std::size_t ticks = loop->samples();
   if (limits.record) result.rows.reserve(ticks * kJoints);
   // The bounds and K0 exactly as the joints hold them (continuous SI form).
-  const bool supervised = controller.family != controller_file::Family::Pid;
+  const bool supervised = controller.family != controller::Family::Pid;
   const control::FuzzyPidConfig<double> bounds =
-      controller_file::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
+      controller::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
   };

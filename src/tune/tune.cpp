@@ -270,7 +270,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   const auto names = default_box(options.family);
   if (box.size() != dim) {
     error = "the search box has " + std::to_string(box.size()) + " parameters, the " +
-            std::string(controller_file::to_string(options.family)) + " family " +
+            std::string(controller::to_string(options.family)) + " family " +
             std::to_string(dim);
     return std::nullopt;
   }
@@ -285,7 +285,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
     error = "no training conditions";
     return std::nullopt;
   }
-  if (const std::string bad = controller_file::validate(options.base); !bad.empty()) {
+  if (const std::string bad = controller::validate(options.base); !bad.empty()) {
     error = "base controller: " + bad;
     return std::nullopt;
   }
@@ -320,7 +320,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   result.wall_s = m->wall_s;
   result.controller = to_spec(options.family, m->x, options.base);
   result.cost = best;
-  controller_file::Tuning t;
+  controller::Tuning t;
   t.algorithm = "pagmo::sade (variant 2, jDE)";
   t.budget = options.budget;
   t.evaluations = m->evaluations;

@@ -17,7 +17,7 @@
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
@@ -31,6 +31,7 @@ namespace {
 
 using namespace fuzzypid;
 namespace cf = controller_file;
+namespace ctl = controller;
 constexpr std::size_t kJ = robot::kNumJoints;
 
 // Equal bit patterns (NaN payloads and the sign of zero included).
@@ -59,8 +60,8 @@ class ClosedLoopTest : public ::testing::Test {
 // file's numbers converted by hand (Ki / dt, Kd dt; scheduled scales K0 (R - 1)).
 TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBitForBit) {
   const std::string path = FUZZYPID_SOURCE_DIR "/tests/sim/data/hand_scheduled.toml";
-  cf::ControllerSpec spec;
-  cf::Error err;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(path, spec, err)) << err.to_string();
 
   sim::Condition cond;
@@ -139,15 +140,15 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
 // built-in tables: the same controller up to rounding (the engine and the table system agree within
 // 3e-16).
 TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
-  cf::ControllerSpec from_file;
-  cf::Error err;
+  ctl::ControllerSpec from_file;
+  fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/engine_fuzzy.toml", from_file, err))
       << err.to_string();
   ASSERT_NE(from_file.supervisor.rule_model, nullptr);
   sim::Condition cond;
   cond.initial_error_rad = -0.03;
   const auto a = experiment_->run(cond, from_file);
-  const auto b = experiment_->run(cond, cf::paper_fuzzy());
+  const auto b = experiment_->run(cond, ctl::paper_fuzzy());
   ASSERT_TRUE(a.ok) << a.error;
   ASSERT_TRUE(b.ok) << b.error;
   ASSERT_EQ(a.rows.size(), b.rows.size());
@@ -161,7 +162,7 @@ TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
 }
 
 TEST_F(ClosedLoopTest, ATickAllocatesNothing) {
-  for (const cf::ControllerSpec& spec : {cf::paper_pid(), cf::paper_fuzzy()}) {
+  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy()}) {
     sim::Condition cond;
     cond.noise_position_rad = 1e-4;
     cond.contact_rad_s2 = 0.5;
@@ -203,7 +204,7 @@ TEST(ClosedLoopAnyRobot, ATickAllocatesNothingWithCoupledGravityPayloadAndFeedFo
   cond.payload_kg = 2.0;
   cond.dynamics = robot::PlantCoupling::Coupled;
   cond.gravity = true;
-  cf::ControllerSpec spec = cf::paper_fuzzy();
+  ctl::ControllerSpec spec = ctl::paper_fuzzy();
   spec.feedforward.gravity = true;
   auto loop = sim::ClosedLoop::create(*ex, cond, spec, error);
   ASSERT_TRUE(loop) << error;
@@ -245,7 +246,7 @@ sim::Condition busy_condition() {
 }
 
 TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
-  for (const cf::ControllerSpec& spec : {cf::paper_pid(), cf::paper_fuzzy()}) {
+  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy()}) {
     std::string error;
     auto plain = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
     auto injected = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
@@ -281,7 +282,7 @@ TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
 
 TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
   ASSERT_TRUE(loop) << error;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -315,8 +316,8 @@ TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   expect_fault_on(loop->tick(loop->sample(k++), offset), 0);
 
   // A finite bias is no fault: it moves the command of its joint alone.
-  auto twin = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
-  auto biased = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  auto twin = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
+  auto biased = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
   ASSERT_TRUE(twin && biased) << error;
   sim::TickInjection bias;
   bias.measured_position_offset_rad[3] = 0.01;
@@ -336,8 +337,8 @@ TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
 // sees dt on the first tick.
 TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePathsInterval) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
-  auto skewed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto skewed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
   ASSERT_TRUE(plain && skewed) << error;
   sim::TickInjection clock;
   clock.controller_dt_s = 0.1;
@@ -372,8 +373,8 @@ TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePat
 
 TEST_F(ClosedLoopTest, APlantDtAdvancesThePlantByItAndLeavesTheControllerAlone) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_fuzzy(), error);
-  auto late = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_fuzzy(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_fuzzy(), error);
+  auto late = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_fuzzy(), error);
   ASSERT_TRUE(plain && late) << error;
   sim::TickInjection jitter;
   jitter.plant_dt_s = 0.07;
@@ -387,7 +388,7 @@ TEST_F(ClosedLoopTest, APlantDtAdvancesThePlantByItAndLeavesTheControllerAlone) 
 
 TEST_F(ClosedLoopTest, ResetPlantPutsThePlantAtTheGivenState) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), cf::paper_fuzzy(), error);
+  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
   ASSERT_TRUE(loop) << error;
   for (std::size_t k = 0; k < 10; ++k)
     (void)loop->tick(k);
@@ -406,8 +407,8 @@ TEST_F(ClosedLoopTest, ResetPlantPutsThePlantAtTheGivenState) {
 // by (Kp + Ki dt) d on its joint alone.
 TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
-  auto jumped = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto jumped = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
   ASSERT_TRUE(plain && jumped) << error;
   sim::TickInjection jump;
   jump.reference_offset_rad[1] = 0.1;
@@ -427,8 +428,8 @@ TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
 // velocity of its joint and nothing to the others.
 TEST_F(ClosedLoopTest, AnInjectedDisturbanceTorqueAcceleratesItsJointOnly) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
-  auto pushed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto pushed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
   ASSERT_TRUE(plain && pushed) << error;
   sim::TickInjection push;
   push.disturbance_torque_nm[0] = 50.0;
@@ -447,7 +448,7 @@ TEST_F(ClosedLoopTest, AnInjectedDisturbanceTorqueAcceleratesItsJointOnly) {
 
 TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, sim::Condition{}, cf::paper_pid(), error);
+  auto loop = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
   ASSERT_TRUE(loop) << error;
   const std::size_t n = loop->samples();
   const std::uint64_t cycle = 2 * (n - 1);
@@ -479,15 +480,15 @@ TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
 // What a file cannot say (a gain update per joint, an integral limit): the joints run the
 // configurations they were given, and the spec's own configurations run like the spec.
 TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
-  const cf::ControllerSpec spec = cf::paper_fuzzy();
+  const ctl::ControllerSpec spec = ctl::paper_fuzzy();
   const sim::Condition cond = busy_condition();
   const robot::JointVector limit = experiment_->output_limit(cond, spec.units.gains);
   std::array<control::FuzzyPidConfig<double>, kJ> configs;
   for (std::size_t i = 0; i < kJ; ++i)
-    configs[i] = cf::fuzzy_pid_config(spec, limit[i]);
+    configs[i] = ctl::fuzzy_pid_config(spec, limit[i]);
   std::string error;
   auto from_spec = sim::ClosedLoop::create(*experiment_, cond, spec, error);
-  auto same = cf::JointControllers::create(spec, configs, error);
+  auto same = ctl::JointControllers::create(spec, configs, error);
   ASSERT_TRUE(from_spec && same) << error;
   auto same_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*same), error);
   ASSERT_TRUE(same_loop) << error;
@@ -497,7 +498,7 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
     configs[i].pid.integral_min = -0.5;
     configs[i].pid.integral_max = 0.5;
   }
-  auto mixed = cf::JointControllers::create(spec, configs, error);
+  auto mixed = ctl::JointControllers::create(spec, configs, error);
   ASSERT_TRUE(mixed) << error;
   auto mixed_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*mixed), error);
   ASSERT_TRUE(mixed_loop) << error;
@@ -521,20 +522,20 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
   }
 
   configs[4].pid.integral_min = 1.0;  // above its integral_max of 0.5
-  EXPECT_FALSE(cf::JointControllers::create(spec, configs, error));
+  EXPECT_FALSE(ctl::JointControllers::create(spec, configs, error));
   EXPECT_FALSE(error.empty());
 }
 
 TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
   sim::Condition ahead;
   ahead.initial_error_rad = -0.05;
-  const auto r = experiment_->run(ahead, cf::paper_pid());
+  const auto r = experiment_->run(ahead, ctl::paper_pid());
   ASSERT_TRUE(r.ok) << r.error;
   for (std::size_t i = 0; i < kJ; ++i)
     EXPECT_NEAR(r.rows[i].error, -0.05, 1e-15);  // theta_d - (theta_d + 0.05)
   sim::Condition back;
   back.reverse = true;
-  const auto b = experiment_->run(back, cf::paper_pid());
+  const auto b = experiment_->run(back, ctl::paper_pid());
   ASSERT_TRUE(b.ok) << b.error;
   const auto& fwd = experiment_->path().position_rad;
   for (std::size_t i = 0; i < kJ; ++i) {
@@ -546,7 +547,7 @@ TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   sim::Condition bad;
   bad.payload_scale = 0.0;
-  const auto r = experiment_->run(bad, cf::paper_pid());
+  const auto r = experiment_->run(bad, ctl::paper_pid());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("payload"), std::string::npos);
 }

@@ -13,11 +13,10 @@ namespace {
 using fuzzypid::sim::ConditionFile;
 using fuzzypid::sim::load_conditions;
 using fuzzypid::sim::parse_conditions;
-namespace cf = fuzzypid::controller_file;
 
 TEST(ConditionSets, TheShippedFileHasTrainingHeldOutAndStressSets) {
   ConditionFile f;
-  cf::Error e;
+  fuzzypid::FileError e;
   ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/robust.toml", f, e)) << e.to_string();
   ASSERT_NE(f.find("training"), nullptr);
   ASSERT_NE(f.find("held-out"), nullptr);
@@ -43,7 +42,7 @@ TEST(ConditionSets, MonteCarloDrawsAreSeededAndInsideTheirRanges) {
       "[sets.mc.monte_carlo]\ncount = 50\nseed = 9\npayload_scale = [0.5, 2.0]\n"
       "friction = [0.0, 2.0]\ninitial_error = [-0.08, 0.08]\n";
   ConditionFile a, b, c;
-  cf::Error e;
+  fuzzypid::FileError e;
   ASSERT_TRUE(parse_conditions(text, "mc.toml", a, e)) << e.to_string();
   ASSERT_TRUE(parse_conditions(text, "mc.toml", b, e)) << e.to_string();
   const auto& da = a.find("mc")->conditions;
@@ -66,7 +65,7 @@ TEST(ConditionSets, MonteCarloDrawsAreSeededAndInsideTheirRanges) {
 
 TEST(ConditionSets, AScenarioIsAShorthandTheOtherKeysOverride) {
   ConditionFile f;
-  cf::Error e;
+  fuzzypid::FileError e;
   ASSERT_TRUE(parse_conditions(
       "[sets.s]\nconditions = [ { name = \"c\", scenario = \"deburring\", initial_error = -0.02,"
       " noise = [1e-4, 2e-3], reverse = true } ]\n",
@@ -107,7 +106,7 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
   };
   for (const Bad& b : cases) {
     ConditionFile f;
-    cf::Error e;
+    fuzzypid::FileError e;
     EXPECT_FALSE(parse_conditions(b.text, "bad.toml", f, e)) << b.text;
     EXPECT_EQ(e.line, b.line) << b.text << e.to_string();
     EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
@@ -123,7 +122,7 @@ TEST(ConditionSets, MonteCarloPayloadAndFrictionAreIndependentDraws) {
       "[sets.mc.monte_carlo]\ncount = 20\nseed = 3\npayload_scale = [1.0, 2.0]\n"
       "friction = [0.0, 1.0]\ninitial_error = [0.0, 1.0]\n";
   ConditionFile f;
-  cf::Error e;
+  fuzzypid::FileError e;
   ASSERT_TRUE(parse_conditions(text, "mc.toml", f, e)) << e.to_string();
   std::size_t coupled_friction = 0, coupled_initial = 0;
   for (const auto& c : f.find("mc")->conditions) {

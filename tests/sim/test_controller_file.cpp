@@ -10,12 +10,13 @@
 #include <string>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
-#include "fuzzypid/controller_file/export_header.hpp"
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/codegen/export_header.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 
 namespace {
 
 namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
 
 std::string read(const std::string& path) {
   std::ifstream in(path);
@@ -24,19 +25,19 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-cf::ControllerSpec tuned_example() {
-  cf::ControllerSpec s = cf::paper_fuzzy();
+ctl::ControllerSpec tuned_example() {
+  ctl::ControllerSpec s = ctl::paper_fuzzy();
   s.description = "a \"quoted\" description\twith a tab";
   s.gains = {207.02946541923043, 0.0086027041784963332, 421.61049466377909};
   s.supervisor.error_scale = 961.29293435760724;
   s.supervisor.error_rate_scale = 0.1 + 0.2;  // not exactly representable in few digits
   s.supervisor.output_scale = {1038.9657241991415, 4.7364552446661055e-300, 1e300};
   s.supervisor.conjunction = fuzzypid::fuzzy::Conjunction::Product;
-  s.supervisor.rule_base = cf::RuleBase::PaperCorrected;
+  s.supervisor.rule_base = ctl::RuleBase::PaperCorrected;
   s.gain_max = {1e4, 2.5, std::numeric_limits<double>::infinity()};
   s.pid.derivative = fuzzypid::pid::DerivativeSource::Difference;
   s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;
-  cf::Tuning t;
+  ctl::Tuning t;
   t.conditions = "tuning/robust.toml";
   t.set = "training";
   t.algorithm = "pagmo::sade";
@@ -55,7 +56,7 @@ cf::ControllerSpec tuned_example() {
   return s;
 }
 
-void expect_same(const cf::ControllerSpec& a, const cf::ControllerSpec& b) {
+void expect_same(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
   EXPECT_EQ(a.family, b.family);
   EXPECT_EQ(a.description, b.description);
   EXPECT_EQ(a.gains, b.gains);
@@ -86,10 +87,10 @@ void expect_same(const cf::ControllerSpec& a, const cf::ControllerSpec& b) {
 }
 
 TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
-  for (const cf::ControllerSpec& spec : {cf::paper_pid(), cf::paper_fuzzy(), tuned_example()}) {
+  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy(), tuned_example()}) {
     const std::string text = cf::to_toml(spec);
-    cf::ControllerSpec back;
-    cf::Error error;
+    ctl::ControllerSpec back;
+    fuzzypid::FileError error;
     ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
     expect_same(spec, back);
     EXPECT_EQ(cf::to_toml(back), text);
@@ -97,13 +98,13 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
 }
 
 TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
-  cf::ControllerSpec spec = cf::paper_pid();
+  ctl::ControllerSpec spec = ctl::paper_pid();
   EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);
-  EXPECT_NE(cf::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
+  EXPECT_NE(fuzzypid::codegen::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
             std::string::npos);
   spec.feedforward.gravity = true;
   EXPECT_NE(cf::to_toml(spec).find("[feedforward]\ngravity = true"), std::string::npos);
-  const std::string header = cf::export_header(spec, "ns", "x.toml");
+  const std::string header = fuzzypid::codegen::export_header(spec, "ns", "x.toml");
   EXPECT_NE(header.find("kGravityFeedforward = true"), std::string::npos);
   EXPECT_NE(header.find("the target must add g^_i(q_desired)"), std::string::npos);
 }
@@ -117,10 +118,10 @@ TEST(ControllerFile, FileHashIsFnv1aOfTheBytes) {
 
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
-  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", cf::paper_pid()},
-                                   std::pair{"paper_fuzzy.toml", cf::paper_fuzzy()}}) {
-    cf::ControllerSpec loaded;
-    cf::Error error;
+  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", ctl::paper_pid()},
+                                   std::pair{"paper_fuzzy.toml", ctl::paper_fuzzy()}}) {
+    ctl::ControllerSpec loaded;
+    fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
     expect_same(spec, loaded);
     EXPECT_EQ(read(dir + file), cf::to_toml(spec)) << file;
@@ -130,8 +131,8 @@ TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
 TEST(ControllerFile, ShippedTunedFilesReadBackToTheirOwnText) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
   for (const char* file : {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml"}) {
-    cf::ControllerSpec loaded;
-    cf::Error error;
+    ctl::ControllerSpec loaded;
+    fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
     ASSERT_TRUE(loaded.tuning.has_value()) << file;
     EXPECT_LE(loaded.tuning->evaluations, loaded.tuning->budget);
@@ -167,8 +168,8 @@ class MalformedFile : public ::testing::TestWithParam<Malformed> {};
 
 TEST_P(MalformedFile, IsRejectedWithFileLineAndColumn) {
   const Malformed& m = GetParam();
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   ASSERT_FALSE(cf::parse(m.text, "bad.toml", spec, error)) << m.what;
   EXPECT_EQ(error.file, "bad.toml");
   EXPECT_EQ(error.line, m.line) << m.what << ": " << error.to_string();
@@ -238,22 +239,22 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(ControllerFile, ARuleFileIsResolvedFromTheFilesFolderAndWrittenBackAsGiven) {
   const std::string path = FUZZYPID_SOURCE_DIR "/tests/sim/data/engine_fuzzy.toml";
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   ASSERT_TRUE(cf::load(path, spec, error)) << error.to_string();
   EXPECT_EQ(spec.supervisor.rule_file, "../../../rulebases/paper.fll");
   ASSERT_NE(spec.supervisor.rule_model, nullptr);
   EXPECT_EQ(spec.supervisor.rule_model->num_inputs, 2u);
   // Written back and read again from the same folder: the same text.
   const std::string text = cf::to_toml(spec);
-  cf::ControllerSpec back;
+  ctl::ControllerSpec back;
   ASSERT_TRUE(cf::parse(text, path, back, error)) << error.to_string();
   EXPECT_EQ(cf::to_toml(back), text);
 }
 
 TEST(ControllerFile, AMissingRuleFileIsAnErrorAtItsKey) {
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   ASSERT_FALSE(
       cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_missing_rule_file.toml", spec, error));
   EXPECT_EQ(error.line, 14);
@@ -262,16 +263,16 @@ TEST(ControllerFile, AMissingRuleFileIsAnErrorAtItsKey) {
 }
 
 TEST(ControllerFile, AValidFileIsAccepted) {
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(kValid, "ok.toml", spec, error)) << error.to_string();
-  EXPECT_EQ(spec.family, cf::Family::Pid);
+  EXPECT_EQ(spec.family, ctl::Family::Pid);
   EXPECT_EQ(spec.gains.kd, 100.0);
 }
 
 TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   EXPECT_FALSE(cf::load("/nonexistent/controller.toml", spec, error));
   EXPECT_NE(error.to_string().find("/nonexistent/controller.toml"), std::string::npos);
 }
@@ -279,8 +280,8 @@ TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
 // A device that never ends is refused after a bounded read (1 MiB), never read until memory runs
 // out; so is a directory.
 TEST(ControllerFile, AFileIsReadWithABoundedSize) {
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   EXPECT_FALSE(cf::load("/dev/zero", spec, error));
   EXPECT_NE(error.message.find("is larger than 1048576 bytes"), std::string::npos)
       << error.to_string();
@@ -289,8 +290,8 @@ TEST(ControllerFile, AFileIsReadWithABoundedSize) {
 }
 
 TEST(ControllerFile, ANominalGainOutsideItsOwnBoundsIsRefusedAtLoad) {
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   EXPECT_FALSE(
       cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_k0_outside_bounds.toml", spec, error));
   EXPECT_NE(error.message.find("gains.kp = 50.0 lies outside [bounds] 0.0 .. 10.0"),
@@ -303,28 +304,28 @@ TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
   const std::string text = std::string(kValid) +
                            "[pid]\nderivative = \"difference\"\nderivative_on = \"measurement\"\n"
                            "anti_windup = \"back-calculation\"\n";
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "ok.toml", spec, error)) << error.to_string();
   EXPECT_EQ(spec.pid.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Difference);
   EXPECT_EQ(spec.pid.anti_windup, fuzzypid::pid::AntiWindup::BackCalculation);
-  const auto pc = cf::pid_config(spec, 1.0);
+  const auto pc = ctl::pid_config(spec, 1.0);
   EXPECT_EQ(pc.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Difference);
 }
 
 // gain_update = "incremental" reaches the runtime fuzzy controller's configuration.
 TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
-  cf::ControllerSpec spec = cf::paper_fuzzy();
+  ctl::ControllerSpec spec = ctl::paper_fuzzy();
   spec.supervisor.gain_update = fuzzypid::control::GainUpdate::Incremental;
-  cf::ControllerSpec back;
-  cf::Error error;
+  ctl::ControllerSpec back;
+  fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(cf::to_toml(spec), "inc.toml", back, error)) << error.to_string();
   EXPECT_EQ(back.supervisor.gain_update, fuzzypid::control::GainUpdate::Incremental);
-  EXPECT_EQ(cf::fuzzy_pid_config(back, 1.0).gain_update,
+  EXPECT_EQ(ctl::fuzzy_pid_config(back, 1.0).gain_update,
             fuzzypid::control::GainUpdate::Incremental);
-  EXPECT_EQ(cf::fuzzy_pid_config(cf::paper_fuzzy(), 1.0).gain_update,
+  EXPECT_EQ(ctl::fuzzy_pid_config(ctl::paper_fuzzy(), 1.0).gain_update,
             fuzzypid::control::GainUpdate::Absolute);
 }
 

@@ -8,7 +8,8 @@
 #include <string>
 
 #include "fuzzypid/control/joint_controller.hpp"
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/sim/random.hpp"
 #include "paper_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
@@ -19,6 +20,7 @@ namespace {
 
 using namespace fuzzypid;
 namespace cf = controller_file;
+namespace ctl = controller;
 constexpr std::size_t kJ = 6;
 
 // Equal bit patterns (NaN payloads and the sign of zero included).
@@ -33,17 +35,17 @@ bool same_bits(double a, double b) {
 // 0.2 rad, rates up to 1 rad/s) with output limit 3 rad/s²; every output must match bit for bit.
 template <class Controller>
 void expect_equal_to_file(const char* file, const Controller& prototype) {
-  cf::ControllerSpec spec;
-  cf::Error err;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(std::string(FUZZYPID_SOURCE_DIR "/controllers/") + file, spec, err))
       << err.to_string();
   std::string error;
-  auto from_file = cf::JointControllers::create(spec, cf::Vector{3, 3, 3, 3, 3, 3}, error);
+  auto from_file = ctl::JointControllers::create(spec, ctl::Vector{3, 3, 3, 3, 3, 3}, error);
   ASSERT_TRUE(from_file) << error;
   control::JointController<double, kJ, Controller> from_header(prototype);
   sim::Random rng(2024);
   for (int k = 0; k < 400; ++k) {
-    cf::Input in;
+    ctl::Input in;
     for (std::size_t i = 0; i < kJ; ++i) {
       in.desired_position_rad[i] = rng.uniform(-0.2, 0.2);
       in.desired_velocity_rad_s[i] = rng.uniform(-1.0, 1.0);

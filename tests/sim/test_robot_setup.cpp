@@ -16,7 +16,7 @@
 namespace fuzzypid::sim {
 namespace {
 
-namespace cf = controller_file;
+namespace ctl = controller;
 constexpr double kPi = 3.14159265358979323846;
 const std::string kSource = FUZZYPID_SOURCE_DIR;
 
@@ -114,7 +114,7 @@ conditions = [
 ]
 )";
   ConditionFile f;
-  cf::Error e;
+  fuzzypid::FileError e;
   ASSERT_TRUE(parse_conditions(text, "/somewhere/tuning/robot.toml", f, e)) << e.to_string();
   const auto& c = f.sets[0].conditions;
   ASSERT_EQ(c.size(), 3u);
@@ -134,7 +134,7 @@ conditions = [
 TEST(ConditionFile, BadRobotKeysAreErrorsWithTheirPosition) {
   const auto error_of = [](const std::string& condition) {
     ConditionFile f;
-    cf::Error e;
+    fuzzypid::FileError e;
     EXPECT_FALSE(
         parse_conditions("[sets.s]\nconditions = [\n  " + condition + "\n]\n", "c.toml", f, e))
         << condition;
@@ -167,7 +167,7 @@ TEST(ClosedLoop, AContinuousJointFollowsAPathThroughPiWithoutUnwinding) {
   Condition c;
   c.robot = s;
   c.initial_error_rad = 0.0;
-  const cf::ControllerSpec pid = default_controller(ExperimentOptions{}, cf::Family::Pid);
+  const ctl::ControllerSpec pid = default_controller(ExperimentOptions{}, ctl::Family::Pid);
   // The plant starts at 2.9 rad; the reference, unwrapped, ends at 2 pi - 2.6 = 3.68 rad.
   auto loop = ClosedLoop::create(*ex, c, pid, error);
   ASSERT_TRUE(loop) << error;
@@ -199,9 +199,9 @@ TEST(ClosedLoop, GravityFeedForwardCarriesTheLoadTheIntegralOtherwiseMust) {
   c.robot = s;
   c.dynamics = robot::PlantCoupling::Coupled;
   c.gravity = true;
-  cf::ControllerSpec pid = cf::paper_pid();
-  pid.units.gains = cf::GainUnits::Acceleration;  // torque = J^_i u_i
-  pid.units.form = cf::PidForm::Continuous;
+  ctl::ControllerSpec pid = ctl::paper_pid();
+  pid.units.gains = ctl::GainUnits::Acceleration;  // torque = J^_i u_i
+  pid.units.form = ctl::PidForm::Continuous;
   pid.gains = {400.0, 40.0, 40.0};  // 1/s², 1/s³, 1/s
   RunLimits limits;
   limits.max_error_rad = 1.0;
@@ -235,7 +235,7 @@ TEST(ClosedLoop, APayloadMassLoadsThePlantNotTheControllersModel) {
   const robot::JointVector j1 = ex->plant_model(heavy).inertia_diagonal(q);
   EXPECT_GT(j1[0], j0[0] + 1.0);  // 50 kg about 1.5 m from the base axis
   EXPECT_EQ(j1[5], j0[5]);        // a point mass on the last axis adds nothing to it
-  const cf::ControllerSpec pid = default_controller(ExperimentOptions{}, cf::Family::Pid);
+  const ctl::ControllerSpec pid = default_controller(ExperimentOptions{}, ctl::Family::Pid);
   const RunResult a = ex->run(light, pid);
   const RunResult b = ex->run(heavy, pid);
   ASSERT_TRUE(a.ok && b.ok);

@@ -19,6 +19,7 @@
 namespace {
 
 namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
 namespace tune = fuzzypid::tune;
 
 // ITAE of a unit double integrator (x'' = u, zero-order hold, exact discretisation at dt) under
@@ -48,7 +49,7 @@ double double_integrator_itae(const std::vector<double>& x) {
   return itae;
 }
 
-const std::vector<cf::SearchBox> kToyBox = {
+const std::vector<ctl::SearchBox> kToyBox = {
     {"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
 
 TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
@@ -123,7 +124,7 @@ class TuneOnTheRobot : public ::testing::Test {
     training_ = {behind, ahead};
   }
 
-  std::string tuned(cf::Family family, unsigned threads, std::uint64_t seed) {
+  std::string tuned(ctl::Family family, unsigned threads, std::uint64_t seed) {
     tune::Options o;
     o.family = family;
     o.budget = 60;
@@ -145,7 +146,7 @@ class TuneOnTheRobot : public ::testing::Test {
 };
 
 TEST_F(TuneOnTheRobot, TheSameSeedGivesTheSameFileWithAnyThreadCount) {
-  for (const cf::Family f : {cf::Family::Pid, cf::Family::Scheduled, cf::Family::Fuzzy}) {
+  for (const ctl::Family f : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy}) {
     const std::string a = tuned(f, 1, 5);
     EXPECT_EQ(a, tuned(f, 1, 5));
     EXPECT_EQ(a, tuned(f, 2, 5));
@@ -155,7 +156,7 @@ TEST_F(TuneOnTheRobot, TheSameSeedGivesTheSameFileWithAnyThreadCount) {
 
 TEST_F(TuneOnTheRobot, TheRecordedCostIsTheObjectiveOfTheResult) {
   tune::Options o;
-  o.family = cf::Family::Fuzzy;
+  o.family = ctl::Family::Fuzzy;
   o.budget = 60;
   o.population = 20;
   std::string error;
@@ -173,15 +174,15 @@ TEST_F(TuneOnTheRobot, TuningLowersTheTrainingCostBelowThePapersControllers) {
   o.budget = 200;
   o.population = 20;
   const double paper_pid =
-      tune::evaluate(*experiment_, training_, cf::paper_pid(), o.objective, 1).total;
+      tune::evaluate(*experiment_, training_, ctl::paper_pid(), o.objective, 1).total;
   const double paper_fuzzy =
-      tune::evaluate(*experiment_, training_, cf::paper_fuzzy(), o.objective, 1).total;
-  for (const cf::Family f : {cf::Family::Pid, cf::Family::Scheduled, cf::Family::Fuzzy}) {
+      tune::evaluate(*experiment_, training_, ctl::paper_fuzzy(), o.objective, 1).total;
+  for (const ctl::Family f : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy}) {
     o.family = f;
     std::string error;
     const auto r = tune::tune(*experiment_, training_, o, error);
     ASSERT_TRUE(r) << error;
-    EXPECT_LT(r->cost.total, 0.5 * std::min(paper_pid, paper_fuzzy)) << cf::to_string(f);
+    EXPECT_LT(r->cost.total, 0.5 * std::min(paper_pid, paper_fuzzy)) << ctl::to_string(f);
   }
 }
 
@@ -199,8 +200,8 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
   const auto set = fuzzypid::sim::ExperimentSet::create(both, {}, error);
   ASSERT_TRUE(set) << error;
   ASSERT_EQ(set->size(), 2u);
-  const cf::ControllerSpec pid = cf::paper_pid();
-  const cf::Objective objective;
+  const ctl::ControllerSpec pid = ctl::paper_pid();
+  const ctl::Objective objective;
   const double sum = tune::evaluate(*set, both, pid, objective, 2).total;
   const double a = tune::evaluate(set->of(0), {er50}, pid, objective, 1).total;
   const double b = tune::evaluate(set->of(1), {ur5}, pid, objective, 1).total;
@@ -210,8 +211,8 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
 
 TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
   const auto s =
-      tune::to_spec(cf::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0}, cf::paper_pid());
-  EXPECT_EQ(s.family, cf::Family::Scheduled);
+      tune::to_spec(ctl::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0}, ctl::paper_pid());
+  EXPECT_EQ(s.family, ctl::Family::Scheduled);
   EXPECT_DOUBLE_EQ(s.gains.kp, 100.0);
   EXPECT_DOUBLE_EQ(s.gains.ki, 1e-3);
   EXPECT_DOUBLE_EQ(s.gains.kd, 10.0);
@@ -225,7 +226,7 @@ TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
 
 // Each log10 parameter lands on its own field: the three output scales in order (distinct values).
 TEST(ToSpec, TheOutputScalesKeepTheirOrder) {
-  const auto s = tune::to_spec(cf::Family::Fuzzy, {0, 0, 0, 0, 0, 1, 2, 3}, cf::paper_fuzzy());
+  const auto s = tune::to_spec(ctl::Family::Fuzzy, {0, 0, 0, 0, 0, 1, 2, 3}, ctl::paper_fuzzy());
   EXPECT_DOUBLE_EQ(s.supervisor.output_scale[0], 10.0);
   EXPECT_DOUBLE_EQ(s.supervisor.output_scale[1], 100.0);
   EXPECT_DOUBLE_EQ(s.supervisor.output_scale[2], 1000.0);

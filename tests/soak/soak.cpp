@@ -5,7 +5,7 @@
 // The loop is the A/B simulation's closed loop, sim::ClosedLoop (docs/reproduction.md), ticked
 // on the section 6 path played back and forth (A -> B -> A ..., 101 samples each way, closed-form
 // IK; ClosedLoop::cyclic_sample): the paper's fuzzy PID as its controller file describes it
-// (per-tick gains converted once by controller_file::fuzzy_pid_config), torque_i = J^_i u_i, and
+// (per-tick gains converted once by controller::fuzzy_pid_config), torque_i = J^_i u_i, and
 // the plant of a condition whose actuator limit is 5 rad/s² x J^_i (so that the paper's weak gains
 // do saturate it). On top of that configuration the integral is limited to the output range and
 // the gains to [0, 3 K0]; joints 1-3 use the paper's absolute gain update (K = K0 + dK, Eq. 6),
@@ -54,7 +54,7 @@
 
 #include "cli.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
@@ -68,7 +68,7 @@
 
 namespace {
 
-namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
 namespace cli = fuzzypid::cli;
 namespace control = fuzzypid::control;
 namespace pid = fuzzypid::pid;
@@ -152,19 +152,19 @@ std::optional<Soak> build(const sim::Experiment& experiment, std::string& error)
   condition.torque_limit_rad_s2 = kAccelLimit;
   // The paper's fuzzy PID as sim_ab runs it, with gain bounds [0, 3 K0] (in the file's per-tick
   // units, converted with the gains).
-  cf::ControllerSpec spec = sim::default_controller(experiment.options(), cf::Family::Fuzzy);
+  ctl::ControllerSpec spec = sim::default_controller(experiment.options(), ctl::Family::Fuzzy);
   spec.gain_min = {0.0, 0.0, 0.0};
   spec.gain_max = gain_max_of(spec.gains);
   const robot::JointVector u_max = experiment.output_limit(condition, spec.units.gains);
   std::array<control::FuzzyPidConfig<double>, kJoints> configs;
   for (std::size_t i = 0; i < kJoints; ++i) {
-    configs[i] = cf::fuzzy_pid_config(spec, u_max[i]);
+    configs[i] = ctl::fuzzy_pid_config(spec, u_max[i]);
     configs[i].pid.integral_min = -u_max[i];
     configs[i].pid.integral_max = u_max[i];
     configs[i].gain_update =
         i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
   }
-  auto controller = cf::JointControllers::create(spec, configs, error);
+  auto controller = ctl::JointControllers::create(spec, configs, error);
   if (!controller) return std::nullopt;
   auto loop = sim::ClosedLoop::create(experiment, condition, std::move(*controller), error);
   if (!loop) return std::nullopt;
@@ -288,7 +288,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
 
     const sim::TickResult r = loop.tick(sample, injection);
 
-    const cf::JointControllers& controller = loop.controller();
+    const ctl::JointControllers& controller = loop.controller();
     for (std::size_t i = 0; i < kJoints; ++i) {
       const Status st = r.command.joint_status[i];
       if (fuzzypid::is_fault(st)) ++c.faults;

@@ -1,257 +1,34 @@
-// Controller files: one deployable controller of the six joints as TOML (docs/tuning.md).
+// Controller files: one controller::ControllerSpec as TOML (docs/tuning.md).
 //
-// A file names the family (pid, scheduled, fuzzy), its gains and scales in stated units, the gain
-// bounds, the PID options, the rule base (fuzzy only: the paper's tables, or a .fis/.fll/.fcl file
-// loaded with fuzzypid::rulefile) and, when it was tuned, how: conditions
-// file, set, optimiser, budget, seed, objective weights and search box. load() reads one with
-// `file:line:column` errors (parsed by toml++); to_toml() writes it back so that loading the text
-// gives the same ControllerSpec and writing that gives the same text (numbers at %.17g).
+// load() reads a file with `file:line:column` errors (parsed by toml++, which stays private to
+// this part); to_toml() writes it back so that loading the text gives the same ControllerSpec and
+// writing that gives the same text (numbers at %.17g). A rule file the controller names is loaded
+// with fuzzypid::rulefile, relative to the controller file's folder.
 //
-// Library fuzzypid::controller_file (set-up code: it allocates and reports errors). The
-// controllers it builds (joint_controllers.hpp) run allocation-free.
+// Library fuzzypid::controller_file (set-up code: it allocates and reports errors).
 #pragma once
 
-#include <array>
-#include <cstdint>
-#include <limits>
-#include <memory>
-#include <optional>
 #include <string>
 #include <string_view>
-#include <vector>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/fuzzy/engine.hpp"
-#include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/paper.hpp"
-#include "fuzzypid/pid/gains.hpp"
-#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/file_error.hpp"
 
 namespace fuzzypid::controller_file {
 
-// ---------------------------------------------------------------------------------------------
-// Vocabulary. Every enum is parsed from the same table that names it (parse_enum / to_string).
-
-enum class Family : std::uint8_t {
-  Pid,        // Kp, Ki, Kd
-  Scheduled,  // K = K0 + K0 (R - 1) w(Ke e, Kec ec), control/gain_schedule.hpp
-  Fuzzy,      // K = K0 + S dK(Ke e, Kec ec), the paper's supervisor (Eq. 6)
-};
-
-// u in rad/s² scaled by the nominal inertia (torque J^_i u_i), or a torque in N·m.
-enum class GainUnits : std::uint8_t { Acceleration, Torque };
-// Ki, Kd per tick (u = Kp e + Ki sum(e) + Kd (e_k - e_{k-1}), the paper's numbers) or continuous
-// (u = Kp e + Ki int(e dt) + Kd de/dt).
-enum class PidForm : std::uint8_t { PerTick, Continuous };
-// The built-in tables (paper.hpp) as printed or with the two suspected misprints corrected.
-enum class RuleBase : std::uint8_t { PaperPrinted, PaperCorrected };
-
-template <class Enum>
-struct EnumName {
-  Enum value;
-  const char* name;
-};
-
-inline constexpr std::array<EnumName<Family>, 3> kFamilyNames{
-    {{Family::Pid, "pid"}, {Family::Scheduled, "scheduled"}, {Family::Fuzzy, "fuzzy"}}};
-inline constexpr std::array<EnumName<GainUnits>, 2> kGainUnitsNames{
-    {{GainUnits::Acceleration, "acceleration"}, {GainUnits::Torque, "torque"}}};
-inline constexpr std::array<EnumName<PidForm>, 2> kPidFormNames{
-    {{PidForm::PerTick, "per-tick"}, {PidForm::Continuous, "continuous"}}};
-inline constexpr std::array<EnumName<RuleBase>, 2> kRuleBaseNames{
-    {{RuleBase::PaperPrinted, "paper-printed"}, {RuleBase::PaperCorrected, "paper-corrected"}}};
-// The built-in tables as sim_ab's --tables names them.
-inline constexpr std::array<EnumName<paper::Tables>, 2> kPaperTablesNames{
-    {{paper::Tables::Printed, "printed"}, {paper::Tables::Corrected, "corrected"}}};
-inline constexpr std::array<EnumName<pid::DerivativeSource>, 2> kDerivativeSourceNames{
-    {{pid::DerivativeSource::Rates, "rates"}, {pid::DerivativeSource::Difference, "difference"}}};
-inline constexpr std::array<EnumName<pid::DerivativeOn>, 2> kDerivativeOnNames{
-    {{pid::DerivativeOn::Error, "error"}, {pid::DerivativeOn::Measurement, "measurement"}}};
-inline constexpr std::array<EnumName<pid::AntiWindup>, 3> kAntiWindupNames{
-    {{pid::AntiWindup::None, "none"},
-     {pid::AntiWindup::Clamping, "clamping"},
-     {pid::AntiWindup::BackCalculation, "back-calculation"}}};
-inline constexpr std::array<EnumName<control::GainUpdate>, 2> kGainUpdateNames{
-    {{control::GainUpdate::Absolute, "absolute"},
-     {control::GainUpdate::Incremental, "incremental"}}};
-inline constexpr std::array<EnumName<fuzzy::Conjunction>, 2> kConjunctionNames{
-    {{fuzzy::Conjunction::Minimum, "min"}, {fuzzy::Conjunction::Product, "prod"}}};
-
-template <class Enum, std::size_t N>
-[[nodiscard]] constexpr const char* name_of(const std::array<EnumName<Enum>, N>& table,
-                                            Enum value) noexcept {
-  for (const auto& e : table)
-    if (e.value == value) return e.name;
-  return "unknown";
-}
-
-template <class Enum, std::size_t N>
-[[nodiscard]] std::optional<Enum> parse_enum(const std::array<EnumName<Enum>, N>& table,
-                                             std::string_view text) noexcept {
-  for (const auto& e : table)
-    if (text == e.name) return e.value;
-  return std::nullopt;
-}
-
-// "a|b|c": the accepted names, for messages and --help.
-template <class Enum, std::size_t N>
-[[nodiscard]] std::string names_of(const std::array<EnumName<Enum>, N>& table) {
-  std::string out;
-  for (const auto& e : table) {
-    if (!out.empty()) out += '|';
-    out += e.name;
-  }
-  return out;
-}
-
-[[nodiscard]] constexpr const char* to_string(Family f) noexcept {
-  return name_of(kFamilyNames, f);
-}
-[[nodiscard]] constexpr const char* to_string(GainUnits g) noexcept {
-  return name_of(kGainUnitsNames, g);
-}
-[[nodiscard]] constexpr const char* to_string(PidForm f) noexcept {
-  return name_of(kPidFormNames, f);
-}
-[[nodiscard]] constexpr const char* to_string(RuleBase r) noexcept {
-  return name_of(kRuleBaseNames, r);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Units: the one place where per-tick gains become continuous ones (Ki / dt, Kd dt).
-
-[[nodiscard]] constexpr pid::Gains<double> to_continuous(const pid::Gains<double>& g, PidForm form,
-                                                         double tick_s) noexcept {
-  if (form == PidForm::Continuous) return g;
-  return {g.kp, g.ki / tick_s, g.kd * tick_s};
-}
-[[nodiscard]] constexpr pid::Gains<double> from_continuous(const pid::Gains<double>& g,
-                                                           PidForm form, double tick_s) noexcept {
-  if (form == PidForm::Continuous) return g;
-  return {g.kp, g.ki * tick_s, g.kd / tick_s};
-}
-
-// ---------------------------------------------------------------------------------------------
-// The file's content.
-
-struct Units {
-  GainUnits gains = GainUnits::Acceleration;
-  PidForm form = PidForm::PerTick;
-  double tick_s = 0.05;  // the tick the per-tick gains refer to (and the controller's tick)
-};
-
-struct Supervisor {
-  double error_scale = 1.0;       // Ke, universe units per rad
-  double error_rate_scale = 1.0;  // Kec, universe units per rad/s
-  // fuzzy: Sp, Si, Sd (gain units per table unit); scheduled: the large-error ratios Rp, Ri, Rd.
-  std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
-  control::GainUpdate gain_update = control::GainUpdate::Absolute;  // fuzzy only
-  RuleBase rule_base = RuleBase::PaperPrinted;                      // fuzzy only
-  fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;     // fuzzy only
-  // fuzzy only: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs e, ec; 3
-  // outputs dKp, dKi, dKd), as written in the file (relative to the file's folder), and the model
-  // load() read from it (shared, immutable).
-  std::string rule_file;
-  std::shared_ptr<const fuzzy::EngineModel<double>> rule_model;
-};
-
-struct PidOptions {
-  pid::DerivativeSource derivative = pid::DerivativeSource::Rates;
-  pid::DerivativeOn derivative_on = pid::DerivativeOn::Error;
-  pid::AntiWindup anti_windup = pid::AntiWindup::Clamping;
-  double derivative_filter_s = 0.0;
-};
-
-// One searched parameter: name and its box in log10.
-struct SearchBox {
-  std::string name;
-  double log10_min = 0.0;
-  double log10_max = 0.0;
-};
-
-struct Objective {
-  double overshoot_bound_pct = 20.0;  // overshoot above this is penalised (paper: 20 %)
-  double overshoot_weight = 0.1;      // cost per percentage point above the bound, per joint
-  double fault_cost = 1000.0;         // per run that faults, diverges or gives non-finite ITAE
-  double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
-};
-
-// A file a controller was tuned on: the URDF or path of a training condition, by name and a
-// content hash (64-bit FNV-1a of the bytes, 16 hex digits), so a reader can tell whether the robot
-// it runs is the one the gains were tuned for.
-struct TrainedOn {
-  std::string kind;     // "urdf" or "path"
-  std::string file;     // as the condition named it
-  std::string fnv1a64;  // hex
-};
-
-// 64-bit FNV-1a of a file's bytes as 16 hex digits; empty when the file cannot be read.
-[[nodiscard]] std::string file_hash(const std::string& path);
-
-struct Tuning {
-  std::string conditions;  // the conditions file, as given to `fuzzypid tune`
-  std::string set;         // the training set's name
-  std::string algorithm;   // e.g. "pagmo::sade"
-  std::uint64_t budget = 0;
-  std::uint64_t evaluations = 0;
-  std::uint64_t seed = 0;
-  std::uint64_t threads = 0;
-  std::uint64_t population = 0;
-  double training_cost = 0.0;
-  Objective objective{};
-  std::vector<SearchBox> box;
-  std::vector<TrainedOn> trained_on;  // empty: the bundled ER50-C20 on the section 6 line
-};
-
-// Model-based feed-forward added to the PID's torque.
-struct Feedforward {
-  // tau += g^(q_desired): the gravity torque of the nominal model (no payload) at the reference,
-  // as industrial drives compensate gravity; without it the PID's integral carries the load.
-  bool gravity = false;
-};
-
-struct ControllerSpec {
-  Family family = Family::Pid;
-  std::string description;
-  Units units{};
-  pid::Gains<double> gains = {4.0, 0.001, 100.0};  // pid: the gains; else the nominal K0
-  Supervisor supervisor{};                         // scheduled and fuzzy only
-  pid::Gains<double> gain_min = {0.0, 0.0, 0.0};   // bounds on the retuned gains (file units)
-  pid::Gains<double> gain_max = {std::numeric_limits<double>::infinity(),
-                                 std::numeric_limits<double>::infinity(),
-                                 std::numeric_limits<double>::infinity()};
-  PidOptions pid{};
-  Feedforward feedforward{};
-  std::optional<Tuning> tuning;
-};
-
-// The paper's controllers in the sim's default units (acceleration, per-tick, 0.05 s).
-[[nodiscard]] ControllerSpec paper_pid();
-[[nodiscard]] ControllerSpec paper_fuzzy();
-
-// Checks the values (finite, positive where needed, bounds ordered, family-specific settings).
-// Returns an empty string or what is wrong.
-[[nodiscard]] std::string validate(const ControllerSpec& spec);
-
-// ---------------------------------------------------------------------------------------------
-// Reading and writing.
-
-struct Error {
-  std::string file;
-  int line = 0;  // 1-based; 0 when unknown (e.g. the file cannot be read)
-  int column = 0;
-  std::string message;
-  // "file:line:column: message" ("file: message" without a position).
-  [[nodiscard]] std::string to_string() const;
-};
+using controller::ControllerSpec;
 
 [[nodiscard]] bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
-                         Error& error);
-[[nodiscard]] bool load(const std::string& path, ControllerSpec& spec, Error& error);
+                         FileError& error);
+[[nodiscard]] bool load(const std::string& path, ControllerSpec& spec, FileError& error);
 // The file's text; the tools write it through their one output writer (apps/common/output_files).
 [[nodiscard]] std::string to_toml(const ControllerSpec& spec);
 
 // "%.17g", always with a '.', 'e', "inf" or "nan" so TOML reads it as a float.
 [[nodiscard]] std::string format_double(double v);
+
+// 64-bit FNV-1a of a file's bytes as 16 hex digits (controller::TrainedOn); empty when the file
+// cannot be read.
+[[nodiscard]] std::string file_hash(const std::string& path);
 
 }  // namespace fuzzypid::controller_file

@@ -26,7 +26,7 @@
 #include <optional>
 #include <string>
 
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
@@ -72,7 +72,7 @@ struct TickResult {
   robot::JointVector theta_d_dot{};    // reference velocity, rad/s
   robot::JointVector theta{};          // true angle at the sample (before the plant step), rad
   robot::JointVector theta_dot{};      // true velocity at the sample, rad/s
-  controller_file::Command command{};  // the controller's output and statuses
+  controller::Command command{};  // the controller's output and statuses
   robot::JointVector torque_nm{};      // the torque asked of the plant
   robot::PlantStatus plant = robot::PlantStatus::Ok;  // of the step (Ok when not advanced)
 };
@@ -90,7 +90,7 @@ class ClosedLoop {
   // units) so that the controller knows when the plant saturates.
   [[nodiscard]] static std::optional<ClosedLoop> create(
       const Experiment& experiment, const Condition& condition,
-      controller_file::JointControllers controller, std::string& error);
+      controller::JointControllers controller, std::string& error);
 
   // One tick at path sample k (k < samples()); `advance` = false skips the plant step (the last
   // sample of a run has nothing after it).
@@ -114,13 +114,13 @@ class ClosedLoop {
 
   std::size_t samples() const noexcept { return path_->time_s.size(); }
   double tick_s() const noexcept { return tick_s_; }
-  const controller_file::JointControllers& controller() const noexcept { return *controller_; }
+  const controller::JointControllers& controller() const noexcept { return *controller_; }
   const robot::JointPlant& plant() const noexcept { return plant_; }
   const robot::JointPathResult& path() const noexcept { return *path_; }
 
  private:
   ClosedLoop(const Experiment& experiment, const Condition& condition,
-             const robot::JointPathResult& path, controller_file::JointControllers controller);
+             const robot::JointPathResult& path, controller::JointControllers controller);
 
   const Experiment* experiment_;
   const robot::JointPathResult* path_;
@@ -131,7 +131,7 @@ class ClosedLoop {
   Condition condition_;
   PulseTrain pulses_;
   robot::JointPlant plant_;
-  std::optional<controller_file::JointControllers> controller_;
+  std::optional<controller::JointControllers> controller_;
   GainUnits units_;
   double tick_s_;
   Random noise_;

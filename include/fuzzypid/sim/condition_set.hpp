@@ -34,12 +34,14 @@
 #include <string_view>
 #include <vector>
 
-#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/enum_names.hpp"
+#include "fuzzypid/file_error.hpp"
 #include "fuzzypid/sim/condition.hpp"
 
 namespace fuzzypid::sim {
 
-inline constexpr std::array<controller_file::EnumName<robot::PlantCoupling>, 2> kDynamicsNames{
+inline constexpr std::array<fuzzypid::EnumName<robot::PlantCoupling>, 2> kDynamicsNames{
     {{robot::PlantCoupling::Decoupled, "decoupled"}, {robot::PlantCoupling::Coupled, "coupled"}}};
 
 struct ConditionSet {
@@ -56,8 +58,8 @@ struct ConditionFile {
 };
 
 [[nodiscard]] bool parse_conditions(std::string_view text, const std::string& source,
-                                    ConditionFile& file, controller_file::Error& error);
+                                    ConditionFile& file, fuzzypid::FileError& error);
 [[nodiscard]] bool load_conditions(const std::string& path, ConditionFile& file,
-                                   controller_file::Error& error);
+                                   fuzzypid::FileError& error);
 
 }  // namespace fuzzypid::sim

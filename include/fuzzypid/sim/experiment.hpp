@@ -10,7 +10,7 @@
 //                   directly as torque gains (u in N·m);
 //   - pid_form:     per-tick gains (u = Kp e + Ki sum(e) + Kd (e_k - e_{k-1}), the textbook
 //                   discrete form) or continuous-time gains; per-tick gains are converted by
-//                   controller_file::to_continuous (Ki/dt, Kd dt);
+//                   controller::to_continuous (Ki/dt, Kd dt);
 //   - derivative:   de/dt from the measured velocities (Eq. 2) or from successive errors;
 //   - gain_update, error_scale, error_rate_scale, output_scale: how the supervisor's
 //                   dKp, dKi, dKd reach the PID (control/fuzzy_pid.hpp);
@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/pid/pid.hpp"
@@ -39,9 +39,9 @@
 
 namespace fuzzypid::sim {
 
-using GainUnits = controller_file::GainUnits;
-using PidForm = controller_file::PidForm;
-using controller_file::ControllerSpec;
+using GainUnits = controller::GainUnits;
+using PidForm = controller::PidForm;
+using controller::ControllerSpec;
 
 struct ExperimentOptions {
   double tick_s = 0.05;  // section 6: sampled once every 0.05 s
@@ -63,7 +63,7 @@ struct ExperimentOptions {
 
 // The paper's fixed PID (Pid) or fuzzy PID (Fuzzy) with the options' gains and settings.
 [[nodiscard]] ControllerSpec default_controller(const ExperimentOptions& options,
-                                                controller_file::Family family);
+                                                controller::Family family);
 
 // One row of trajectory.csv: one joint at one tick under one controller.
 struct TrajectoryRow {

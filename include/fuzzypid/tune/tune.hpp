@@ -22,16 +22,16 @@
 #include <string>
 #include <vector>
 
-#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 
 namespace fuzzypid::tune {
 
-using controller_file::ControllerSpec;
-using controller_file::Family;
-using controller_file::Objective;
-using controller_file::SearchBox;
+using controller::ControllerSpec;
+using controller::Family;
+using controller::Objective;
+using controller::SearchBox;
 
 // The searched parameters of a family, in order, with their default log10 boxes (units of the
 // default controller file: acceleration gains, per tick at 0.05 s).

@@ -6,28 +6,29 @@
 #include <string>
 
 #include <fuzzypid/controller_file/controller_file.hpp>
-#include <fuzzypid/controller_file/joint_controllers.hpp>
+#include <fuzzypid/controller/joint_controllers.hpp>
 
 int main(int argc, char** argv) {
   namespace cf = fuzzypid::controller_file;
+  namespace ctl = fuzzypid::controller;
   if (argc != 2) return 2;
-  cf::ControllerSpec spec;
-  cf::Error error;
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
   if (!cf::load(argv[1], spec, error)) {
     std::fprintf(stderr, "%s\n", error.to_string().c_str());
     return 1;
   }
-  cf::Vector limit;
+  ctl::Vector limit;
   limit.fill(std::numeric_limits<double>::infinity());
   std::string message;
-  auto joints = cf::JointControllers::create(spec, limit, message);
+  auto joints = ctl::JointControllers::create(spec, limit, message);
   if (!joints) {
     std::fprintf(stderr, "%s\n", message.c_str());
     return 1;
   }
-  cf::Input in;
+  ctl::Input in;
   in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
-  const cf::Command out = joints->step(in, spec.units.tick_s);
-  std::printf("%s: u1 = %.6g\n", cf::to_string(spec.family), out.torque_nm[0]);
+  const ctl::Command out = joints->step(in, spec.units.tick_s);
+  std::printf("%s: u1 = %.6g\n", ctl::to_string(spec.family), out.torque_nm[0]);
   return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
 }

@@ -1,4 +1,4 @@
-#include "fuzzypid/controller_file/export_header.hpp"
+#include "fuzzypid/codegen/export_header.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,9 +10,22 @@
 #include <utility>
 #include <vector>
 
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 
-namespace fuzzypid::controller_file {
+namespace fuzzypid::codegen {
+
+using namespace controller;
+
+namespace {
+
+// The tick as written in the comment: "%.17g".
+std::string number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
 
 namespace {
 
@@ -165,7 +178,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   if (!spec.description.empty()) h += "// " + comment_safe(spec.description) + "\n";
   h += "// Family " + std::string(to_string(spec.family)) +
        "; the file's units: " + to_string(spec.units.gains) + " gains, " +
-       to_string(spec.units.form) + " at " + format_double(spec.units.tick_s) +
+       to_string(spec.units.form) + " at " + number(spec.units.tick_s) +
        " s. Below: the continuous-time SI configuration fuzzypid builds from the file, as\n"
        "// exact hexadecimal literals (the double controller equals the file's bit for bit).\n";
   if (spec.units.gains == GainUnits::Acceleration)
@@ -252,4 +265,4 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   return h;
 }
 
-}  // namespace fuzzypid::controller_file
+}  // namespace fuzzypid::codegen

@@ -6,9 +6,9 @@
 
 #include <string>
 
-#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
 
-namespace fuzzypid::controller_file {
+namespace fuzzypid::codegen {
 
 // "" when `ns` can name the generated code's namespace, else why not. Accepted: one C++ identifier,
 // or several joined by `::` (a nested namespace, C++17), each of letters, digits and `_` not
@@ -24,11 +24,11 @@ namespace fuzzypid::controller_file {
 // controller's Scalar), else the first that is not: a finite double beyond FLT_MAX (kp = 1e39)
 // would silently become an infinite float gain. Infinite values of the file (open bounds) stay
 // infinite and are accepted.
-[[nodiscard]] std::string check_float_range(const ControllerSpec& spec);
+[[nodiscard]] std::string check_float_range(const controller::ControllerSpec& spec);
 
 // The header's text. `ns`: the namespace of the generated code (check_namespace() must accept
 // it); `source`: named in the header's comment.
-[[nodiscard]] std::string export_header(const ControllerSpec& spec, const std::string& ns,
+[[nodiscard]] std::string export_header(const controller::ControllerSpec& spec, const std::string& ns,
                                         const std::string& source);
 
-}  // namespace fuzzypid::controller_file
+}  // namespace fuzzypid::codegen

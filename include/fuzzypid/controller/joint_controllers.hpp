@@ -1,6 +1,6 @@
 // The six joints' controller described by a controller file, ready to run: a fixed PID, a
 // gain-scheduled PID or a fuzzy PID per joint, in continuous-time SI form (per-tick gains are
-// converted once, by controller_file::to_continuous). Built at set-up (may allocate); step() runs
+// converted once, by controller::to_continuous). Built at set-up (may allocate); step() runs
 // allocation-free and never throws.
 #pragma once
 
@@ -15,11 +15,11 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
-#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 
-namespace fuzzypid::controller_file {
+namespace fuzzypid::controller {
 
 inline constexpr std::size_t kJoints = 6;
 
@@ -109,4 +109,4 @@ class JointControllers {
   std::variant<PidJoints, FuzzyJoints, ScheduledJoints, EngineJoints> joints_;
 };
 
-}  // namespace fuzzypid::controller_file
+}  // namespace fuzzypid::controller

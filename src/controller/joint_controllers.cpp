@@ -1,6 +1,6 @@
-#include "fuzzypid/controller_file/joint_controllers.hpp"
+#include "fuzzypid/controller/joint_controllers.hpp"
 
-namespace fuzzypid::controller_file {
+namespace fuzzypid::controller {
 
 pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit) {
   pid::Config<double> c;
@@ -150,4 +150,4 @@ std::optional<JointControllers> JointControllers::build(
   return std::nullopt;
 }
 
-}  // namespace fuzzypid::controller_file
+}  // namespace fuzzypid::controller

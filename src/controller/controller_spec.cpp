@@ -1,0 +1,79 @@
+#include "fuzzypid/controller/controller_spec.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace fuzzypid::controller {
+
+namespace {
+
+bool positive_finite(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+
+// A value in a message as the controller file writes it ("%.17g", with ".0" on whole numbers).
+std::string number(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::string s = buf;
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace
+
+ControllerSpec paper_pid() {
+  ControllerSpec s;
+  s.family = Family::Pid;
+  s.description = "the paper's fixed PID (section 6: Kp = 4, Ki = 0.001, Kd = 100 per tick)";
+  return s;
+}
+
+ControllerSpec paper_fuzzy() {
+  ControllerSpec s;
+  s.family = Family::Fuzzy;
+  s.description =
+      "the paper's fuzzy PID (section 6 gains, Tables 2-4 as printed, unit scales, Eq. 6)";
+  return s;
+}
+
+std::string validate(const ControllerSpec& s) {
+  if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
+  if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
+    return "gains must be finite and >= 0";
+  const auto& sup = s.supervisor;
+  if (s.family != Family::Pid) {
+    if (!positive_finite(sup.error_scale) || !positive_finite(sup.error_rate_scale))
+      return "error_scale and error_rate_scale must be finite and > 0";
+    for (double v : sup.output_scale) {
+      if (!std::isfinite(v)) return "output_scale must be finite";
+      if (s.family == Family::Scheduled && !(v > 0.0))
+        return "the scheduled family's output_scale (gain ratios) must be > 0";
+    }
+  }
+  if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
+    return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
+  const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
+  const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
+  for (int k = 0; k < 3; ++k)
+    if (!(lo[k] >= 0.0) || std::isinf(lo[k]) || !(hi[k] >= lo[k]))
+      return "gain bounds must satisfy 0 <= gain_min <= gain_max";
+  // The supervised families clamp the retuned gains into [bounds] every tick; a nominal K0
+  // outside them would be clamped on every tick without a word.
+  if (s.family != Family::Pid) {
+    const double k0[3] = {s.gains.kp, s.gains.ki, s.gains.kd};
+    const char* names[3] = {"kp", "ki", "kd"};
+    for (int k = 0; k < 3; ++k)
+      if (k0[k] < lo[k] || k0[k] > hi[k])
+        return std::string("gains.") + names[k] + " = " + number(k0[k]) +
+               " lies outside [bounds] " + number(lo[k]) + " .. " + number(hi[k]);
+  }
+  if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
+    return "derivative_filter_s must be finite and >= 0";
+  return {};
+}
+
+}  // namespace fuzzypid::controller
