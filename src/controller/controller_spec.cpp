@@ -40,6 +40,23 @@ ControllerSpec paper_fuzzy() {
   return s;
 }
 
+std::string validate(const RuleTableSpec& t) {
+  const auto centres_ok = [](const RuleTableSpec::Centres& c) {
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      if (!std::isfinite(c[k]) || c[k] != -c[c.size() - 1 - k]) return false;
+      if (k > 0 && !(c[k] > c[k - 1])) return false;
+    }
+    return true;
+  };
+  if (!centres_ok(t.error_centres) || !centres_ok(t.error_rate_centres))
+    return "rule_table centres must be finite, increasing and symmetric about 0";
+  for (const auto& table : t.ratio)
+    for (const auto& row : table)
+      for (double v : row)
+        if (!positive_finite(v)) return "rule_table ratios must be finite and > 0";
+  return {};
+}
+
 std::string validate(const ControllerSpec& s) {
   if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
   if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
@@ -50,12 +67,15 @@ std::string validate(const ControllerSpec& s) {
       return "error_scale and error_rate_scale must be finite and > 0";
     for (double v : sup.output_scale) {
       if (!std::isfinite(v)) return "output_scale must be finite";
-      if (s.family == Family::Scheduled && !(v > 0.0))
-        return "the scheduled family's output_scale (gain ratios) must be > 0";
+      if ((s.family == Family::Scheduled || s.family == Family::FuzzyRules) && !(v > 0.0))
+        return std::string("the ") + to_string(s.family) +
+               " family's output_scale (gain ratios) must be > 0";
     }
   }
   if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
     return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
+  if (s.family == Family::FuzzyRules)
+    if (const std::string bad = validate(sup.rule_table); !bad.empty()) return bad;
   const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
   const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
   for (int k = 0; k < 3; ++k)

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
@@ -64,6 +65,42 @@ std::shared_ptr<const fuzzy::EngineModel<double>> load_rule_model(const TableRea
   return model;
 }
 
+// n numbers at `key`, each finite.
+template <std::size_t N>
+std::array<double, N> read_numbers(TableReader& r, const toml::node& node, const std::string& what) {
+  const auto* a = node.as_array();
+  if (a == nullptr || a->size() != N)
+    r.fail(node, what + " must be an array of " + std::to_string(N) + " numbers");
+  std::array<double, N> out{};
+  for (std::size_t k = 0; k < N; ++k)
+    out[k] = number_of(r, *a->get(k), what + "[" + std::to_string(k) + "]");
+  return out;
+}
+
+RuleTableSpec::Centres read_centres(TableReader& r, const char* key) {
+  const toml::array* a = r.array(key, true);
+  const auto c = read_numbers<RuleTableSpec::kSets>(r, *a, std::string("'") + key + "'");
+  RuleTableSpec probe;
+  probe.error_centres = c;
+  if (const std::string bad = validate(probe); !bad.empty()) r.fail(*a, bad);
+  return c;
+}
+
+// Seven rows of seven ratios: row i is the error's set i (NB..PB), column j the rate's set j.
+RuleTableSpec::Table read_ratio_table(TableReader& r, const char* key) {
+  const toml::array* rows = r.array(key, true);
+  constexpr std::size_t n = RuleTableSpec::kSets;
+  if (rows->size() != n) r.fail(*rows, std::string("'") + key + "' must have 7 rows of 7 ratios");
+  RuleTableSpec::Table t{};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string what = std::string("'") + key + "[" + std::to_string(i) + "]'";
+    t[i] = read_numbers<n>(r, *rows->get(i), what);
+    for (double v : t[i])
+      if (!(v > 0.0)) r.fail(*rows->get(i), what + ": ratios must be > 0");
+  }
+  return t;
+}
+
 ControllerSpec read_spec(const toml::table& root, const std::string& file) {
   TableReader r(root, file);
   ControllerSpec s;
@@ -110,12 +147,26 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     }
     for (const char* k : {"error_scale", "error_rate_scale"})
       if (!(sup->number(k) > 0.0)) sup->fail(*sup->raw().get(k), std::string(k) + " must be > 0");
-    if (s.family == Family::Scheduled)
+    if (s.family == Family::Scheduled || s.family == Family::FuzzyRules)
       for (double ratio : s.supervisor.output_scale)
         if (!(ratio > 0.0))
           sup->fail(*sup->raw().get("output_scale"),
-                    "the scheduled family's output_scale holds gain ratios, which must be > 0");
+                    std::string("the ") + to_string(s.family) +
+                        " family's output_scale holds gain ratios, which must be > 0");
     sup->finish();
+  }
+
+  auto table = r.table("rule_table", s.family == Family::FuzzyRules);
+  if (table && s.family != Family::FuzzyRules)
+    r.fail(*root.get("rule_table"), "only a 'fuzzy-rules' controller has a [rule_table]");
+  if (table) {
+    RuleTableSpec& t = s.supervisor.rule_table;
+    t.error_centres = read_centres(*table, "error_centres");
+    t.error_rate_centres = read_centres(*table, "error_rate_centres");
+    const char* gains[3] = {"kp", "ki", "kd"};
+    for (std::size_t g = 0; g < 3; ++g)
+      t.ratio[g] = read_ratio_table(*table, gains[g]);
+    table->finish();
   }
 
   if (auto bounds = r.table("bounds", false)) {
@@ -203,6 +254,42 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
         tu.trained_on.push_back(f);
       }
     }
+    tu.init = t->text("init", std::string());
+    tu.validation_conditions = t->count("validation_conditions", 0);
+    tu.validation_cost = t->number("validation_cost", std::numeric_limits<double>::quiet_NaN(),
+                                   true);
+    if (const toml::array* stages = t->array("stages", false)) {
+      for (const toml::node& entry : *stages) {
+        const auto* st = entry.as_table();
+        if (st == nullptr)
+          t->fail(entry,
+                  "stages entries must be { family = \"...\", budget = N, evaluations = N, "
+                  "training_cost = x, validation_cost = x }");
+        TableReader sr(*st, file);
+        StageRecord rec;
+        rec.family = sr.choice("family", kFamilyNames);
+        rec.budget = sr.count("budget");
+        rec.evaluations = sr.count("evaluations");
+        rec.training_cost = sr.number("training_cost", std::nullopt, true);
+        rec.validation_cost =
+            sr.number("validation_cost", std::numeric_limits<double>::quiet_NaN(), true);
+        sr.finish();
+        tu.stages.push_back(rec);
+      }
+    }
+    if (auto g = t->table("regulariser", false)) {
+      TableRegulariser reg;
+      reg.symmetry = g->text("symmetry");
+      reg.partition = g->flag("partition");
+      reg.smoothness = g->number("smoothness");
+      reg.monotone = g->number("monotone");
+      reg.unvisited = g->text("unvisited");
+      reg.visit_threshold = g->number("visit_threshold");
+      reg.frozen_cells = g->count("frozen_cells");
+      reg.cell_log10 = g->number("cell_log10");
+      g->finish();
+      tu.regulariser = reg;
+    }
     t->finish();
     s.tuning = tu;
   }
@@ -288,8 +375,7 @@ std::string to_toml(const ControllerSpec& s) {
     o += "error_rate_scale = " + format_double(sup.error_rate_scale) + "\n";
     o += "output_scale = " +
          triple_text(sup.output_scale[0], sup.output_scale[1], sup.output_scale[2]);
-    o += s.family == Family::Scheduled ? "  # large-error gain ratios Rp, Ri, Rd\n"
-                                       : "  # Sp, Si, Sd\n";
+    o += s.family == Family::Fuzzy ? "  # Sp, Si, Sd\n" : "  # large-error gain ratios Rp, Ri, Rd\n";
     if (s.family == Family::Fuzzy) {
       o += "gain_update = " + quoted(name_of(kGainUpdateNames, sup.gain_update)) + "\n";
       if (!sup.rule_file.empty()) {
@@ -298,6 +384,28 @@ std::string to_toml(const ControllerSpec& s) {
         o += "rule_base = " + quoted(to_string(sup.rule_base)) + "\n";
         o += "conjunction = " + quoted(name_of(kConjunctionNames, sup.conjunction)) + "\n";
       }
+    }
+  }
+  if (s.family == Family::FuzzyRules) {
+    const RuleTableSpec& t = s.supervisor.rule_table;
+    o += "\n[rule_table]  # the rule \"x is set i and y is set j\" multiplies the schedule's gain by "
+         "ratio[i][j]\n";
+    o += "# sets NB NM NS ZO PS PM PB of x = error_scale e (rows) and y = error_rate_scale ec "
+         "(columns)\n";
+    const auto list = [](const auto& values) {
+      std::string line = "[";
+      for (std::size_t k = 0; k < values.size(); ++k)
+        line += (k == 0 ? "" : ", ") + format_double(values[k]);
+      return line + "]";
+    };
+    o += "error_centres = " + list(t.error_centres) + "\n";
+    o += "error_rate_centres = " + list(t.error_rate_centres) + "\n";
+    const char* gains[3] = {"kp", "ki", "kd"};
+    for (std::size_t g = 0; g < 3; ++g) {
+      o += std::string(gains[g]) + " = [\n";
+      for (const auto& row : t.ratio[g])
+        o += "  " + list(row) + ",\n";
+      o += "]\n";
     }
   }
   o += "\n[bounds]  # on the retuned gains\n";
@@ -335,6 +443,34 @@ std::string to_toml(const ControllerSpec& s) {
         o += "  { kind = " + quoted(f.kind) + ", file = " + quoted(f.file) +
              ", fnv1a64 = " + quoted(f.fnv1a64) + " },\n";
       o += "]\n";
+    }
+    if (!t.init.empty()) o += "init = " + quoted(t.init) + "  # the controller the search started from\n";
+    if (t.validation_conditions != 0) {
+      o += "validation_conditions = " + std::to_string(t.validation_conditions) +
+           "  # held back from the training set\n";
+      o += "validation_cost = " + format_double(t.validation_cost) + "\n";
+    }
+    if (!t.stages.empty()) {
+      o += "stages = [\n";
+      for (const StageRecord& st : t.stages)
+        o += "  { family = " + quoted(to_string(st.family)) +
+             ", budget = " + std::to_string(st.budget) +
+             ", evaluations = " + std::to_string(st.evaluations) +
+             ", training_cost = " + format_double(st.training_cost) +
+             ", validation_cost = " + format_double(st.validation_cost) + " },\n";
+      o += "]\n";
+    }
+    if (t.regulariser) {
+      const TableRegulariser& g = *t.regulariser;
+      o += "\n[tuning.regulariser]  # how the rule table was kept readable and safe\n";
+      o += "symmetry = " + quoted(g.symmetry) + "\n";
+      o += std::string("partition = ") + (g.partition ? "true" : "false") + "\n";
+      o += "smoothness = " + format_double(g.smoothness) + "\n";
+      o += "monotone = " + format_double(g.monotone) + "\n";
+      o += "unvisited = " + quoted(g.unvisited) + "\n";
+      o += "visit_threshold = " + format_double(g.visit_threshold) + "\n";
+      o += "frozen_cells = " + std::to_string(g.frozen_cells) + "\n";
+      o += "cell_log10 = " + format_double(g.cell_log10) + "\n";
     }
     o += "\n[tuning.objective]\n";
     o += "overshoot_bound_pct = " + format_double(t.objective.overshoot_bound_pct) + "\n";

@@ -35,6 +35,7 @@ enum class Family : std::uint8_t {
   Pid,        // Kp, Ki, Kd
   Scheduled,  // K = K0 + K0 (R - 1) w(Ke e, Kec ec), control/gain_schedule.hpp
   Fuzzy,      // K = K0 + S dK(Ke e, Kec ec), the paper's supervisor (Eq. 6) or a rule file
+  FuzzyRules, // K = K0 (1 + (R - 1) w) T(Ke e, Kec ec): the schedule refined by a tuned rule table
 };
 
 // The supervisor that retunes a family's gains every tick (joint_controllers.hpp builds it).
@@ -42,6 +43,7 @@ enum class SupervisorKind : std::uint8_t {
   None,             // a fixed PID
   Schedule,         // control::GainSchedule
   TablesOrRuleFile, // the paper's Tables 2-4 (paper::System) or a rule file (EngineSupervisor)
+  RuleTable,        // control::RuleTable: the schedule's ramp times a rule table
 };
 
 // One row per family: its name in files and on command lines, what it is, its supervisor.
@@ -52,7 +54,7 @@ struct FamilyRow {
   SupervisorKind supervisor;
 };
 
-inline constexpr std::array<FamilyRow, 3> kFamilies{{
+inline constexpr std::array<FamilyRow, 4> kFamilies{{
     {Family::Pid, "pid", "a fixed PID: Kp, Ki, Kd", SupervisorKind::None},
     {Family::Scheduled, "scheduled",
      "K = K0 (1 + (R - 1) min(1, Ke|e| + Kec|ec|)): a gain schedule with eight parameters",
@@ -60,6 +62,10 @@ inline constexpr std::array<FamilyRow, 3> kFamilies{{
     {Family::Fuzzy, "fuzzy",
      "K = K0 + S dK(Ke e, Kec ec): the paper's Tables 2-4 (Eq. 6) or a .fis/.fll/.fcl rule file",
      SupervisorKind::TablesOrRuleFile},
+    {Family::FuzzyRules, "fuzzy-rules",
+     "K = K0 (1 + (R - 1) min(1, Ke|e| + Kec|ec|)) T(Ke e, Kec ec): the schedule refined by a "
+     "7x7 rule table per gain (zero-order Sugeno, product AND) over a tunable partition",
+     SupervisorKind::RuleTable},
 }};
 
 [[nodiscard]] constexpr const FamilyRow& row_of(Family f) noexcept {
@@ -143,10 +149,35 @@ struct Units {
   double tick_s = 0.05;  // the tick the per-tick gains refer to (and the controller's tick)
 };
 
+// fuzzy-rules only: the rule table that refines the schedule (control/rule_table.hpp). The
+// partitions of x = Ke e and y = Kec ec are 7 sets each (NB NM NS ZO PS PM PB): triangles between
+// neighbouring centres, shoulders outside; centres increasing and symmetric about 0. ratio[g][i][j]
+// is the consequent of the rule "x is set i and y is set j" for gain g (kp, ki, kd): the factor on
+// the schedule's gain at that node. A table of ones is the schedule itself.
+struct RuleTableSpec {
+  static constexpr std::size_t kSets = 7;
+  using Centres = std::array<double, kSets>;
+  using Table = std::array<std::array<double, kSets>, kSets>;
+
+  Centres error_centres{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
+  Centres error_rate_centres{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
+  std::array<Table, 3> ratio = ones();
+
+  [[nodiscard]] static constexpr std::array<Table, 3> ones() noexcept {
+    std::array<Table, 3> t{};
+    for (auto& table : t)
+      for (auto& row : table)
+        for (double& v : row)
+          v = 1.0;
+    return t;
+  }
+};
+
 struct Supervisor {
   double error_scale = 1.0;       // Ke, universe units per rad
   double error_rate_scale = 1.0;  // Kec, universe units per rad/s
-  // fuzzy: Sp, Si, Sd (gain units per table unit); scheduled: the large-error ratios Rp, Ri, Rd.
+  // fuzzy: Sp, Si, Sd (gain units per table unit); scheduled and fuzzy-rules: the large-error
+  // ratios Rp, Ri, Rd of the schedule.
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
   control::GainUpdate gain_update = control::GainUpdate::Absolute;  // fuzzy only
   RuleBase rule_base = RuleBase::PaperPrinted;                      // fuzzy only
@@ -156,6 +187,7 @@ struct Supervisor {
   // load() read from it (shared, immutable).
   std::string rule_file;
   std::shared_ptr<const fuzzy::EngineModel<double>> rule_model;
+  RuleTableSpec rule_table{};  // fuzzy-rules only
 };
 
 struct PidOptions {
@@ -188,6 +220,27 @@ struct TrainedOn {
   std::string fnv1a64;  // hex
 };
 
+// One stage of a staged tuning run.
+struct StageRecord {
+  Family family = Family::Pid;
+  std::uint64_t budget = 0;
+  std::uint64_t evaluations = 0;
+  double training_cost = 0.0;
+  double validation_cost = std::numeric_limits<double>::quiet_NaN();  // NaN: no validation set
+};
+
+// How a fuzzy-rules table was kept readable and safe where training never goes (tune/).
+struct TableRegulariser {
+  std::string symmetry = "even";  // even | odd | none (tune::kSymmetryNames)
+  bool partition = false;         // were the set centres searched too
+  double smoothness = 0.0;        // weight of the squared log10 differences of neighbouring cells
+  double monotone = 0.0;          // weight of the squared violations of monotone rows and columns
+  std::string unvisited = "seed"; // seed: cells training never visits keep the start's values
+  double visit_threshold = 0.0;   // a cell is visited above this share of the firing weight
+  std::uint64_t frozen_cells = 0; // cells (of 49 per gain, summed) held at the start's values
+  double cell_log10 = 0.0;        // each searched cell's box: log10 ratio in [-cell_log10, +]
+};
+
 struct Tuning {
   std::string conditions;  // the conditions file, as given to `fuzzypid tune`
   std::string set;         // the training set's name
@@ -201,6 +254,14 @@ struct Tuning {
   Objective objective{};
   std::vector<SearchBox> box;
   std::vector<TrainedOn> trained_on;  // empty: the bundled ER50-C20 on the section 6 line
+  // Staged tuning (`fuzzypid tune --init`, `--stages`): the controller file the search started
+  // from ("" for none), the stages run (family, evaluations, costs) and the validation conditions
+  // held back from the training set that chose among them (0: none; the cost is then NaN).
+  std::string init;
+  std::vector<StageRecord> stages;
+  std::uint64_t validation_conditions = 0;
+  double validation_cost = std::numeric_limits<double>::quiet_NaN();
+  std::optional<TableRegulariser> regulariser;  // fuzzy-rules only
 };
 
 // Model-based feed-forward added to the PID's torque.
@@ -232,5 +293,7 @@ struct ControllerSpec {
 // Checks the values (finite, positive where needed, bounds ordered, family-specific settings).
 // Returns an empty string or what is wrong.
 [[nodiscard]] std::string validate(const ControllerSpec& spec);
+// The same for a rule table alone (centres increasing and symmetric, ratios finite and > 0).
+[[nodiscard]] std::string validate(const RuleTableSpec& table);
 
 }  // namespace fuzzypid::controller
