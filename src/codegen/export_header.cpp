@@ -199,6 +199,9 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   if (spec.family == Family::Scheduled)
     h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
          "#include \"fuzzypid/control/gain_schedule.hpp\"\n";
+  if (spec.family == Family::FuzzyRules)
+    h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
+         "#include \"fuzzypid/control/rule_table.hpp\"\n";
   h += "\nnamespace " + ns + " {\n\n";
   h += "inline constexpr const char* kFamily = \"" + std::string(to_string(spec.family)) + "\";\n";
   h += "inline constexpr double kTickS = " + std::string([&] {
@@ -249,6 +252,29 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
            ", fuzzypid::paper::Tables::" +
            (spec.supervisor.rule_base == RuleBase::PaperCorrected ? "Corrected" : "Printed") +
            ");\n\n";
+    } else if (spec.family == Family::FuzzyRules) {
+      const control::RuleTable<double> t = rule_table(spec);
+      const auto list = [](const auto& values) {
+        std::string out = "{";
+        for (std::size_t k = 0; k < values.size(); ++k)
+          out += (k == 0 ? "" : ", ") + lit(values[k]);
+        return out + "}";
+      };
+      h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::RuleTable<Scalar>;\n\n";
+      h += "// The shared, immutable supervisor the joints point to: the schedule's ratios R, the\n"
+           "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centres.\n";
+      h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{\n";
+      h += "    " + list(t.schedule_ratio) + ",\n    {{\n";
+      for (const auto& table : t.table) {
+        h += "        {{\n";
+        for (const auto& row : table)
+          h += "            " + list(row) + ",\n";
+        h += "        }},\n";
+      }
+      h += "    }},\n";
+      h += "    " + list(t.e_centers) + ",\n";
+      h += "    " + list(t.ec_centers) + "};\n";
+      h += "static_assert(kSupervisor<double>.valid() && kSupervisor<float>.valid());\n\n";
     } else {
       h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::GainSchedule<Scalar>;"
            "\n\n";

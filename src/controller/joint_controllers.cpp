@@ -31,6 +31,11 @@ control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, dou
     const pid::Gains<double>& k0 = fc.pid.gains;
     fc.output_scale = {k0.kp * (s[0] - 1.0), k0.ki * (s[1] - 1.0), k0.kd * (s[2] - 1.0)};
     fc.gain_update = control::GainUpdate::Absolute;
+  } else if (spec.family == Family::FuzzyRules) {
+    // K = K0 + K0 dK with dK = ratio - 1 (control/rule_table.hpp).
+    const pid::Gains<double>& k0 = fc.pid.gains;
+    fc.output_scale = {k0.kp, k0.ki, k0.kd};
+    fc.gain_update = control::GainUpdate::Absolute;
   } else {
     // dK is in the file's units: convert it like the gains themselves.
     const pid::Gains<double> unit = to_continuous({1.0, 1.0, 1.0}, form, dt);
@@ -38,6 +43,16 @@ control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, dou
     fc.gain_update = spec.supervisor.gain_update;
   }
   return fc;
+}
+
+control::RuleTable<double> rule_table(const ControllerSpec& spec) {
+  const RuleTableSpec& t = spec.supervisor.rule_table;
+  control::RuleTable<double> r;
+  r.schedule_ratio = spec.supervisor.output_scale;
+  r.table = t.ratio;
+  r.e_centers = t.error_centres;
+  r.ec_centers = t.error_rate_centres;
+  return r;
 }
 
 namespace {
@@ -135,6 +150,19 @@ std::optional<JointControllers> JointControllers::build(
       if (!joints) return std::nullopt;
       JointControllers out(spec, std::move(tables), nullptr);
       out.joints_ = FuzzyJoints(*joints);
+      return out;
+    }
+    case Family::FuzzyRules: {
+      auto table = std::make_unique<const control::RuleTable<double>>(rule_table(spec));
+      if (!table->valid()) {
+        error = "invalid rule table (centres increasing and symmetric, ratios finite and > 0)";
+        return std::nullopt;
+      }
+      auto joints = supervised_joints(table.get(), configs, "fuzzy-rules PID", error);
+      if (!joints) return std::nullopt;
+      JointControllers out(spec, nullptr, nullptr);
+      out.rule_table_ = std::move(table);
+      out.joints_ = RuleTableJoints(*joints);
       return out;
     }
     case Family::Scheduled: {

@@ -15,6 +15,7 @@
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/control/rule_table.hpp"
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
@@ -35,6 +36,12 @@ using EngineJoints =
 using ScheduledJoints =
     control::JointController<double, kJoints,
                              control::FuzzyPid<double, control::GainSchedule<double>>>;
+using RuleTableJoints =
+    control::JointController<double, kJoints,
+                             control::FuzzyPid<double, control::RuleTable<double>>>;
+
+// The fuzzy-rules family's supervisor as the description gives it.
+[[nodiscard]] control::RuleTable<double> rule_table(const ControllerSpec& spec);
 
 // The inner PID configuration of every family (gains in continuous form, output limited to
 // +/- output_limit, in the controller's units).
@@ -66,6 +73,7 @@ class JointControllers {
     if (auto* p = std::get_if<PidJoints>(&joints_)) return p->step(in, dt_s);
     if (auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->step(in, dt_s);
     if (auto* r = std::get_if<EngineJoints>(&joints_)) return r->step(in, dt_s);
+    if (auto* t = std::get_if<RuleTableJoints>(&joints_)) return t->step(in, dt_s);
     return std::get_if<ScheduledJoints>(&joints_)->step(in, dt_s);
   }
 
@@ -74,6 +82,7 @@ class JointControllers {
     if (const auto* p = std::get_if<PidJoints>(&joints_)) return p->joint(i).gains();
     if (const auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->joint(i).gains();
     if (const auto* r = std::get_if<EngineJoints>(&joints_)) return r->joint(i).gains();
+    if (const auto* t = std::get_if<RuleTableJoints>(&joints_)) return t->joint(i).gains();
     return std::get_if<ScheduledJoints>(&joints_)->joint(i).gains();
   }
   // The same in the file's units (per-tick when the file's form is per-tick).
@@ -85,6 +94,7 @@ class JointControllers {
     if (const auto* p = std::get_if<PidJoints>(&joints_)) return p->joint(i);
     if (const auto* f = std::get_if<FuzzyJoints>(&joints_)) return f->joint(i).pid();
     if (const auto* r = std::get_if<EngineJoints>(&joints_)) return r->joint(i).pid();
+    if (const auto* t = std::get_if<RuleTableJoints>(&joints_)) return t->joint(i).pid();
     return std::get_if<ScheduledJoints>(&joints_)->joint(i).pid();
   }
 
@@ -106,7 +116,8 @@ class JointControllers {
   std::unique_ptr<const control::GainSchedule<double>> schedule_;
   std::shared_ptr<const fuzzy::EngineModel<double>> rule_model_;
   std::unique_ptr<const control::EngineSupervisor<double>> engine_;
-  std::variant<PidJoints, FuzzyJoints, ScheduledJoints, EngineJoints> joints_;
+  std::unique_ptr<const control::RuleTable<double>> rule_table_;
+  std::variant<PidJoints, FuzzyJoints, ScheduledJoints, EngineJoints, RuleTableJoints> joints_;
 };
 
 }  // namespace fuzzypid::controller
