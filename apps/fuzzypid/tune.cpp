@@ -52,24 +52,87 @@ bool parse_box(const std::string& text, ctl::SearchBox& box) {
 }
 
 struct TuneOptions {
-  std::string family_name, conditions, set = "training", out, base_file;
-  std::uint64_t budget = 16000, seed = 1, population = 0;
+  std::string family_name, conditions, set = "training", out, base_file, init_file, stages;
+  std::uint64_t budget = 16000, seed = 1, population = 0, validation = 0;
+  bool budget_given = false;
+  std::string symmetry = "even", unvisited = "seed";
+  tune::TableOptions table;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   ctl::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
 };
 
+// "pid:8000,scheduled:24000,fuzzy-rules:32000" -> stages; false on any malformed entry.
+bool parse_stages(const std::string& text, std::vector<tune::Stage>& stages, std::string& error) {
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string entry = text.substr(begin, end - begin);
+    const std::size_t colon = entry.find(':');
+    const auto family = colon == std::string::npos
+                            ? std::nullopt
+                            : fuzzypid::parse_enum(ctl::kFamilyNames, entry.substr(0, colon));
+    char* stop = nullptr;
+    const std::string number = colon == std::string::npos ? "" : entry.substr(colon + 1);
+    const unsigned long long budget = std::strtoull(number.c_str(), &stop, 10);
+    if (!family || number.empty() || *stop != '\0' || number[0] == '-' || budget < 14 ||
+        budget > 100000000ull) {
+      error = "'" + entry + "': expected FAMILY:BUDGET with FAMILY one of " +
+              fuzzypid::names_of(ctl::kFamilyNames) + " and 14 <= BUDGET <= 100000000";
+      return false;
+    }
+    stages.push_back({*family, budget});
+    begin = end + 1;
+  }
+  return !stages.empty();
+}
+
 int run_tune(const TuneOptions& t) {
   // The output is checked before anything else: a refused --out never costs the budget.
-  if (const std::string bad =
-          check_output_path(t.out, {t.conditions, t.base_file, robot::default_urdf_path()});
+  if (const std::string bad = check_output_path(
+          t.out, {t.conditions, t.base_file, t.init_file, robot::default_urdf_path()});
       !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
     return kExitUsage;
   }
-  const ctl::Family family = *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
+  std::vector<tune::Stage> stages;
+  if (!t.stages.empty()) {
+    std::string bad;
+    if (!parse_stages(t.stages, stages, bad)) {
+      std::fprintf(stderr, "fuzzypid tune: --stages: %s\n", bad.c_str());
+      return kExitUsage;
+    }
+  }
+  if (t.family_name.empty() && stages.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: --family or --stages is required\n");
+    return kExitUsage;
+  }
+  const ctl::Family family = t.family_name.empty()
+                                 ? stages.back().family
+                                 : *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
+  std::uint64_t total_budget = t.budget;
+  if (!stages.empty()) {
+    total_budget = 0;
+    for (const tune::Stage& st : stages)
+      total_budget += st.budget;
+    if (stages.back().family != family) {
+      std::fprintf(stderr, "fuzzypid tune: --family %s is not the last stage's (%s)\n",
+                   t.family_name.c_str(), ctl::to_string(stages.back().family));
+      return kExitUsage;
+    }
+    if (t.budget_given && t.budget != total_budget) {
+      std::fprintf(stderr,
+                   "fuzzypid tune: --budget %" PRIu64 " is not the stages' total %" PRIu64 "\n",
+                   t.budget, total_budget);
+      return kExitUsage;
+    }
+  }
   tune::Options opt;
+  opt.table = t.table;
+  opt.table.symmetry = *fuzzypid::parse_enum(tune::kSymmetryNames, t.symmetry);
+  opt.table.unvisited = *fuzzypid::parse_enum(tune::kUnvisitedNames, t.unvisited);
+  opt.validation = t.validation;
   opt.family = family;
   opt.budget = t.budget;
   opt.seed = t.seed;
@@ -96,7 +159,28 @@ int run_tune(const TuneOptions& t) {
       }
     }
   }
-  opt.box = tune::default_box(family);
+  if (!t.init_file.empty()) {
+    fuzzypid::FileError err;
+    ctl::ControllerSpec init;
+    if (!cf::load(t.init_file, init, err)) {
+      std::fprintf(stderr, "fuzzypid tune: --init: %s\n", err.to_string().c_str());
+      return 1;
+    }
+    // The search starts here; the result keeps its units, PID options, bounds and rule base.
+    const ctl::Family first = stages.empty() ? family : stages.front().family;
+    ctl::ControllerSpec converted;
+    std::string why;
+    if (!tune::convert(init, first, converted, why)) {
+      std::fprintf(stderr, "fuzzypid tune: --init %s: %s\n", t.init_file.c_str(), why.c_str());
+      return 1;
+    }
+    if (t.base_file.empty()) {
+      opt.base = init;
+      opt.base.tuning.reset();
+    }
+    opt.init = init;
+  }
+  const std::vector<ctl::SearchBox> defaults = tune::default_box(family);
   for (const std::string& text : t.boxes) {
     ctl::SearchBox b;
     if (!parse_box(text, b)) {
@@ -106,13 +190,10 @@ int run_tune(const TuneOptions& t) {
           text.c_str());
       return 2;
     }
-    bool found = false;
-    for (auto& d : opt.box) {
-      if (d.name == b.name) {
-        d = b;
-        found = true;
-      }
-    }
+    bool found = family == ctl::Family::FuzzyRules;  // table cells are named once visits are known
+    for (const auto& d : defaults)
+      if (d.name == b.name) found = true;
+    opt.box.push_back(b);
     if (!found) {
       std::fprintf(stderr, "fuzzypid tune: --box: the %s family has no parameter '%s'\n",
                    ctl::to_string(family), b.name.c_str());
@@ -157,8 +238,11 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 ctl::to_string(family), training->conditions.size(), t.set.c_str(), t.budget,
-                 t.seed, t.threads);
+                 ctl::to_string(family), training->conditions.size() - t.validation,
+                 t.set.c_str(), total_budget, t.seed, t.threads);
+    if (t.validation != 0)
+      std::fprintf(stderr, "fuzzypid tune: the last %" PRIu64 " conditions of the set held back for validation\n",
+                   t.validation);
     double last = -1.0;
     opt.progress = [last](const tune::Progress& p) mutable {
       if (p.elapsed_s - last < 2.0 && p.evaluations < p.budget) return;
@@ -171,7 +255,15 @@ int run_tune(const TuneOptions& t) {
                    p.evaluations, p.budget, p.best_cost, rate, eta);
     };
   }
-  auto result = tune::tune(*experiments, training->conditions, opt, error);
+  if (t.validation >= training->conditions.size()) {
+    std::fprintf(stderr,
+                 "fuzzypid tune: --validation %" PRIu64 " leaves no training condition (set %s has %zu)\n",
+                 t.validation, t.set.c_str(), training->conditions.size());
+    return kExitUsage;
+  }
+  auto result = stages.empty()
+                    ? tune::tune(*experiments, training->conditions, opt, error)
+                    : tune::tune_staged(*experiments, training->conditions, stages, opt, error);
   if (!result) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 2;
@@ -199,6 +291,7 @@ int run_tune(const TuneOptions& t) {
     if (!setup.path.empty()) add("path", setup.path);
   }
   result->controller.tuning->set = t.set;
+  result->controller.tuning->init = t.init_file;
   result->controller.description =
       "tuned " + std::string(ctl::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
   if (const std::string bad = write_output_file(t.out, cf::to_toml(result->controller), "tune");
@@ -207,14 +300,21 @@ int run_tune(const TuneOptions& t) {
     return 1;
   }
   const double rate = static_cast<double>(result->evaluations) / result->wall_s;
+  for (const auto& st : result->controller.tuning->stages)
+    std::printf("stage %s: %" PRIu64 " evaluations (budget %" PRIu64
+                "), training cost %.6g, validation cost %.6g\n",
+                ctl::to_string(st.family), st.evaluations, st.budget, st.training_cost,
+                st.validation_cost);
   std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64
               ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
-              "penalty %.6g, %zu faulted runs) -> %s\n",
-              ctl::to_string(family), result->evaluations, t.budget, result->wall_s, rate,
-              rate * static_cast<double>(training->conditions.size()), result->cost.total,
-              result->cost.itae, result->cost.overshoot_penalty, result->cost.faulted_runs,
-              t.out.c_str());
+              "penalty %.6g, regulariser %.6g, %zu faulted runs)",
+              ctl::to_string(family), result->evaluations, total_budget, result->wall_s, rate,
+              rate * static_cast<double>(training->conditions.size() - t.validation),
+              result->cost.total, result->cost.itae, result->cost.overshoot_penalty,
+              result->penalty, result->cost.faulted_runs);
+  if (result->validation) std::printf(", validation cost %.6g", result->validation->total);
+  std::printf(" -> %s\n", t.out.c_str());
   return 0;
 }
 
@@ -276,17 +376,55 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   for (const auto& e : ctl::kFamilyNames)
     family_names.emplace_back(e.name);
   cmd->add_option("--family", t->family_name,
-                  "controller family (" + fuzzypid::names_of(ctl::kFamilyNames) + ")")
-      ->required()
+                  "controller family (" + fuzzypid::names_of(ctl::kFamilyNames) +
+                      "); with --stages, the last stage's")
       ->check(CLI::IsMember(family_names));
+  cmd->add_option("--stages", t->stages,
+                  "staged tuning, FAMILY:BUDGET,... (e.g. pid:8000,scheduled:24000,"
+                  "fuzzy-rules:32000): each stage starts from the last one's result converted "
+                  "exactly; the budgets add up to the total");
+  cmd->add_option("--init", t->init_file,
+                  "controller file the search starts from (one member of the first generation), "
+                  "converted exactly into the (first stage's) family: pid -> scheduled -> "
+                  "fuzzy-rules");
+  cmd->add_option("--validation", t->validation,
+                  "hold back the last N conditions of the set: never trained on, they choose the "
+                  "result among the search's best points and among stages (default 0)")
+      ->check(unsigned_in(0, 1000000));
+  cmd->add_option("--symmetry", t->symmetry,
+                  "fuzzy-rules: table symmetry, even (T(+-x, +-y) equal), odd (log T(-x, -y) = "
+                  "-log T(x, y)) or none (default even)")
+      ->check(CLI::IsMember({"even", "odd", "none"}));
+  cmd->add_flag("--tune-partition", t->table.partition,
+                "fuzzy-rules: search the inner set centres too (ordered, symmetric)");
+  cmd->add_option("--smoothness", t->table.smoothness,
+                  "fuzzy-rules: weight of the squared log10 differences of neighbouring cells "
+                  "(default 0)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--monotone", t->table.monotone,
+                  "fuzzy-rules: weight of the squared decreases of the gain ratio along rows and "
+                  "columns, outwards in the schedule's direction (default 0)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--unvisited", t->unvisited,
+                  "fuzzy-rules: cells the start's training runs never reach are held at the "
+                  "start's values (seed) or searched (free) (default seed)")
+      ->check(CLI::IsMember({"seed", "free"}));
+  cmd->add_option("--visit-threshold", t->table.visit_threshold,
+                  "fuzzy-rules: a node is visited above this share of the firing weight "
+                  "(default 1e-4)")
+      ->check(finite_in(0.0, 0.5));
+  cmd->add_option("--cell-log10", t->table.cell_log10,
+                  "fuzzy-rules: each cell's box, log10 T in [-X, X] (default 1)")
+      ->check(finite_in(1e-3, 10.0));
   cmd->add_option("--conditions", t->conditions,
                   "condition-set file (TOML); each condition may name its robot, path, tick and "
                   "plant (keys urdf, path, tick_ms, payload_kg, armature, dynamics, gravity; "
                   "docs/your_robot.md)")
       ->required();
   cmd->add_option("--set", t->set, "the training set's name (default training)");
-  cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
-      ->check(unsigned_in(14, 100000000));
+  CLI::Option* budget =
+      cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
+          ->check(unsigned_in(14, 100000000));
   cmd->add_option("--seed", t->seed, "random seed (default 1)")->check(unsigned_in(0, 4294967295u));
   cmd->add_option("--threads", t->threads,
                   "threads evaluating the conditions (default: all cores; the result does not "
@@ -315,7 +453,10 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
                   "docs/tuning.md)");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
-  cmd->callback([&run, t] { run = [t] { return run_tune(*t); }; });
+  cmd->callback([&run, t, budget] {
+    t->budget_given = budget->count() > 0;
+    run = [t] { return run_tune(*t); };
+  });
 }
 
 void add_export_header_command(CLI::App& app, std::function<int()>& run) {

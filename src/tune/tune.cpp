@@ -15,6 +15,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 
 namespace fuzzypid::tune {
@@ -22,16 +23,6 @@ namespace fuzzypid::tune {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-const char* const kNames[3][8] = {
-    {"kp", "ki", "kd", nullptr, nullptr, nullptr, nullptr, nullptr},
-    {"kp", "ki", "kd", "ke", "kec", "rp", "ri", "rd"},
-    {"kp", "ki", "kd", "ke", "kec", "sp", "si", "sd"},
-};
-
-std::size_t dimension(Family f) {
-  return f == Family::Pid ? 3 : 8;
-}
 
 // The cost of one run; `faulted` set when it adds only the fault cost.
 double run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
@@ -135,55 +126,6 @@ struct Problem {
 
 }  // namespace
 
-std::vector<SearchBox> default_box(Family family) {
-  // log10 bounds, acceleration units, per tick at 0.05 s (docs/tuning.md explains each).
-  const double pid[3][2] = {{-1.0, 4.0}, {-6.0, 1.0}, {0.0, 4.0}};
-  const double scales[2][2] = {{-1.0, 4.0}, {-3.0, 2.0}};               // ke, kec
-  const double ratios[3][2] = {{-2.0, 2.0}, {-2.0, 2.0}, {-2.0, 2.0}};  // rp, ri, rd
-  const double outputs[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
-  const std::size_t f = static_cast<std::size_t>(family);
-  std::vector<SearchBox> box;
-  for (std::size_t k = 0; k < 3; ++k)
-    box.push_back({kNames[f][k], pid[k][0], pid[k][1]});
-  if (family == Family::Pid) return box;
-  for (std::size_t k = 0; k < 2; ++k)
-    box.push_back({kNames[f][3 + k], scales[k][0], scales[k][1]});
-  const auto& last = family == Family::Scheduled ? ratios : outputs;
-  for (std::size_t k = 0; k < 3; ++k)
-    box.push_back({kNames[f][5 + k], last[k][0], last[k][1]});
-  return box;
-}
-
-ControllerSpec to_spec(Family family, const std::vector<double>& x, const ControllerSpec& base) {
-  ControllerSpec s = base;
-  s.family = family;
-  s.tuning.reset();
-  const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
-  s.gains = {p(0), p(1), p(2)};
-  if (family != Family::Pid) {
-    s.supervisor.error_scale = p(3);
-    s.supervisor.error_rate_scale = p(4);
-    s.supervisor.output_scale = {p(5), p(6), p(7)};
-  }
-  if (family == Family::Scheduled) s.supervisor.gain_update = control::GainUpdate::Absolute;
-  if (family != Family::Fuzzy) {  // a rule file only means something to the fuzzy family
-    s.supervisor.rule_file.clear();
-    s.supervisor.rule_model.reset();
-  }
-  return s;
-}
-
-std::vector<double> from_spec(const ControllerSpec& s) {
-  std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki), std::log10(s.gains.kd)};
-  if (s.family != Family::Pid) {
-    x.push_back(std::log10(s.supervisor.error_scale));
-    x.push_back(std::log10(s.supervisor.error_rate_scale));
-    for (double v : s.supervisor.output_scale)
-      x.push_back(std::log10(v));
-  }
-  return x;
-}
-
 Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Condition>& conditions,
               const ControllerSpec& controller, const Objective& objective, unsigned threads) {
   std::unique_ptr<tbb::task_arena> arena;
@@ -242,13 +184,38 @@ std::optional<Minimum> minimize(const std::function<double(const std::vector<dou
   pagmo::problem prob{Problem{state}};
   pagmo::population pop{prob, static_cast<pagmo::population::size_type>(pop_size),
                         static_cast<unsigned>(options.seed)};
+  if (!options.start.empty()) {
+    if (options.start.size() != box.size()) {
+      error = "the start point has " + std::to_string(options.start.size()) +
+              " parameters, the box " + std::to_string(box.size());
+      return std::nullopt;
+    }
+    // Replaces the worst random member (one more evaluation, counted like every other).
+    std::vector<double> x = options.start;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      x[k] = std::clamp(x[k], box[k].log10_min, box[k].log10_max);
+    if (state->count >= state->budget) {
+      error = "the budget does not cover the start point";
+      return std::nullopt;
+    }
+    pop.set_x(pop.worst_idx(), x);
+  }
+  double last_best = kInf;
+  const auto improved = [&] {
+    if (options.improved && pop.champion_f()[0] < last_best) {
+      last_best = pop.champion_f()[0];
+      options.improved(pop.champion_x(), last_best);
+    }
+  };
   report();
+  improved();
   // Self-adaptive DE (variant 2: rand/1/exp; jDE adaptation of F and CR), one generation per
   // call with memory so that the adaptation carries over; no early stop (ftol = xtol = 0).
   pagmo::sade algo(1u, 2u, 1u, 0.0, 0.0, true, static_cast<unsigned>(options.seed));
-  for (std::uint64_t g = 0; g < generations; ++g) {
+  for (std::uint64_t g = 0; g < generations && state->count + pop_size <= state->budget; ++g) {
     pop = algo.evolve(pop);
     report();
+    improved();
   }
   Minimum m;
   m.x = pop.champion_x();
@@ -261,65 +228,154 @@ std::optional<Minimum> minimize(const std::function<double(const std::vector<dou
 
 namespace {
 
-std::optional<Result> tune_on(const ExperimentOf& experiment,
-                              const std::vector<sim::Condition>& training, const Options& options,
-                              std::string& error) {
-  const std::size_t dim = dimension(options.family);
-  const std::vector<SearchBox> box =
-      options.box.empty() ? default_box(options.family) : options.box;
-  const auto names = default_box(options.family);
-  if (box.size() != dim) {
-    error = "the search box has " + std::to_string(box.size()) + " parameters, the " +
-            std::string(controller::to_string(options.family)) + " family " +
-            std::to_string(dim);
-    return std::nullopt;
-  }
-  for (std::size_t k = 0; k < dim; ++k) {
-    if (box[k].name != names[k].name) {
-      error = "search box entry " + std::to_string(k) + " is '" + box[k].name + "', expected '" +
-              names[k].name + "'";
-      return std::nullopt;
-    }
-  }
-  if (training.empty()) {
-    error = "no training conditions";
-    return std::nullopt;
+// The runs of the controllers of one evaluation: training and validation conditions.
+struct Split {
+  ExperimentOf training_ex, validation_ex;
+  std::vector<sim::Condition> training, validation;
+};
+
+Split split(const ExperimentOf& ex, const std::vector<sim::Condition>& conditions,
+            std::size_t validation) {
+  Split s;
+  const std::size_t n = conditions.size() - validation;
+  s.training_ex.assign(ex.begin(), ex.begin() + static_cast<std::ptrdiff_t>(n));
+  s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n), ex.end());
+  s.training.assign(conditions.begin(), conditions.begin() + static_cast<std::ptrdiff_t>(n));
+  s.validation.assign(conditions.begin() + static_cast<std::ptrdiff_t>(n), conditions.end());
+  return s;
+}
+
+bool check_options(const Options& options, std::size_t conditions, std::string& error) {
+  if (options.validation >= conditions) {
+    error = "no training conditions (" + std::to_string(conditions) + " given, " +
+            std::to_string(options.validation) + " held back for validation)";
+    return false;
   }
   if (const std::string bad = controller::validate(options.base); !bad.empty()) {
     error = "base controller: " + bad;
-    return std::nullopt;
+    return false;
   }
   const Objective& o = options.objective;
   if (!std::isfinite(o.overshoot_bound_pct) || o.overshoot_bound_pct < 0 ||
       !std::isfinite(o.overshoot_weight) || o.overshoot_weight < 0 ||
       !std::isfinite(o.fault_cost) || o.fault_cost < 0 || !(o.divergence_rad > 0)) {
     error = "objective weights must be finite and >= 0, the divergence bound > 0";
-    return std::nullopt;
+    return false;
   }
+  return true;
+}
+
+VisitMap visits_in(tbb::task_arena* arena, const ExperimentOf& ex,
+                   const std::vector<sim::Condition>& conditions, const ControllerSpec& spec) {
+  const control::RuleTable<double> table = controller::rule_table(spec);
+  const std::size_t n = conditions.size();
+  std::vector<VisitMap> per(n, VisitMap{});
+  const auto one = [&](std::size_t k) {
+    const sim::RunResult r = ex[k]->run(conditions[k], spec);
+    for (const sim::TrajectoryRow& row : r.rows) {
+      const double x = spec.supervisor.error_scale * row.error;
+      const double y = spec.supervisor.error_rate_scale * row.error_rate;
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;
+      const auto c = table.cell(x, y);
+      for (std::size_t a = 0; a < 2; ++a)
+        for (std::size_t b = 0; b < 2; ++b)
+          if (c.i + a < RuleTableSpec::kSets && c.j + b < RuleTableSpec::kSets)
+            per[k][c.i + a][c.j + b] += c.weight[a][b];
+    }
+  };
+  if (arena != nullptr && n > 1)
+    arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
+  else
+    for (std::size_t k = 0; k < n; ++k)
+      one(k);
+  VisitMap sum{};
+  double total = 0.0;
+  for (const VisitMap& m : per)  // fixed order: the same sum with any thread count
+    for (std::size_t i = 0; i < RuleTableSpec::kSets; ++i)
+      for (std::size_t j = 0; j < RuleTableSpec::kSets; ++j) {
+        sum[i][j] += m[i][j];
+        total += m[i][j];
+      }
+  if (total > 0.0)
+    for (auto& row : sum)
+      for (double& v : row)
+        v /= total;
+  return sum;
+}
+
+std::optional<Result> tune_on(const ExperimentOf& experiment,
+                              const std::vector<sim::Condition>& conditions, const Options& options,
+                              std::string& error) {
+  if (!check_options(options, conditions.size(), error)) return std::nullopt;
+  const Split data = split(experiment, conditions, options.validation);
   const unsigned threads = std::max(1u, options.threads);
   std::unique_ptr<tbb::task_arena> arena;
   if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+
+  // The start, as a controller of the family; it also says which table cells are visited.
+  const ControllerSpec& from = options.init ? *options.init : options.base;
+  ControllerSpec start_spec;
+  if (!convert(from, options.family, start_spec, error)) return std::nullopt;
+  const ControllerSpec* start = &start_spec;
+  VisitMap visit_map{};
+  if (options.family == Family::FuzzyRules && options.table.unvisited == Unvisited::Seed)
+    visit_map = visits_in(arena.get(), data.training_ex, data.training, *start);
+  auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error);
+  if (!space) return std::nullopt;
+
+  std::vector<SearchBox> box = space->box();
+  for (const SearchBox& b : options.box) {
+    const auto it = std::find_if(box.begin(), box.end(),
+                                 [&](const SearchBox& d) { return d.name == b.name; });
+    if (it == box.end()) {
+      error = "the " + std::string(controller::to_string(options.family)) +
+              " family has no parameter '" + b.name + "'";
+      return std::nullopt;
+    }
+    *it = b;
+  }
+  const Objective& o = options.objective;
   Cost best{kInf, 0.0, 0.0, 0};
   const auto objective = [&](const std::vector<double>& x) {
-    const Cost c =
-        evaluate_in(arena.get(), experiment, training, to_spec(options.family, x, options.base), o);
-    if (c.total < best.total) best = c;
-    return c.total;
+    const ControllerSpec spec = space->to_spec(x);
+    const Cost c = evaluate_in(arena.get(), data.training_ex, data.training, spec, o);
+    const double total = c.total + space->penalty(spec);
+    if (total < best.total + 0.0 && c.total <= total) best = c;
+    return total;
   };
+  // Early stopping: every new best point of the search is scored on the validation conditions;
+  // the result is the one that scores best there.
+  std::vector<double> chosen;
+  std::optional<Cost> chosen_validation;
+  std::uint64_t validation_runs = 0;
   MinimizeOptions mo;
   mo.budget = options.budget;
   mo.seed = options.seed;
   mo.population = options.population;
   mo.progress = options.progress;
+  if (options.init) mo.start = space->from_spec(*start);
+  if (!data.validation.empty())
+    mo.improved = [&](const std::vector<double>& x, double) {
+      const Cost v = evaluate_in(arena.get(), data.validation_ex, data.validation,
+                                 space->to_spec(x), o);
+      ++validation_runs;
+      if (!chosen_validation || v.total <= chosen_validation->total) {
+        chosen_validation = v;
+        chosen = x;
+      }
+    };
   const auto m = minimize(objective, box, mo, error);
   if (!m) return std::nullopt;
+  if (chosen.empty()) chosen = m->x;
 
   Result result;
   result.evaluations = m->evaluations;
   result.population = m->population;
   result.wall_s = m->wall_s;
-  result.controller = to_spec(options.family, m->x, options.base);
-  result.cost = best;
+  result.controller = space->to_spec(chosen);
+  result.cost = evaluate_in(arena.get(), data.training_ex, data.training, result.controller, o);
+  result.penalty = space->penalty(result.controller);
+  result.validation = chosen_validation;
   controller::Tuning t;
   t.algorithm = "pagmo::sade (variant 2, jDE)";
   t.budget = options.budget;
@@ -327,25 +383,107 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   t.seed = options.seed;
   t.threads = threads;
   t.population = m->population;
-  t.training_cost = m->f;
+  t.training_cost = result.cost.total + result.penalty;
   t.objective = o;
   t.box = box;
+  t.validation_conditions = data.validation.size();
+  if (chosen_validation) t.validation_cost = chosen_validation->total;
+  if (options.family == Family::FuzzyRules) t.regulariser = space->record();
   result.controller.tuning = t;
   return result;
+}
+
+std::optional<Result> staged_on(const ExperimentOf& experiment,
+                                const std::vector<sim::Condition>& conditions,
+                                const std::vector<Stage>& stages, const Options& options,
+                                std::string& error) {
+  if (stages.empty()) {
+    error = "no stages";
+    return std::nullopt;
+  }
+  const Family last = stages.back().family;
+  std::uint64_t total = 0;
+  std::vector<Result> results;
+  std::vector<controller::StageRecord> records;
+  std::optional<ControllerSpec> init = options.init;
+  for (const Stage& stage : stages) {
+    Options o = options;
+    o.family = stage.family;
+    o.budget = stage.budget;
+    o.init = init;
+    if (stage.family != last) o.box.clear();  // --box names the last stage's parameters
+    auto r = tune_on(experiment, conditions, o, error);
+    if (!r) {
+      error = std::string("stage ") + controller::to_string(stage.family) + ": " + error;
+      return std::nullopt;
+    }
+    total += stage.budget;
+    records.push_back({stage.family, stage.budget, r->evaluations, r->cost.total + r->penalty,
+                       r->validation ? r->validation->total
+                                     : std::numeric_limits<double>::quiet_NaN()});
+    init = r->controller;
+    results.push_back(std::move(*r));
+  }
+  // Every stage's result as a controller of the last family (exact), chosen by validation.
+  std::size_t pick = results.size() - 1;
+  for (std::size_t k = 0; k + 1 < results.size(); ++k) {
+    if (!results[k].validation || !results[pick].validation) continue;
+    ControllerSpec converted;
+    if (!convert(results[k].controller, last, converted, error)) continue;
+    if (results[k].validation->total < results[pick].validation->total) pick = k;
+  }
+  Result out = results[pick];
+  if (pick + 1 != results.size()) {
+    (void)convert(results[pick].controller, last, out.controller, error);
+    out.controller.tuning = results.back().controller.tuning;
+    out.controller.tuning->training_cost = results[pick].controller.tuning->training_cost;
+    out.controller.tuning->validation_cost = results[pick].controller.tuning->validation_cost;
+    out.penalty = 0.0;  // a converted table of ones is as smooth and monotone as its schedule
+  }
+  std::uint64_t evaluations = 0;
+  double wall = 0.0;
+  for (const Result& r : results) {
+    evaluations += r.evaluations;
+    wall += r.wall_s;
+  }
+  out.evaluations = evaluations;
+  out.wall_s = wall;
+  controller::Tuning& t = *out.controller.tuning;
+  t.budget = total;
+  t.evaluations = evaluations;
+  t.stages = records;
+  return out;
 }
 
 }  // namespace
 
 std::optional<Result> tune(const sim::Experiment& experiment,
-                           const std::vector<sim::Condition>& training, const Options& options,
+                           const std::vector<sim::Condition>& conditions, const Options& options,
                            std::string& error) {
-  return tune_on(same_experiment(experiment, training.size()), training, options, error);
+  return tune_on(same_experiment(experiment, conditions.size()), conditions, options, error);
 }
 
 std::optional<Result> tune(const sim::ExperimentSet& experiments,
-                           const std::vector<sim::Condition>& training, const Options& options,
+                           const std::vector<sim::Condition>& conditions, const Options& options,
                            std::string& error) {
-  return tune_on(experiments_of(experiments, training.size()), training, options, error);
+  return tune_on(experiments_of(experiments, conditions.size()), conditions, options, error);
+}
+
+std::optional<Result> tune_staged(const sim::ExperimentSet& experiments,
+                                  const std::vector<sim::Condition>& conditions,
+                                  const std::vector<Stage>& stages, const Options& options,
+                                  std::string& error) {
+  return staged_on(experiments_of(experiments, conditions.size()), conditions, stages, options,
+                   error);
+}
+
+VisitMap visits(const sim::ExperimentSet& experiments,
+                const std::vector<sim::Condition>& conditions, const ControllerSpec& controller,
+                unsigned threads) {
+  std::unique_ptr<tbb::task_arena> arena;
+  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+  return visits_in(arena.get(), experiments_of(experiments, conditions.size()), conditions,
+                   controller);
 }
 
 }  // namespace fuzzypid::tune

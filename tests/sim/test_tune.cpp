@@ -209,32 +209,4 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
   EXPECT_NE(a, b);
 }
 
-TEST(ToSpec, MapsLog10ParametersOntoTheFamilysFields) {
-  const auto s =
-      tune::to_spec(ctl::Family::Scheduled, {2, -3, 1, 0, -1, 0.5, -0.5, 0}, ctl::paper_pid());
-  EXPECT_EQ(s.family, ctl::Family::Scheduled);
-  EXPECT_DOUBLE_EQ(s.gains.kp, 100.0);
-  EXPECT_DOUBLE_EQ(s.gains.ki, 1e-3);
-  EXPECT_DOUBLE_EQ(s.gains.kd, 10.0);
-  EXPECT_DOUBLE_EQ(s.supervisor.error_scale, 1.0);
-  EXPECT_DOUBLE_EQ(s.supervisor.error_rate_scale, 0.1);
-  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[0], std::sqrt(10.0));
-  const auto x = tune::from_spec(s);
-  ASSERT_EQ(x.size(), 8u);
-  EXPECT_NEAR(x[5], 0.5, 1e-15);
-}
-
-// Each log10 parameter lands on its own field: the three output scales in order (distinct values).
-TEST(ToSpec, TheOutputScalesKeepTheirOrder) {
-  const auto s = tune::to_spec(ctl::Family::Fuzzy, {0, 0, 0, 0, 0, 1, 2, 3}, ctl::paper_fuzzy());
-  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[0], 10.0);
-  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[1], 100.0);
-  EXPECT_DOUBLE_EQ(s.supervisor.output_scale[2], 1000.0);
-  const auto x = tune::from_spec(s);
-  ASSERT_EQ(x.size(), 8u);
-  EXPECT_NEAR(x[5], 1.0, 1e-15);
-  EXPECT_NEAR(x[6], 2.0, 1e-15);
-  EXPECT_NEAR(x[7], 3.0, 1e-15);
-}
-
 }  // namespace

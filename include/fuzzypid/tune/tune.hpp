@@ -25,27 +25,11 @@
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/tune/parameters.hpp"
 
 namespace fuzzypid::tune {
 
-using controller::ControllerSpec;
-using controller::Family;
 using controller::Objective;
-using controller::SearchBox;
-
-// The searched parameters of a family, in order, with their default log10 boxes (units of the
-// default controller file: acceleration gains, per tick at 0.05 s).
-//   pid:       kp, ki, kd
-//   scheduled: kp, ki, kd (K0, the gains on the path), ke, kec, rp, ri, rd (large-error ratios)
-//   fuzzy:     kp, ki, kd (K0), ke, kec, sp, si, sd (output scales of the paper's tables)
-[[nodiscard]] std::vector<SearchBox> default_box(Family family);
-
-// The controller of `family` at the parameters 10^x (x in log10, in default_box order), with the
-// units, PID options, bounds and rule base of `base`.
-[[nodiscard]] ControllerSpec to_spec(Family family, const std::vector<double>& x,
-                                     const ControllerSpec& base);
-// The inverse: log10 of the family's parameters in `spec` (for starting points and tests).
-[[nodiscard]] std::vector<double> from_spec(const ControllerSpec& spec);
 
 struct Cost {
   double total = 0.0;
@@ -79,6 +63,10 @@ struct MinimizeOptions {
   std::uint64_t budget = 16000;
   std::uint64_t seed = 1;
   std::uint64_t population = 0;  // 0: 5 x the dimension, at least 20
+  // A member of the first generation (clipped into the box); empty: all drawn at random.
+  std::vector<double> start;
+  // Called when the best point changes (after its generation), e.g. for validation.
+  std::function<void(const std::vector<double>& x, double f)> improved;
   std::function<void(const Progress&)> progress;
 };
 
@@ -101,29 +89,62 @@ struct Options {
   unsigned threads = 1;
   std::uint64_t population = 0;  // 0: 5 x the number of parameters, at least 20
   Objective objective{};
-  std::vector<SearchBox> box;  // empty: default_box(family)
-  ControllerSpec base{};       // units, PID options, bounds, rule base of the result
+  // Overrides of the family's default box, by name (a name the family does not search is an
+  // error).
+  std::vector<SearchBox> box;
+  ControllerSpec base{};  // units, PID options, bounds, rule base of the result
+  // The controller the search starts from (one member of the first generation), converted
+  // exactly into the family (tune::convert); for fuzzy-rules also the values of the held cells
+  // and the controller whose training runs say which cells are visited. Without it the base.
+  std::optional<ControllerSpec> init;
+  TableOptions table{};  // fuzzy-rules only
+  // The last `validation` of the given conditions are held back: never trained on, they choose
+  // among the best points of the search (early stopping) and among stages.
+  std::size_t validation = 0;
   // Called after every generation (and once at the end); may print.
   std::function<void(const Progress&)> progress;
 };
 
 struct Result {
   ControllerSpec controller;  // with its tuning record filled in (except conditions and set)
-  Cost cost;
+  Cost cost;                  // on the training conditions, without the regulariser
+  double penalty = 0.0;       // the regulariser's cost of the result
+  std::optional<Cost> validation;  // on the held-back conditions
   std::uint64_t evaluations = 0;
   std::uint64_t population = 0;
   double wall_s = 0.0;
 };
 
-// Tunes on `training`; returns nullopt with `error` set for invalid options (budget below one
-// population, a box that does not match the family, ...).
+// Tunes on `conditions` (the last options.validation of them held back); returns nullopt with
+// `error` set for invalid options (budget below one population, a box that does not match the
+// family, ...).
 [[nodiscard]] std::optional<Result> tune(const sim::Experiment& experiment,
-                                         const std::vector<sim::Condition>& training,
+                                         const std::vector<sim::Condition>& conditions,
                                          const Options& options, std::string& error);
-// The same with each training condition on its own robot and path (training[k] runs on
+// The same with each condition on its own robot and path (conditions[k] runs on
 // experiments.of(k)).
 [[nodiscard]] std::optional<Result> tune(const sim::ExperimentSet& experiments,
-                                         const std::vector<sim::Condition>& training,
+                                         const std::vector<sim::Condition>& conditions,
                                          const Options& options, std::string& error);
+
+// Staged tuning: one stage per entry, each started from the last one's result converted
+// exactly into its family (the first from options.init or the base); the budgets add up to the
+// run's total. With a validation split the result is the stage whose result, converted into the
+// last stage's family, has the lowest validation cost (the last stage without one).
+struct Stage {
+  Family family = Family::Pid;
+  std::uint64_t budget = 0;
+};
+
+[[nodiscard]] std::optional<Result> tune_staged(const sim::ExperimentSet& experiments,
+                                                const std::vector<sim::Condition>& conditions,
+                                                const std::vector<Stage>& stages,
+                                                const Options& options, std::string& error);
+
+// The share of the firing weight each node of a fuzzy-rules controller's table receives over the
+// runs of `controller` on the conditions (all joints, all ticks).
+[[nodiscard]] VisitMap visits(const sim::ExperimentSet& experiments,
+                              const std::vector<sim::Condition>& conditions,
+                              const ControllerSpec& controller, unsigned threads = 1);
 
 }  // namespace fuzzypid::tune

@@ -1,0 +1,117 @@
+// The tuner's vocabulary: what each controller family searches (its parameters, in log10 inside a
+// box), how a point of that space becomes a controller, the exact conversions between families
+// (PID -> schedule -> rule table) that let one stage start where the last one ended, and the
+// regulariser of the fuzzy-rules family's tables (docs/tuning.md).
+//
+//   pid:         kp, ki, kd
+//   scheduled:   kp, ki, kd (K0, the gains on the path), ke, kec, rp, ri, rd (large-error ratios R)
+//   fuzzy:       kp, ki, kd (K0), ke, kec, sp, si, sd (output scales of the paper's tables)
+//   fuzzy-rules: the scheduled family's eight, then optionally the partition (e_f2, e_f1, ec_f2,
+//                ec_f1: each inner centre as a fraction of the next one out), then the log10 ratio
+//                of each free class of table cells, "kp[i,j]" etc. (i: set of Ke e, j: set of
+//                Kec ec, 0..6 = NB..PB). Classes follow the symmetry: even (16 per gain: T is the
+//                same at (+-x, +-y)), odd (24: log T(-x, -y) = -log T(x, y), the centre cell 1) or
+//                none (49). A class whose nodes training never visits is held at the start's
+//                values (unvisited = seed) or searched like the others (free).
+//
+// Library fuzzypid::tune (offline, allocates, never in a control loop).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/enum_names.hpp"
+
+namespace fuzzypid::tune {
+
+using controller::ControllerSpec;
+using controller::Family;
+using controller::SearchBox;
+
+enum class Symmetry : std::uint8_t { Even, Odd, None };
+inline constexpr std::array<EnumName<Symmetry>, 3> kSymmetryNames{
+    {{Symmetry::Even, "even"}, {Symmetry::Odd, "odd"}, {Symmetry::None, "none"}}};
+
+enum class Unvisited : std::uint8_t { Seed, Free };
+inline constexpr std::array<EnumName<Unvisited>, 2> kUnvisitedNames{
+    {{Unvisited::Seed, "seed"}, {Unvisited::Free, "free"}}};
+
+// The fuzzy-rules family's search and regulariser.
+struct TableOptions {
+  Symmetry symmetry = Symmetry::Even;
+  bool partition = false;  // search the inner set centres too (ordered, symmetric)
+  // Penalty added to the cost: smoothness x sum of squared log10 differences of neighbouring
+  // cells, and monotone x sum of squared log10 decreases of the total gain ratio along each row
+  // and column walked outwards from the centre, in the direction of the schedule (R > 1: up).
+  double smoothness = 0.0;
+  double monotone = 0.0;
+  Unvisited unvisited = Unvisited::Seed;
+  double visit_threshold = 1e-4;  // a node is visited when it holds this share of the firing
+  double cell_log10 = 1.0;        // each cell's box: log10 T in [-cell_log10, cell_log10]
+};
+
+using RuleTableSpec = controller::RuleTableSpec;
+// The share of the total firing weight each node (i, j) of the table received.
+using VisitMap = std::array<std::array<double, RuleTableSpec::kSets>, RuleTableSpec::kSets>;
+
+class ParameterSpace {
+ public:
+  // The space of `family` around `start`: the result keeps start's units, PID options, bounds,
+  // feed-forward and rule base; for fuzzy-rules start's table gives the values of the cells held
+  // (start must then be a fuzzy-rules controller; `visits` says which nodes training reaches, and
+  // is required when options.unvisited is Seed). Returns nullopt with `error` set otherwise.
+  [[nodiscard]] static std::optional<ParameterSpace> create(Family family,
+                                                            const ControllerSpec& start,
+                                                            const TableOptions& options,
+                                                            const VisitMap* visits,
+                                                            std::string& error);
+
+  Family family() const noexcept { return family_; }
+  // The default box, one entry per searched parameter.
+  const std::vector<SearchBox>& box() const noexcept { return box_; }
+  // The controller at x (log10 values in box() order); x may lie outside the box.
+  [[nodiscard]] ControllerSpec to_spec(const std::vector<double>& x) const;
+  // The point of a controller of this family (the inverse of to_spec where the family can say
+  // it: held cells and the outer centre are the start's).
+  [[nodiscard]] std::vector<double> from_spec(const ControllerSpec& spec) const;
+  // The regulariser's cost of a controller of this family (0 for all but fuzzy-rules).
+  [[nodiscard]] double penalty(const ControllerSpec& spec) const;
+  // Cells (of 3 x 49) whose class is held at the start's values.
+  std::size_t held_cells() const noexcept { return held_cells_; }
+  // What the file's [tuning.regulariser] records (fuzzy-rules only).
+  [[nodiscard]] controller::TableRegulariser record() const;
+
+ private:
+  // One searched table class: the cells it sets and the sign of each (odd symmetry: -1 on the
+  // mirror cell).
+  struct CellClass {
+    std::size_t gain = 0;
+    std::vector<std::array<std::size_t, 2>> cells;
+    std::vector<int> sign;
+  };
+
+  Family family_ = Family::Pid;
+  ControllerSpec start_{};
+  TableOptions options_{};
+  std::vector<SearchBox> box_;
+  std::vector<CellClass> classes_;
+  std::size_t first_cell_ = 0;  // index of the first cell parameter in x
+  std::size_t held_cells_ = 0;
+};
+
+// The start of a stage: `from` as a controller of family `to`, exactly (the same commands for
+// every input, to rounding) -- pid -> scheduled (R = 1), pid or scheduled -> fuzzy-rules (T = 1),
+// and any family to itself. Anything else (the paper's tables as a schedule, a schedule as a
+// fixed PID) has no exact form: false with `error` saying so.
+[[nodiscard]] bool convert(const ControllerSpec& from, Family to, ControllerSpec& out,
+                           std::string& error);
+
+// The default box of a family (fuzzy-rules: default TableOptions, all cells free).
+[[nodiscard]] std::vector<SearchBox> default_box(Family family);
+
+}  // namespace fuzzypid::tune

@@ -1,0 +1,273 @@
+#include "fuzzypid/tune/parameters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace fuzzypid::tune {
+
+namespace {
+
+constexpr std::size_t kSets = RuleTableSpec::kSets;
+constexpr std::size_t kMid = kSets / 2;
+const char* const kGainNames[3] = {"kp", "ki", "kd"};
+
+// log10 bounds, acceleration units, per tick at 0.05 s (docs/tuning.md explains each).
+constexpr double kPidBox[3][2] = {{-1.0, 4.0}, {-6.0, 1.0}, {0.0, 4.0}};
+constexpr double kScaleBox[2][2] = {{-1.0, 4.0}, {-3.0, 2.0}};  // ke, kec
+constexpr double kRatioBox[2] = {-2.0, 2.0};                    // rp, ri, rd
+constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
+// An inner centre as a fraction of the next one out: 0.1 .. 0.955.
+constexpr double kFractionBox[2] = {-1.0, -0.02};
+
+std::vector<SearchBox> fixed_box(Family family) {
+  std::vector<SearchBox> box;
+  for (std::size_t k = 0; k < 3; ++k)
+    box.push_back({kGainNames[k], kPidBox[k][0], kPidBox[k][1]});
+  if (family == Family::Pid) return box;
+  box.push_back({"ke", kScaleBox[0][0], kScaleBox[0][1]});
+  box.push_back({"kec", kScaleBox[1][0], kScaleBox[1][1]});
+  const bool ratios = family != Family::Fuzzy;
+  const char* names[2][3] = {{"sp", "si", "sd"}, {"rp", "ri", "rd"}};
+  for (std::size_t k = 0; k < 3; ++k)
+    box.push_back({names[ratios ? 1 : 0][k], ratios ? kRatioBox[0] : kOutputBox[k][0],
+                   ratios ? kRatioBox[1] : kOutputBox[k][1]});
+  return box;
+}
+
+std::size_t mirror(std::size_t i) {
+  return kSets - 1 - i;
+}
+
+// The total log10 gain ratio at node (i, j): the schedule's ramp there times the table.
+double node_log_ratio(const ControllerSpec& s, std::size_t g, std::size_t i, std::size_t j) {
+  const RuleTableSpec& t = s.supervisor.rule_table;
+  const double w = std::min(1.0, std::fabs(t.error_centres[i]) + std::fabs(t.error_rate_centres[j]));
+  return std::log10((1.0 + (s.supervisor.output_scale[g] - 1.0) * w) * t.ratio[g][i][j]);
+}
+
+}  // namespace
+
+std::vector<SearchBox> default_box(Family family) {
+  if (family != Family::FuzzyRules) return fixed_box(family);
+  std::string error;
+  ControllerSpec start;
+  (void)convert(controller::paper_pid(), Family::FuzzyRules, start, error);
+  TableOptions o;
+  o.unvisited = Unvisited::Free;
+  return ParameterSpace::create(Family::FuzzyRules, start, o, nullptr, error)->box();
+}
+
+std::optional<ParameterSpace> ParameterSpace::create(Family family, const ControllerSpec& start,
+                                                     const TableOptions& options,
+                                                     const VisitMap* visits, std::string& error) {
+  ParameterSpace p;
+  p.family_ = family;
+  p.start_ = start;
+  p.start_.family = family;
+  p.start_.tuning.reset();
+  p.options_ = options;
+  p.box_ = fixed_box(family);
+  if (family != Family::FuzzyRules) return p;
+
+  if (start.family != Family::FuzzyRules) {
+    error = "the fuzzy-rules family starts from a fuzzy-rules controller (tune::convert)";
+    return std::nullopt;
+  }
+  if (!(options.cell_log10 > 0.0) || !std::isfinite(options.cell_log10) ||
+      !(options.smoothness >= 0.0) || !std::isfinite(options.smoothness) ||
+      !(options.monotone >= 0.0) || !std::isfinite(options.monotone) ||
+      !(options.visit_threshold >= 0.0) || !(options.visit_threshold < 1.0)) {
+    error = "table options: cell_log10 > 0, smoothness and monotone >= 0 and finite, "
+            "0 <= visit_threshold < 1";
+    return std::nullopt;
+  }
+  if (options.unvisited == Unvisited::Seed && visits == nullptr) {
+    error = "holding unvisited cells needs the visits of the start's training runs";
+    return std::nullopt;
+  }
+  if (options.partition) {
+    for (const char* axis : {"e", "ec"})
+      for (const char* f : {"_f2", "_f1"})
+        p.box_.push_back({std::string(axis) + f, kFractionBox[0], kFractionBox[1]});
+  }
+  p.first_cell_ = p.box_.size();
+
+  // Classes of cells by symmetry; a class is searched when any of its nodes is visited.
+  const auto key = [&](std::size_t i, std::size_t j) -> std::array<std::size_t, 2> {
+    switch (options.symmetry) {
+      case Symmetry::Even:
+        return {i < kMid ? mirror(i) : i, j < kMid ? mirror(j) : j};
+      case Symmetry::Odd:
+        if (i * kSets + j > mirror(i) * kSets + mirror(j)) return {mirror(i), mirror(j)};
+        return {i, j};
+      case Symmetry::None:
+        break;
+    }
+    return {i, j};
+  };
+  for (std::size_t g = 0; g < 3; ++g) {
+    std::map<std::array<std::size_t, 2>, CellClass> classes;
+    for (std::size_t i = 0; i < kSets; ++i)
+      for (std::size_t j = 0; j < kSets; ++j) {
+        if (options.symmetry == Symmetry::Odd && i == kMid && j == kMid) continue;  // T = 1
+        const auto k = key(i, j);
+        CellClass& c = classes[k];
+        c.gain = g;
+        c.cells.push_back({i, j});
+        c.sign.push_back(options.symmetry == Symmetry::Odd && k != std::array<std::size_t, 2>{i, j}
+                             ? -1
+                             : 1);
+      }
+    for (auto& [k, c] : classes) {
+      bool visited = options.unvisited == Unvisited::Free;
+      for (const auto& cell : c.cells)
+        if (visits != nullptr && (*visits)[cell[0]][cell[1]] > options.visit_threshold)
+          visited = true;
+      if (!visited) {
+        p.held_cells_ += c.cells.size();
+        continue;
+      }
+      const double v = std::log10(start.supervisor.rule_table.ratio[g][k[0]][k[1]]);
+      p.box_.push_back({std::string(kGainNames[g]) + "[" + std::to_string(k[0]) + "," +
+                            std::to_string(k[1]) + "]",
+                        std::min(-options.cell_log10, v), std::max(options.cell_log10, v)});
+      p.classes_.push_back(c);
+    }
+  }
+  if (options.symmetry == Symmetry::Odd) p.held_cells_ += 3;  // the centre cells
+  return p;
+}
+
+ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
+  ControllerSpec s = start_;
+  const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
+  s.gains = {p(0), p(1), p(2)};
+  if (family_ != Family::Pid) {
+    s.supervisor.error_scale = p(3);
+    s.supervisor.error_rate_scale = p(4);
+    s.supervisor.output_scale = {p(5), p(6), p(7)};
+  }
+  if (family_ == Family::Scheduled || family_ == Family::FuzzyRules)
+    s.supervisor.gain_update = control::GainUpdate::Absolute;
+  if (family_ != Family::Fuzzy) {  // a rule file only means something to the fuzzy family
+    s.supervisor.rule_file.clear();
+    s.supervisor.rule_model.reset();
+  }
+  if (family_ != Family::FuzzyRules) return s;
+  RuleTableSpec& t = s.supervisor.rule_table;
+  if (options_.partition) {
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      RuleTableSpec::Centres& c = axis == 0 ? t.error_centres : t.error_rate_centres;
+      const double f2 = p(8 + 2 * axis);
+      const double f1 = p(9 + 2 * axis);
+      c[kMid + 2] = f2 * c[kMid + 3];
+      c[kMid + 1] = f1 * c[kMid + 2];
+      c[kMid - 2] = -c[kMid + 2];
+      c[kMid - 1] = -c[kMid + 1];
+    }
+  }
+  for (std::size_t k = 0; k < classes_.size(); ++k) {
+    const CellClass& c = classes_[k];
+    for (std::size_t n = 0; n < c.cells.size(); ++n)
+      t.ratio[c.gain][c.cells[n][0]][c.cells[n][1]] = std::pow(10.0, c.sign[n] * x[first_cell_ + k]);
+  }
+  return s;
+}
+
+std::vector<double> ParameterSpace::from_spec(const ControllerSpec& s) const {
+  std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki), std::log10(s.gains.kd)};
+  if (family_ != Family::Pid) {
+    x.push_back(std::log10(s.supervisor.error_scale));
+    x.push_back(std::log10(s.supervisor.error_rate_scale));
+    for (double v : s.supervisor.output_scale)
+      x.push_back(std::log10(v));
+  }
+  if (family_ != Family::FuzzyRules) return x;
+  const RuleTableSpec& t = s.supervisor.rule_table;
+  if (options_.partition) {
+    for (const auto* c : {&t.error_centres, &t.error_rate_centres}) {
+      x.push_back(std::log10((*c)[kMid + 2] / (*c)[kMid + 3]));
+      x.push_back(std::log10((*c)[kMid + 1] / (*c)[kMid + 2]));
+    }
+  }
+  for (const CellClass& c : classes_)
+    x.push_back(c.sign[0] * std::log10(t.ratio[c.gain][c.cells[0][0]][c.cells[0][1]]));
+  return x;
+}
+
+double ParameterSpace::penalty(const ControllerSpec& s) const {
+  if (family_ != Family::FuzzyRules) return 0.0;
+  double cost = 0.0;
+  const auto& ratio = s.supervisor.rule_table.ratio;
+  for (std::size_t g = 0; g < 3; ++g) {
+    if (options_.smoothness > 0.0) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < kSets; ++i)
+        for (std::size_t j = 0; j < kSets; ++j) {
+          const double v = std::log10(ratio[g][i][j]);
+          if (i + 1 < kSets) sum += std::pow(std::log10(ratio[g][i + 1][j]) - v, 2);
+          if (j + 1 < kSets) sum += std::pow(std::log10(ratio[g][i][j + 1]) - v, 2);
+        }
+      cost += options_.smoothness * sum;
+    }
+    if (options_.monotone > 0.0) {
+      // Outwards from the centre along rows and columns: the total ratio moves the way the
+      // schedule's does (R >= 1: never down; R < 1: never up).
+      const double direction = s.supervisor.output_scale[g] >= 1.0 ? 1.0 : -1.0;
+      double sum = 0.0;
+      for (std::size_t a = 0; a < kSets; ++a)
+        for (std::size_t k = kMid; k + 1 < kSets; ++k)
+          for (int side : {1, -1}) {
+            const std::size_t from = side > 0 ? k : mirror(k);
+            const std::size_t to = side > 0 ? k + 1 : mirror(k + 1);
+            const double along_x = node_log_ratio(s, g, to, a) - node_log_ratio(s, g, from, a);
+            const double along_y = node_log_ratio(s, g, a, to) - node_log_ratio(s, g, a, from);
+            sum += std::pow(std::max(0.0, -direction * along_x), 2);
+            sum += std::pow(std::max(0.0, -direction * along_y), 2);
+          }
+      cost += options_.monotone * sum;
+    }
+  }
+  return cost;
+}
+
+controller::TableRegulariser ParameterSpace::record() const {
+  controller::TableRegulariser r;
+  r.symmetry = name_of(kSymmetryNames, options_.symmetry);
+  r.partition = options_.partition;
+  r.smoothness = options_.smoothness;
+  r.monotone = options_.monotone;
+  r.unvisited = name_of(kUnvisitedNames, options_.unvisited);
+  r.visit_threshold = options_.visit_threshold;
+  r.frozen_cells = held_cells_;
+  r.cell_log10 = options_.cell_log10;
+  return r;
+}
+
+bool convert(const ControllerSpec& from, Family to, ControllerSpec& out, std::string& error) {
+  const bool pid = from.family == Family::Pid;
+  const bool exact = from.family == to || (to == Family::Scheduled && pid) ||
+                     (to == Family::FuzzyRules && (pid || from.family == Family::Scheduled));
+  if (!exact) {
+    error = std::string("a ") + controller::to_string(from.family) + " controller has no exact " +
+            controller::to_string(to) + " form (exact: pid -> scheduled -> fuzzy-rules)";
+    return false;
+  }
+  out = from;
+  out.tuning.reset();
+  if (from.family == to) return true;
+  out.family = to;
+  // pid -> scheduled: R = 1 moves nothing, whatever Ke and Kec. pid or scheduled -> fuzzy-rules:
+  // the schedule's Ke, Kec and R with T = 1, the schedule itself.
+  controller::Supervisor s;
+  if (!pid) {
+    s.error_scale = from.supervisor.error_scale;
+    s.error_rate_scale = from.supervisor.error_rate_scale;
+    s.output_scale = from.supervisor.output_scale;
+  }
+  out.supervisor = s;
+  return true;
+}
+
+}  // namespace fuzzypid::tune
