@@ -29,7 +29,7 @@ std::string number(double x) {
 
 enum class Format { Fll, Fcl, Fis };
 
-// One output's constant terms: the cell ratios of block 1 (value T - 1) in order of first use,
+// One output's constant terms: the distinct cell ratios of block 1 (value T - 1), ascending,
 // and block 2's ramp scale s (a power of two >= max(1, max T)).
 struct OutputTerms {
   std::vector<double> ratios;
