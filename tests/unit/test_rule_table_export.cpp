@@ -12,7 +12,10 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
+#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
@@ -217,6 +220,48 @@ TEST(RuleTableExport, MirroredRulesOfEvenTablesMergeAndStayExact) {
   // Only dKi's and dKd's ramp rules merge: 12 of each gain's 16 pair e's sets.
   EXPECT_EQ(count("(e is N"), 2u * 12u) << text;
   EXPECT_EQ(count("  rule: "), 49u + 49u + 2u * 16u) << text;
+}
+
+TEST(RuleTableExport, TheLoadedFileDrivesFuzzyPidLikeTheTable) {
+  // The family's use: S = K0. FuzzyPid on EngineSupervisor(loaded .fll) against FuzzyPid on the
+  // RuleTable itself, over seeded ticks: gains within 1e-12 relative.
+  using fuzzypid::control::EngineSupervisor;
+  using fuzzypid::control::FuzzyPid;
+  const std::uint64_t seed = 0xd41eULL;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  double worst = 0.0;
+  for (int n = 0; n < 10; ++n) {
+    const RuleTable<double> t = random_table(rng, false, n % 2 == 1);
+    std::string text, error;
+    ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(t, text, error)) << error;
+    const auto model = load(Format::Fll, text);
+    ASSERT_TRUE(model);
+    const EngineSupervisor<double> supervisor(model.get());
+    ASSERT_TRUE(supervisor.valid());
+    fuzzypid::control::FuzzyPidConfig<double> c;
+    c.pid.gains = {uniform(rng, 1, 100), uniform(rng, 0, 10), uniform(rng, 0, 5)};
+    c.output_scale = {c.pid.gains.kp, c.pid.gains.ki, c.pid.gains.kd};
+    c.error_scale = uniform(rng, 1, 20);
+    c.error_rate_scale = uniform(rng, 0.1, 5);
+    FuzzyPid<double, RuleTable<double>> from_table(&t, c);
+    auto from_file = std::make_unique<FuzzyPid<double, EngineSupervisor<double>>>(&supervisor, c);
+    for (int k = 0; k < 500; ++k) {
+      fuzzypid::pid::Input<double> in;
+      in.setpoint = uniform(rng, -0.3, 0.3);
+      in.setpoint_rate = uniform(rng, -1, 1);
+      ASSERT_EQ(from_table.update(in, 0.001), Status::Ok);
+      ASSERT_EQ(from_file->update(in, 0.001), Status::Ok);
+      const auto& a = from_table.gains();
+      const auto& b = from_file->gains();
+      for (const auto& [ka, kb, k0] :
+           {std::tuple{a.kp, b.kp, c.pid.gains.kp}, std::tuple{a.ki, b.ki, c.pid.gains.ki},
+            std::tuple{a.kd, b.kd, c.pid.gains.kd}})
+        worst = std::max(worst, std::fabs(ka - kb) / k0);
+    }
+  }
+  std::printf("largest |K_file - K_table| / K0: %.3g\n", worst);
+  EXPECT_LE(worst, 1e-12);
 }
 
 TEST(RuleTableExport, FisRefusesTheScheduleRampWhichItCannotExpress) {
