@@ -29,7 +29,7 @@ std::string number(double x) {
 
 enum class Format { Fll, Fcl, Fis };
 
-// One output's constant terms: the cell ratios of block 1 (value T - 1) in order of first use,
+// One output's constant terms: the distinct cell ratios of block 1 (value T - 1), ascending,
 // and block 2's ramp scale s (a power of two >= max(1, max T)).
 struct OutputTerms {
   std::vector<double> ratios;
@@ -127,22 +127,78 @@ std::pair<double, double> range_of(const std::vector<std::pair<std::string, doub
   return {lo, hi};
 }
 
-// Block 1's rule text for cell (i, j), without keyword or terminator.
-std::string table_rule(const Table& t, std::size_t i, std::size_t j) {
-  std::string s = std::string("if e is ") + kSetNames[i] + " and ec is " + kSetNames[j] + " then ";
-  for (std::size_t g = 0; g < 3; ++g) {
-    if (g > 0) s += " and ";
-    s += std::string(kOutputNames[g]) + " is " + ratio_term_name(t.table[g][i][j]);
-  }
-  return s;
+// Whether gain g's table is even in e (T[i][j] = T[6 - i][j]) or in ec (T[i][j] = T[i][6 - j]).
+bool even(const Table& t, std::size_t g, bool in_e) {
+  for (std::size_t i = 0; i < kSets; ++i)
+    for (std::size_t j = 0; j < kSets; ++j)
+      if (t.table[g][i][j] != (in_e ? t.table[g][kSets - 1 - i][j] : t.table[g][i][kSets - 1 - j]))
+        return false;
+  return true;
 }
 
-// Block 2's rule text for cell (i, j) and gain g.
-std::string ramp_rule(const Table& t, std::size_t i, std::size_t j, std::size_t g,
-                      const OutputTerms& o) {
-  return std::string("if e is ") + kSetNames[i] + " and ec is " + kSetNames[j] +
-         " and (e is neg or e is pos or ec is neg or ec is pos) then " + kOutputNames[g] + " is " +
-         ramp_term_name(o.scale) + " with " + number(t.table[g][i][j] / o.scale);
+// Which inputs' mirrored rules may merge: "(e is NB or e is PB)" fires mu_NB + mu_PB, and the
+// two never both hold (their supports lie on either side of 0), so under Maximum or BoundedSum
+// the merged rule fires exactly what the one of the pair that holds would: exact, and fewer rules.
+struct Mirror {
+  bool e = false;
+  bool ec = false;
+};
+
+// The proposition on `var` for set i, or for the pair i, 6 - i when mirrored (i < 3).
+std::string proposition(const char* var, std::size_t i, bool mirrored) {
+  const std::string v = std::string(var) + " is ";
+  if (!mirrored || i == kSets / 2) return v + kSetNames[i];
+  return "(" + v + kSetNames[i] + " or " + v + kSetNames[kSets - 1 - i] + ")";
+}
+
+// Calls f(i, j) for every cell, or for one representative (i <= 3, j <= 3) of each mirrored group.
+template <class F>
+void for_each_cell(const Mirror& m, F f) {
+  for (std::size_t i = 0; i < (m.e ? kSets / 2 + 1 : kSets); ++i)
+    for (std::size_t j = 0; j < (m.ec ? kSets / 2 + 1 : kSets); ++j)
+      f(i, j);
+}
+
+std::string cell_antecedent(std::size_t i, std::size_t j, const Mirror& m) {
+  return "if " + proposition("e", i, m.e) + " and " + proposition("ec", j, m.ec);
+}
+
+// Block 1's rules, without keyword or terminator: one per cell (or mirrored group).
+std::vector<std::string> table_rules(const Table& t, const Mirror& m) {
+  std::vector<std::string> rules;
+  for_each_cell(m, [&](std::size_t i, std::size_t j) {
+    std::string s = cell_antecedent(i, j, m) + " then ";
+    for (std::size_t g = 0; g < 3; ++g) {
+      if (g > 0) s += " and ";
+      s += std::string(kOutputNames[g]) + " is " + ratio_term_name(t.table[g][i][j]);
+    }
+    rules.push_back(std::move(s));
+  });
+  return rules;
+}
+
+// Block 2's rules for gain g.
+std::vector<std::string> ramp_rules(const Table& t, std::size_t g, const OutputTerms& o,
+                                    const Mirror& m) {
+  std::vector<std::string> rules;
+  for_each_cell(m, [&](std::size_t i, std::size_t j) {
+    rules.push_back(cell_antecedent(i, j, m) +
+                    " and (e is neg or e is pos or ec is neg or ec is pos) then " +
+                    kOutputNames[g] + " is " + ramp_term_name(o.scale) + " with " +
+                    number(t.table[g][i][j] / o.scale));
+  });
+  return rules;
+}
+
+// Block 1 merges along an input when all three tables are even in it (its rules conclude on all
+// three outputs); block 2's rules of gain g when T_g is.
+Mirror table_mirror(const Table& t) {
+  Mirror m{true, true};
+  for (std::size_t g = 0; g < 3; ++g) {
+    m.e = m.e && even(t, g, true);
+    m.ec = m.ec && even(t, g, false);
+  }
+  return m;
 }
 
 bool check(const Table& t, std::string& error) {
@@ -201,19 +257,20 @@ bool rule_table_to_fll(const Table& t, std::string& out, std::string& error,
     for (const auto& [term, value] : c)
       s += "  term: " + term + " Constant " + number(value) + "\n";
   }
-  s += "RuleBlock: table\n  enabled: true\n  conjunction: AlgebraicProduct\n  disjunction: none\n"
-       "  implication: none\n  activation: General\n";
-  for (std::size_t i = 0; i < kSets; ++i)
-    for (std::size_t j = 0; j < kSets; ++j)
-      s += "  rule: " + table_rule(t, i, j) + "\n";
+  const Mirror mirror = table_mirror(t);
+  s += std::string("RuleBlock: table\n  enabled: true\n  conjunction: AlgebraicProduct\n") +
+       "  disjunction: " + (mirror.e || mirror.ec ? "Maximum" : "none") +
+       "\n  implication: none\n  activation: General\n";
+  for (const auto& rule : table_rules(t, mirror))
+    s += "  rule: " + rule + "\n";
   if (any_ramp(terms)) {
     s += "RuleBlock: schedule_ramp\n  enabled: true\n  conjunction: AlgebraicProduct\n"
          "  disjunction: BoundedSum\n  implication: none\n  activation: General\n";
     for (std::size_t g = 0; g < 3; ++g) {
       if (!terms[g].ramp) continue;
-      for (std::size_t i = 0; i < kSets; ++i)
-        for (std::size_t j = 0; j < kSets; ++j)
-          s += "  rule: " + ramp_rule(t, i, j, g, terms[g]) + "\n";
+      const Mirror m{even(t, g, true), even(t, g, false)};
+      for (const auto& rule : ramp_rules(t, g, terms[g], m))
+        s += "  rule: " + rule + "\n";
     }
   }
   out = std::move(s);
@@ -248,20 +305,21 @@ bool rule_table_to_fcl(const Table& t, std::string& out, std::string& error,
     s += "  METHOD : COGSS;\n  DEFAULT := nan;\n  RANGE := (" + number(lo) + " .. " + number(hi) +
          ");\nEND_DEFUZZIFY\n";
   }
+  const Mirror mirror = table_mirror(t);
   s += "\nRULEBLOCK table\n  AND : PROD;\n";
+  if (mirror.e || mirror.ec) s += "  OR : MAX;\n";
   int n = 0;
-  for (std::size_t i = 0; i < kSets; ++i)
-    for (std::size_t j = 0; j < kSets; ++j)
-      s += "  RULE " + std::to_string(++n) + " : " + table_rule(t, i, j) + ";\n";
+  for (const auto& rule : table_rules(t, mirror))
+    s += "  RULE " + std::to_string(++n) + " : " + rule + ";\n";
   s += "END_RULEBLOCK\n";
   if (any_ramp(terms)) {
     s += "\nRULEBLOCK schedule_ramp\n  AND : PROD;\n  OR : BSUM;\n";
     n = 0;
     for (std::size_t g = 0; g < 3; ++g) {
       if (!terms[g].ramp) continue;
-      for (std::size_t i = 0; i < kSets; ++i)
-        for (std::size_t j = 0; j < kSets; ++j)
-          s += "  RULE " + std::to_string(++n) + " : " + ramp_rule(t, i, j, g, terms[g]) + ";\n";
+      const Mirror m{even(t, g, true), even(t, g, false)};
+      for (const auto& rule : ramp_rules(t, g, terms[g], m))
+        s += "  RULE " + std::to_string(++n) + " : " + rule + ";\n";
     }
     s += "END_RULEBLOCK\n";
   }

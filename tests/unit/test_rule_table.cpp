@@ -11,6 +11,9 @@
 //
 // This executable replaces global operator new (fuzzypid_support/counting_new.hpp) to prove that
 // infer() allocates nothing.
+// First, on purpose: rule_table.hpp must not hide fuzzypid::detail from the headers after it.
+#include "fuzzypid/control/rule_table.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,7 +28,6 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/gain_schedule.hpp"
-#include "fuzzypid/control/rule_table.hpp"
 #include "fuzzypid/control/supervisor.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 

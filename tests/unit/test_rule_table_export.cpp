@@ -12,7 +12,10 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <tuple>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
+#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
@@ -65,8 +68,9 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 
 // Random symmetric ascending centres (c_max in [0.3, 4.2]), random T in [0.2, 3] (49 distinct
 // values per gain), R in [0.2, 4] with each R set to 1 with probability 1/4 (no ramp for that
-// gain), or all R = 1 when `unit_ratios`.
-RuleTable<double> random_table(std::mt19937_64& rng, bool unit_ratios) {
+// gain), or all R = 1 when `unit_ratios`; `even` makes every table even in e (T[i][j] = T[6-i][j])
+// with probability 1/2 and independently in ec, so that the writers merge mirrored rules.
+RuleTable<double> random_table(std::mt19937_64& rng, bool unit_ratios, bool even = false) {
   RuleTable<double> t;
   for (auto* c : {&t.e_centers, &t.ec_centers}) {
     double v = 0.0;
@@ -80,6 +84,14 @@ RuleTable<double> random_table(std::mt19937_64& rng, bool unit_ratios) {
     for (auto& row : table)
       for (auto& v : row)
         v = uniform(rng, 0.2, 3.0);
+  if (even) {
+    const bool in_e = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    const bool in_ec = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    for (auto& table : t.table)
+      for (std::size_t i = 0; i < 7; ++i)
+        for (std::size_t j = 0; j < 7; ++j)
+          table[i][j] = table[in_e ? std::min(i, 6 - i) : i][in_ec ? std::min(j, 6 - j) : j];
+  }
   for (auto& r : t.schedule_ratio)
     r = unit_ratios || std::uniform_int_distribution<int>(0, 3)(rng) == 0 ? 1.0
                                                                           : uniform(rng, 0.2, 4.0);
@@ -101,12 +113,12 @@ struct Differences {
 
 // Writes `tables` random tables in format f and compares the project's engine and fuzzylite with
 // RuleTable::infer on `points` inputs each.
-Differences compare(Format f, std::uint64_t seed, int tables, int points) {
+Differences compare(Format f, std::uint64_t seed, int tables, int points, bool even = false) {
   fl::fuzzylite::setMachEps(0.0);  // else fuzzylite snaps degrees within 1e-6 of 0 or 1
   std::mt19937_64 rng(seed);
   Differences worst;
   for (int n = 0; n < tables; ++n) {
-    const RuleTable<double> t = random_table(rng, f == Format::Fis);
+    const RuleTable<double> t = random_table(rng, f == Format::Fis, even);
     EXPECT_TRUE(t.valid());
     std::string text, error;
     EXPECT_TRUE(write(f, t, text, error)) << error;
@@ -172,6 +184,84 @@ TEST(RuleTableExport, FisWithUnitRatiosEvaluatesToInferInOurReaderAndFuzzylite) 
   std::printf(".fis: largest |ours - infer| %.3g, |fuzzylite - infer| %.3g\n", d.ours, d.fuzzylite);
   EXPECT_LE(d.ours, 1e-12);
   EXPECT_LE(d.fuzzylite, 1e-9);
+}
+
+TEST(RuleTableExport, MirroredRulesOfEvenTablesMergeAndStayExact) {
+  const std::uint64_t seed = 0xe7e4ULL;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  for (const Format f : {Format::Fll, Format::Fcl}) {
+    const Differences d = compare(f, seed, 40, 2000, true);
+    std::printf(".%s, even tables: largest |ours - infer| %.3g, |fuzzylite - infer| %.3g\n",
+                name(f), d.ours, d.fuzzylite);
+    EXPECT_LE(d.ours, 1e-12) << name(f);
+    EXPECT_LE(d.fuzzylite, 1e-9) << name(f);
+  }
+  // A table even in both inputs: 4 x 4 rules per block instead of 7 x 7.
+  RuleTable<double> t;
+  t.schedule_ratio = {1.5, 1.5, 1.5};
+  t.table[0][0][0] = t.table[0][6][0] = t.table[0][0][6] = t.table[0][6][6] = 0.85;
+  std::string text, error;
+  ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(t, text, error)) << error;
+  const auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(count("  rule: "), 16u + 3u * 16u) << text;
+  EXPECT_NE(text.find("rule: if (e is NB or e is PB) and (ec is NB or ec is PB) then dKp is "
+                      "x0_85 and dKi is x1 and dKd is x1"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("rule: if e is ZO and (ec is NM or ec is PM) then"), std::string::npos);
+  // The paper-style odd tables do not merge.
+  t.table[0][0][0] = 0.9;
+  ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(t, text, error)) << error;
+  // Only dKi's and dKd's ramp rules merge: 12 of each gain's 16 pair e's sets.
+  EXPECT_EQ(count("(e is N"), 2u * 12u) << text;
+  EXPECT_EQ(count("  rule: "), 49u + 49u + 2u * 16u) << text;
+}
+
+TEST(RuleTableExport, TheLoadedFileDrivesFuzzyPidLikeTheTable) {
+  // The family's use: S = K0. FuzzyPid on EngineSupervisor(loaded .fll) against FuzzyPid on the
+  // RuleTable itself, over seeded ticks: gains within 1e-12 relative.
+  using fuzzypid::control::EngineSupervisor;
+  using fuzzypid::control::FuzzyPid;
+  const std::uint64_t seed = 0xd41eULL;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  double worst = 0.0;
+  for (int n = 0; n < 10; ++n) {
+    const RuleTable<double> t = random_table(rng, false, n % 2 == 1);
+    std::string text, error;
+    ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(t, text, error)) << error;
+    const auto model = load(Format::Fll, text);
+    ASSERT_TRUE(model);
+    const EngineSupervisor<double> supervisor(model.get());
+    ASSERT_TRUE(supervisor.valid());
+    fuzzypid::control::FuzzyPidConfig<double> c;
+    c.pid.gains = {uniform(rng, 1, 100), uniform(rng, 0, 10), uniform(rng, 0, 5)};
+    c.output_scale = {c.pid.gains.kp, c.pid.gains.ki, c.pid.gains.kd};
+    c.error_scale = uniform(rng, 1, 20);
+    c.error_rate_scale = uniform(rng, 0.1, 5);
+    FuzzyPid<double, RuleTable<double>> from_table(&t, c);
+    auto from_file = std::make_unique<FuzzyPid<double, EngineSupervisor<double>>>(&supervisor, c);
+    for (int k = 0; k < 500; ++k) {
+      fuzzypid::pid::Input<double> in;
+      in.setpoint = uniform(rng, -0.3, 0.3);
+      in.setpoint_rate = uniform(rng, -1, 1);
+      ASSERT_EQ(from_table.update(in, 0.001), Status::Ok);
+      ASSERT_EQ(from_file->update(in, 0.001), Status::Ok);
+      const auto& a = from_table.gains();
+      const auto& b = from_file->gains();
+      for (const auto& [ka, kb, k0] :
+           {std::tuple{a.kp, b.kp, c.pid.gains.kp}, std::tuple{a.ki, b.ki, c.pid.gains.ki},
+            std::tuple{a.kd, b.kd, c.pid.gains.kd}})
+        worst = std::max(worst, std::fabs(ka - kb) / k0);
+    }
+  }
+  std::printf("largest |K_file - K_table| / K0: %.3g\n", worst);
+  EXPECT_LE(worst, 1e-12);
 }
 
 TEST(RuleTableExport, FisRefusesTheScheduleRampWhichItCannotExpress) {

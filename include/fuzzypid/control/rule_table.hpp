@@ -32,13 +32,13 @@
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
-namespace fuzzypid::control {
-
-namespace detail {
+// In fuzzypid::detail beside scalar.hpp's helpers (a control::detail would hide fuzzypid::detail
+// from the control/ headers included after this one).
+namespace fuzzypid::detail {
 
 // Centres 0, +-1/m, ..., +-1 (m = (Sets - 1) / 2): the ramp w saturates at |x| + |y| = 1.
 template <class Scalar, std::size_t Sets>
-constexpr std::array<Scalar, Sets> uniform_centers() noexcept {
+constexpr std::array<Scalar, Sets> rule_table_uniform_centers() noexcept {
   constexpr std::size_t m = (Sets - 1) / 2;
   std::array<Scalar, Sets> c{};
   for (std::size_t k = 0; k < Sets; ++k) {
@@ -49,7 +49,8 @@ constexpr std::array<Scalar, Sets> uniform_centers() noexcept {
 }
 
 template <class Scalar, std::size_t Sets>
-constexpr std::array<std::array<std::array<Scalar, Sets>, Sets>, 3> unit_tables() noexcept {
+constexpr std::array<std::array<std::array<Scalar, Sets>, Sets>, 3>
+rule_table_unit_tables() noexcept {
   std::array<std::array<std::array<Scalar, Sets>, Sets>, 3> t{};
   for (auto& table : t)
     for (auto& row : table)
@@ -58,7 +59,9 @@ constexpr std::array<std::array<std::array<Scalar, Sets>, Sets>, 3> unit_tables(
   return t;
 }
 
-}  // namespace detail
+}  // namespace fuzzypid::detail
+
+namespace fuzzypid::control {
 
 template <class Scalar, std::size_t Sets = 7>
 struct RuleTable {
@@ -81,18 +84,20 @@ struct RuleTable {
   };
 
   // The model, in this order for brace initialisation.
-  std::array<Scalar, 3> schedule_ratio{Scalar(1), Scalar(1), Scalar(1)};  // R_p, R_i, R_d
-  std::array<Table, 3> table = detail::unit_tables<Scalar, Sets>();       // T_p, T_i, T_d
+  std::array<Scalar, 3> schedule_ratio{Scalar(1), Scalar(1), Scalar(1)};        // R_p, R_i, R_d
+  std::array<Table, 3> table = detail::rule_table_unit_tables<Scalar, Sets>();  // T_p, T_i, T_d
   // Centres of the sets of x = Ke e and y = Kec ec (dimensionless universe units), ascending,
   // symmetric (c_k = -c_{Sets-1-k}); c_max = c_{Sets-1} is where the input saturates.
-  std::array<Scalar, Sets> e_centers = detail::uniform_centers<Scalar, Sets>();
-  std::array<Scalar, Sets> ec_centers = detail::uniform_centers<Scalar, Sets>();
+  std::array<Scalar, Sets> e_centers = detail::rule_table_uniform_centers<Scalar, Sets>();
+  std::array<Scalar, Sets> ec_centers = detail::rule_table_uniform_centers<Scalar, Sets>();
 
   static constexpr std::size_t num_sets() noexcept { return Sets; }
   static constexpr std::array<Scalar, Sets> default_centers() noexcept {
-    return detail::uniform_centers<Scalar, Sets>();
+    return detail::rule_table_uniform_centers<Scalar, Sets>();
   }
-  static constexpr Table unit_table() noexcept { return detail::unit_tables<Scalar, Sets>()[0]; }
+  static constexpr Table unit_table() noexcept {
+    return detail::rule_table_unit_tables<Scalar, Sets>()[0];
+  }
 
   // Centres finite, strictly ascending and exactly symmetric about 0; R and T finite and > 0,
   // with max(1, R_g) max(T_g) finite (so no ratio overflows).
@@ -100,14 +105,14 @@ struct RuleTable {
     if (!centers_valid(e_centers) || !centers_valid(ec_centers)) return false;
     for (std::size_t g = 0; g < 3; ++g) {
       const Scalar r = schedule_ratio[g];
-      if (!(fuzzypid::detail::is_finite(r) && r > Scalar(0))) return false;
+      if (!(detail::is_finite(r) && r > Scalar(0))) return false;
       Scalar t_max = Scalar(0);
       for (const auto& row : table[g])
         for (const Scalar v : row) {
-          if (!(fuzzypid::detail::is_finite(v) && v > Scalar(0))) return false;
-          t_max = fuzzypid::detail::max(t_max, v);
+          if (!(detail::is_finite(v) && v > Scalar(0))) return false;
+          t_max = detail::max(t_max, v);
         }
-      if (!fuzzypid::detail::is_finite(fuzzypid::detail::max(Scalar(1), r) * t_max)) return false;
+      if (!detail::is_finite(detail::max(Scalar(1), r) * t_max)) return false;
     }
     return true;
   }
@@ -118,7 +123,7 @@ struct RuleTable {
   // (delta = 0), as in GainSchedule. Requires valid().
   [[nodiscard]] Status infer(Scalar x, Scalar y, Workspace& /*ws*/,
                              std::array<Scalar, 3>& delta) const noexcept {
-    if (!fuzzypid::detail::is_finite(x) || !fuzzypid::detail::is_finite(y)) {
+    if (!detail::is_finite(x) || !detail::is_finite(y)) {
       delta = {Scalar(0), Scalar(0), Scalar(0)};
       return Status::NonFiniteInput;
     }
@@ -147,7 +152,7 @@ struct RuleTable {
 
   // w(x, y) = min(1, |x| + |y|), the schedule's ramp.
   static constexpr Scalar ramp(Scalar x, Scalar y) noexcept {
-    const Scalar a = fuzzypid::detail::abs(x) + fuzzypid::detail::abs(y);
+    const Scalar a = detail::abs(x) + detail::abs(y);
     return a < Scalar(1) ? a : Scalar(1);
   }
 
@@ -172,27 +177,28 @@ struct RuleTable {
 
   static constexpr bool centers_valid(const std::array<Scalar, Sets>& c) noexcept {
     for (std::size_t k = 0; k < Sets; ++k) {
-      if (!fuzzypid::detail::is_finite(c[k]) || c[k] != -c[Sets - 1 - k]) return false;
+      if (!detail::is_finite(c[k]) || c[k] != -c[Sets - 1 - k]) return false;
       if (k + 1 < Sets && !(c[k] < c[k + 1])) return false;
     }
     return true;
   }
 
-  // By symmetry, |x| is located among the positive centres c_m .. c_max (m = (Sets - 1) / 2) by
-  // a loop of at most m - 1 comparisons and one division; a negative x takes the mirrored nodes.
-  // Beyond c_max the shoulder holds x with degree 1.
+  // By symmetry, |x| is located among the positive centres c_m .. c_max (m = (Sets - 1) / 2):
+  // k counts the m - 1 inner centres at or below |x| (compares summed, no data-dependent branch),
+  // then one division; a negative x takes the mirrored nodes. Beyond c_max, |x| is clamped to
+  // c_max, where t = (c_max - c_k) / (c_max - c_k) = 1 exactly: the shoulder holds x with degree
+  // 1 and its neighbour with 0.
   static constexpr Axis locate(const std::array<Scalar, Sets>& c, Scalar x) noexcept {
     constexpr std::size_t m = (Sets - 1) / 2;
     const bool negative = x < Scalar(0);
-    const Scalar a = negative ? -x : x;
-    if (!(a < c[Sets - 1]))
-      return negative ? Axis{0, Scalar(1), Scalar(0)} : Axis{Sets - 2, Scalar(0), Scalar(1)};
+    const Scalar a = detail::min(negative ? -x : x, c[Sets - 1]);
     std::size_t k = m;
-    while (k + 2 < Sets && !(a < c[k + 1]))
-      ++k;  // now c[k] <= a < c[k + 1]
+    for (std::size_t q = m + 1; q + 1 < Sets; ++q)
+      k += static_cast<std::size_t>(c[q] <= a);  // now c[k] <= a <= c[k + 1], k <= Sets - 2
     const Scalar t = (a - c[k]) / (c[k + 1] - c[k]);
+    const Scalar s = Scalar(1) - t;
     // Node of -c[k + 1] is Sets - 2 - k, of -c[k] is Sets - 1 - k.
-    return negative ? Axis{Sets - 2 - k, t, Scalar(1) - t} : Axis{k, Scalar(1) - t, t};
+    return {negative ? Sets - 2 - k : k, negative ? t : s, negative ? s : t};
   }
 
   // Weighted average of the four nodes; the weights sum to 1, so no division. Factored per axis,

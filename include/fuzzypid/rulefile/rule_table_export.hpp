@@ -20,6 +20,10 @@
 //     [0, 1] and both factors are exact): one ramp term per output instead of one per distinct
 //     (R - 1) T, which keeps any 7 x 7 table within the reader's 64 terms per variable.
 // Summed: sum_ij mu_i nu_j ((T_ij - 1) + (R - 1) w T_ij) = (R - 1) w rho + (rho - 1) = delta.
+// Even tables read shorter: when T[i][j] = T[6 - i][j] (for all three gains in block 1, for gain
+// g in its ramp rules) the mirrored rules merge as "(e is NB or e is PB) and ...", likewise in
+// ec (block 1 then has disjunction Maximum). Exact: the two sets of a pair never both hold, so
+// the merged rule fires exactly the degree of the one that does.
 //
 // .fis (MATLAB) cannot hold block 2: it has one rule block and rules whose connectives are all
 // `and` or all `or` over distinct inputs, and w(x, y) min(1, |x| + |y|) times the cell's degrees
