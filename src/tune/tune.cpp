@@ -313,9 +313,21 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
 
   // The start, as a controller of the family; it also says which table cells are visited.
-  const ControllerSpec& from = options.init ? *options.init : options.base;
+  // With --init the start must convert exactly; without one the base is only the template of
+  // units, options and rule base (a fuzzy-rules table starts at ones).
   ControllerSpec start_spec;
-  if (!convert(from, options.family, start_spec, error)) return std::nullopt;
+  if (options.init) {
+    if (!convert(*options.init, options.family, start_spec, error)) return std::nullopt;
+  } else if (std::string ignored; !convert(options.base, options.family, start_spec, ignored)) {
+    start_spec = options.base;
+    start_spec.family = options.family;
+    start_spec.tuning.reset();
+    if (options.family == Family::FuzzyRules) {
+      start_spec.supervisor.rule_table = controller::RuleTableSpec{};
+      start_spec.supervisor.rule_file.clear();
+      start_spec.supervisor.rule_model.reset();
+    }
+  }
   const ControllerSpec* start = &start_spec;
   VisitMap visit_map{};
   if (options.family == Family::FuzzyRules && options.table.unvisited == Unvisited::Seed)

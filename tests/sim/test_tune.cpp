@@ -146,7 +146,8 @@ class TuneOnTheRobot : public ::testing::Test {
 };
 
 TEST_F(TuneOnTheRobot, TheSameSeedGivesTheSameFileWithAnyThreadCount) {
-  for (const ctl::Family f : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy}) {
+  for (const ctl::Family f : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy,
+                              ctl::Family::FuzzyRules}) {
     const std::string a = tuned(f, 1, 5);
     EXPECT_EQ(a, tuned(f, 1, 5));
     EXPECT_EQ(a, tuned(f, 2, 5));
@@ -184,6 +185,98 @@ TEST_F(TuneOnTheRobot, TuningLowersTheTrainingCostBelowThePapersControllers) {
     ASSERT_TRUE(r) << error;
     EXPECT_LT(r->cost.total, 0.5 * std::min(paper_pid, paper_fuzzy)) << ctl::to_string(f);
   }
+}
+
+// Staged tuning with a validation split: each stage starts from the last one's result, the budgets
+// add up, the held-back conditions are never trained on, and the file is the same whatever the
+// thread count.
+class StagedTuning : public TuneOnTheRobot {
+ protected:
+  void SetUp() override {
+    TuneOnTheRobot::SetUp();
+    fuzzypid::sim::Condition held;
+    held.name = "held";
+    held.payload_scale = 1.3;
+    held.initial_error_rad = 0.03;
+    conditions_ = training_;
+    conditions_.push_back(held);
+    std::string error;
+    set_ = fuzzypid::sim::ExperimentSet::create(conditions_, {}, error);
+    ASSERT_TRUE(set_) << error;
+  }
+
+  std::optional<tune::Result> staged(unsigned threads) {
+    tune::Options o;
+    o.seed = 3;
+    o.threads = threads;
+    o.population = 20;
+    o.validation = 1;
+    std::string error;
+    auto r = tune::tune_staged(*set_, conditions_, stages_, o, error);
+    EXPECT_TRUE(r) << error;
+    return r;
+  }
+
+  std::vector<fuzzypid::sim::Condition> conditions_;
+  std::optional<fuzzypid::sim::ExperimentSet> set_;
+  std::vector<tune::Stage> stages_ = {{ctl::Family::Pid, 100},
+                                      {ctl::Family::Scheduled, 100},
+                                      {ctl::Family::FuzzyRules, 120}};
+};
+
+TEST_F(StagedTuning, StagesAddUpAndTheResultIsTheLastFamilysAtAnyThreadCount) {
+  auto a = staged(1);
+  auto b = staged(2);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->controller.family, ctl::Family::FuzzyRules);
+  const ctl::Tuning& t = *a->controller.tuning;
+  ASSERT_EQ(t.stages.size(), 3u);
+  EXPECT_EQ(t.budget, 320u);
+  EXPECT_EQ(t.evaluations, t.stages[0].evaluations + t.stages[1].evaluations +
+                               t.stages[2].evaluations);
+  EXPECT_LE(t.evaluations, 320u);
+  EXPECT_EQ(t.validation_conditions, 1u);
+  a->controller.tuning->threads = b->controller.tuning->threads = 0;
+  EXPECT_EQ(cf::to_toml(a->controller), cf::to_toml(b->controller));
+}
+
+TEST_F(StagedTuning, EveryStageStartsWhereTheLastEndedAndNeverEndsAbove) {
+  auto r = staged(2);
+  ASSERT_TRUE(r);
+  const auto& st = r->controller.tuning->stages;
+  // The start is a member of each stage's first generation and conversions are exact: the
+  // training cost of a stage's champion never rises above the last stage's (to rounding).
+  EXPECT_LE(st[1].training_cost, st[0].training_cost * (1 + 1e-9));
+  EXPECT_LE(st[2].training_cost, st[1].training_cost * (1 + 1e-9));
+}
+
+TEST_F(StagedTuning, TheHeldBackConditionsAreScoredNotTrainedOn) {
+  auto r = staged(2);
+  ASSERT_TRUE(r);
+  const tune::Objective o;
+  const std::vector<fuzzypid::sim::Condition> held = {conditions_.back()};
+  const auto& setup = *set_;
+  const double validation =
+      tune::evaluate(setup.of(2), held, r->controller, o, 1).total;
+  EXPECT_EQ(validation, r->controller.tuning->validation_cost);
+  const double training = tune::evaluate(*experiment_, training_, r->controller, o, 1).total;
+  EXPECT_EQ(training + r->penalty, r->controller.tuning->training_cost);
+  EXPECT_NE(validation, training);
+}
+
+TEST_F(StagedTuning, AStartFromAFamilyWithoutAnExactFormIsRefused) {
+  tune::Options o;
+  o.population = 20;
+  o.init = ctl::paper_fuzzy();
+  o.family = ctl::Family::Scheduled;
+  o.budget = 60;
+  std::string error;
+  EXPECT_FALSE(tune::tune(*set_, conditions_, o, error));
+  EXPECT_NE(error.find("no exact"), std::string::npos);
+  o.validation = conditions_.size();
+  o.init.reset();
+  EXPECT_FALSE(tune::tune(*set_, conditions_, o, error));
+  EXPECT_NE(error.find("no training conditions"), std::string::npos);
 }
 
 // Each training condition runs on its own robot: a set of two arms tunes, and its cost is the

@@ -1,0 +1,266 @@
+// The tuner's vocabulary (fuzzypid/tune/parameters.hpp): every family's parameters land on their
+// fields and come back, the exact conversions PID -> schedule -> rule table reproduce the
+// controller's commands, the table's symmetry and held cells are what they say, and the
+// regulariser costs exactly what it says.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/tune/parameters.hpp"
+
+namespace {
+
+namespace ctl = fuzzypid::controller;
+namespace tune = fuzzypid::tune;
+
+constexpr std::size_t kSets = ctl::RuleTableSpec::kSets;
+
+ctl::ControllerSpec schedule() {
+  ctl::ControllerSpec s = ctl::paper_pid();
+  s.family = ctl::Family::Scheduled;
+  s.gains = {40.0, 0.02, 300.0};
+  s.supervisor.error_scale = 12.0;
+  s.supervisor.error_rate_scale = 0.7;
+  s.supervisor.output_scale = {0.3, 4.0, 1.6};
+  return s;
+}
+
+ctl::ControllerSpec converted(const ctl::ControllerSpec& from, ctl::Family to) {
+  ctl::ControllerSpec out;
+  std::string error;
+  EXPECT_TRUE(tune::convert(from, to, out, error)) << error;
+  return out;
+}
+
+// Commands of two controllers on the same seeded random inputs, tick after tick (their integrals
+// and filters evolve together as long as the commands agree); returns the largest difference
+// relative to the command's size.
+double largest_relative_difference(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
+  ctl::Vector limit;
+  limit.fill(std::numeric_limits<double>::infinity());
+  std::string error;
+  auto ca = ctl::JointControllers::create(a, limit, error);
+  auto cb = ctl::JointControllers::create(b, limit, error);
+  EXPECT_TRUE(ca && cb) << error;
+  if (!ca || !cb) return 1e9;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  double worst = 0.0;
+  for (int tick = 0; tick < 2000; ++tick) {
+    ctl::Input in;
+    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      in.desired_position_rad[j] = u(rng);
+      in.measured_position_rad[j] = u(rng);
+      in.desired_velocity_rad_s[j] = 5 * u(rng);
+      in.measured_velocity_rad_s[j] = 5 * u(rng);
+    }
+    const ctl::Command x = ca->step(in, 0.05);
+    const ctl::Command y = cb->step(in, 0.05);
+    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      const double scale = std::max(1.0, std::fabs(x.torque_nm[j]));
+      worst = std::max(worst, std::fabs(x.torque_nm[j] - y.torque_nm[j]) / scale);
+    }
+  }
+  return worst;
+}
+
+TEST(Convert, APidAsAScheduleGivesTheSameCommandsBitForBit) {
+  ctl::ControllerSpec pid = ctl::paper_pid();
+  pid.gains = {40.0, 0.02, 300.0};
+  EXPECT_EQ(largest_relative_difference(pid, converted(pid, ctl::Family::Scheduled)), 0.0);
+}
+
+TEST(Convert, AScheduleAsARuleTableGivesTheSameCommandsToRounding) {
+  const ctl::ControllerSpec s = schedule();
+  const ctl::ControllerSpec t = converted(s, ctl::Family::FuzzyRules);
+  EXPECT_EQ(t.family, ctl::Family::FuzzyRules);
+  EXPECT_EQ(t.supervisor.output_scale, s.supervisor.output_scale);
+  // K0 + K0 ((R - 1) w) against K0 + (K0 (R - 1)) w: a few ulp of the gains.
+  EXPECT_LT(largest_relative_difference(s, t), 1e-13);
+  // and not by accident: one changed cell is seen
+  ctl::ControllerSpec bumped = t;
+  bumped.supervisor.rule_table.ratio[0][kSets / 2][kSets / 2] = 1.01;
+  EXPECT_GT(largest_relative_difference(s, bumped), 1e-6);
+}
+
+TEST(Convert, APidAsARuleTableIsThePid) {
+  ctl::ControllerSpec pid = ctl::paper_pid();
+  pid.gains = {40.0, 0.02, 300.0};
+  EXPECT_LT(largest_relative_difference(pid, converted(pid, ctl::Family::FuzzyRules)), 1e-15);
+}
+
+TEST(Convert, ConversionsWithoutAnExactFormAreRefused) {
+  ctl::ControllerSpec out;
+  std::string error;
+  EXPECT_FALSE(tune::convert(ctl::paper_fuzzy(), ctl::Family::Scheduled, out, error));
+  EXPECT_NE(error.find("no exact"), std::string::npos);
+  EXPECT_FALSE(tune::convert(schedule(), ctl::Family::Pid, out, error));
+  EXPECT_FALSE(tune::convert(ctl::paper_fuzzy(), ctl::Family::FuzzyRules, out, error));
+  EXPECT_FALSE(
+      tune::convert(converted(schedule(), ctl::Family::FuzzyRules), ctl::Family::Scheduled, out,
+                    error));
+}
+
+tune::VisitMap all_visited() {
+  tune::VisitMap v{};
+  for (auto& row : v)
+    for (double& x : row)
+      x = 1.0 / (kSets * kSets);
+  return v;
+}
+
+tune::ParameterSpace space(tune::Symmetry symmetry, bool partition,
+                           const tune::VisitMap& visits = all_visited()) {
+  tune::TableOptions o;
+  o.symmetry = symmetry;
+  o.partition = partition;
+  std::string error;
+  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules,
+                                        converted(schedule(), ctl::Family::FuzzyRules), o,
+                                        &visits, error);
+  EXPECT_TRUE(p) << error;
+  return *p;
+}
+
+std::vector<double> random_point(const tune::ParameterSpace& p, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<double> x;
+  for (const auto& b : p.box())
+    x.push_back(std::uniform_real_distribution<double>(b.log10_min, b.log10_max)(rng));
+  return x;
+}
+
+TEST(ParameterSpace, EachFamilySearchesItsNamedParameters) {
+  EXPECT_EQ(tune::default_box(ctl::Family::Pid).size(), 3u);
+  EXPECT_EQ(tune::default_box(ctl::Family::Scheduled).size(), 8u);
+  EXPECT_EQ(tune::default_box(ctl::Family::Fuzzy)[5].name, "sp");
+  EXPECT_EQ(tune::default_box(ctl::Family::Scheduled)[5].name, "rp");
+  EXPECT_EQ(space(tune::Symmetry::Even, false).box().size(), 8u + 3 * 16);
+  EXPECT_EQ(space(tune::Symmetry::Odd, false).box().size(), 8u + 3 * 24);
+  EXPECT_EQ(space(tune::Symmetry::None, true).box().size(), 8u + 4 + 3 * 49);
+  EXPECT_EQ(space(tune::Symmetry::None, false).box()[8].name, "kp[0,0]");
+}
+
+TEST(ParameterSpace, APointBecomesAControllerAndComesBack) {
+  for (auto sym : {tune::Symmetry::Even, tune::Symmetry::Odd, tune::Symmetry::None})
+    for (bool partition : {false, true}) {
+      const tune::ParameterSpace p = space(sym, partition);
+      for (unsigned seed = 1; seed <= 20; ++seed) {
+        const std::vector<double> x = random_point(p, seed);
+        const ctl::ControllerSpec s = p.to_spec(x);
+        EXPECT_EQ(ctl::validate(s), "");
+        const std::vector<double> back = p.from_spec(s);
+        ASSERT_EQ(back.size(), x.size());
+        for (std::size_t k = 0; k < x.size(); ++k)
+          EXPECT_NEAR(back[k], x[k], 1e-12) << p.box()[k].name;
+      }
+    }
+}
+
+TEST(ParameterSpace, TheTableHasTheSymmetryItWasAskedFor) {
+  const ctl::ControllerSpec even = space(tune::Symmetry::Even, false).to_spec(
+      random_point(space(tune::Symmetry::Even, false), 3));
+  const ctl::ControllerSpec odd =
+      space(tune::Symmetry::Odd, false).to_spec(random_point(space(tune::Symmetry::Odd, false), 3));
+  const ctl::ControllerSpec none = space(tune::Symmetry::None, false)
+                                       .to_spec(random_point(space(tune::Symmetry::None, false), 3));
+  bool none_is_even = true;
+  for (std::size_t g = 0; g < 3; ++g)
+    for (std::size_t i = 0; i < kSets; ++i)
+      for (std::size_t j = 0; j < kSets; ++j) {
+        const auto& e = even.supervisor.rule_table.ratio[g];
+        EXPECT_EQ(e[i][j], e[kSets - 1 - i][j]);
+        EXPECT_EQ(e[i][j], e[i][kSets - 1 - j]);
+        const auto& o = odd.supervisor.rule_table.ratio[g];
+        EXPECT_NEAR(std::log10(o[i][j]), -std::log10(o[kSets - 1 - i][kSets - 1 - j]), 1e-12);
+        const auto& n = none.supervisor.rule_table.ratio[g];
+        if (n[i][j] != n[kSets - 1 - i][j]) none_is_even = false;
+      }
+  EXPECT_EQ(odd.supervisor.rule_table.ratio[1][kSets / 2][kSets / 2], 1.0);
+  EXPECT_FALSE(none_is_even);
+}
+
+TEST(ParameterSpace, TheSearchedPartitionStaysOrderedAndSymmetric) {
+  const tune::ParameterSpace p = space(tune::Symmetry::Even, true);
+  for (unsigned seed = 1; seed <= 50; ++seed) {
+    const ctl::ControllerSpec s = p.to_spec(random_point(p, seed));
+    EXPECT_EQ(ctl::validate(s.supervisor.rule_table), "");
+    EXPECT_EQ(s.supervisor.rule_table.error_centres.back(), 1.0);  // the outer centre is kept
+  }
+}
+
+TEST(ParameterSpace, CellsTrainingNeverVisitsKeepTheStartsValues) {
+  tune::VisitMap v{};
+  for (std::size_t i = 2; i <= 4; ++i)
+    for (std::size_t j = 2; j <= 4; ++j)
+      v[i][j] = 1.0 / 9.0;  // only the nine centre nodes fire
+  ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
+  start.supervisor.rule_table.ratio[2][0][0] = 3.0;  // an unvisited corner the start sets
+  tune::TableOptions o;
+  o.symmetry = tune::Symmetry::None;
+  std::string error;
+  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, &v, error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->box().size(), 8u + 3 * 9);
+  EXPECT_EQ(p->held_cells(), 3u * 40);
+  const ctl::ControllerSpec s = p->to_spec(random_point(*p, 9));
+  EXPECT_EQ(s.supervisor.rule_table.ratio[2][0][0], 3.0);
+  EXPECT_EQ(s.supervisor.rule_table.ratio[0][6][1], 1.0);
+  EXPECT_NE(s.supervisor.rule_table.ratio[0][3][3], 1.0);
+  // free: every cell searched
+  o.unvisited = tune::Unvisited::Free;
+  auto q = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, &v, error);
+  ASSERT_TRUE(q) << error;
+  EXPECT_EQ(q->box().size(), 8u + 3 * 49);
+  EXPECT_EQ(q->held_cells(), 0u);
+}
+
+TEST(ParameterSpace, SmoothnessCostsTheSquaredStepsBetweenNeighbours) {
+  tune::TableOptions o;
+  o.symmetry = tune::Symmetry::None;
+  o.unvisited = tune::Unvisited::Free;
+  o.smoothness = 2.0;
+  std::string error;
+  const ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
+  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->penalty(start), 0.0);  // a flat table
+  ctl::ControllerSpec bumped = start;
+  bumped.supervisor.rule_table.ratio[1][3][2] = 100.0;  // log10 step of 2 to four neighbours
+  EXPECT_NEAR(p->penalty(bumped), 2.0 * 4 * 4.0, 1e-12);
+  bumped.supervisor.rule_table.ratio[1][0][0] = 0.1;  // a corner: two neighbours, step 1
+  EXPECT_NEAR(p->penalty(bumped), 2.0 * (16.0 + 2.0), 1e-12);
+}
+
+TEST(ParameterSpace, MonotoneCostsOnlyStepsAgainstTheSchedulesDirection) {
+  tune::TableOptions o;
+  o.symmetry = tune::Symmetry::None;
+  o.unvisited = tune::Unvisited::Free;
+  o.monotone = 1.0;
+  std::string error;
+  const ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
+  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  ASSERT_TRUE(p) << error;
+  // The schedule itself moves each gain monotonically outwards: no cost.
+  EXPECT_EQ(p->penalty(start), 0.0);
+  // Rp = 0.3 < 1: Kp falls outwards. Lowering the outermost corner keeps it falling: no cost.
+  ctl::ControllerSpec lower = start;
+  lower.supervisor.rule_table.ratio[0][6][6] = 0.5;
+  EXPECT_EQ(p->penalty(lower), 0.0);
+  // Lowering an edge cell makes Kp rise again towards its outer neighbour along the edge: the
+  // squared log10 step, once: (log10(0.3) - log10(0.3 x 0.5))^2 ...
+  ctl::ControllerSpec dip = start;
+  dip.supervisor.rule_table.ratio[0][6][3] = 0.5;
+  EXPECT_NEAR(p->penalty(dip), 2 * std::pow(std::log10(2.0), 2), 1e-12);  // ... on both sides
+  // Raising Kp further out costs.
+  ctl::ControllerSpec raise = start;
+  raise.supervisor.rule_table.ratio[0][6][6] = 10.0;
+  EXPECT_GT(p->penalty(raise), 0.1);
+}
+
+}  // namespace
