@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The main job: builds sim_ab into build/ and runs the five-way A/B without re-tuning: the five
-# controller files of controllers/ (the paper's fixed and fuzzy PID; a fixed, a gain-scheduled
-# and a fuzzy PID tuned on tuning/robust.toml with the same optimiser and budget) on every
-# condition of tuning/robust.toml (training, held-out and stress sets). Prints the five-way table
+# The main job: builds sim_ab into build/ and runs the six-way A/B without re-tuning: the six
+# controller files of controllers/ (the paper's fixed and fuzzy PID; a fixed, a gain-scheduled,
+# a fuzzy PID with the paper's tables and a tuned rule table, all tuned on tuning/robust.toml
+# with the same optimiser and total budget) on every
+# condition of tuning/robust.toml (training, held-out and stress sets). Prints the six-way table
 # (docs/tuning.md), writes out/ab/{trajectory,metrics,endeffector,conditions}.csv,
 # out/ab/settings.txt, the figures out/ab/*.png, and the robustness sweeps out/sweep-payload/ and
 # out/sweep-torque/ with their plots. Arguments replace the default run: sim_ab with them, output
@@ -14,7 +15,7 @@ bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-}
 cmake --build build -j "$(nproc)" --target sim_ab
 controllers=()
-for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_fuzzy; do
+for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_fuzzy tuned_fuzzy_rules; do
   controllers+=(--controller "controllers/${name}.toml")
 done
 if [ $# -gt 0 ]; then

@@ -1,35 +1,52 @@
 #!/usr/bin/env bash
-# Regenerates the tuned controller files and the seed study (docs/tuning.md):
-#   controllers/tuned_{pid,scheduled,fuzzy}.toml   seed 1, the default budget (16,000 evaluations)
-#   out/seeds/<family>_seed<S>.toml                seeds 1..SEEDS (default 5) at the same budget
-# on the training set of tuning/robust.toml, then evaluates every seed's file on all sets with
-# sim_ab and prints the per-seed held-out ratios (scripts/seed_study.py).
-#   BUDGET=N   evaluations per run (default 16000)   SEEDS=N   seeds per family (default 5)
-#   THREADS=N  threads per run (default: all cores)  SKIP_SEEDS=1   only the shipped files
+# Regenerates the tuned controller files and the seed study (docs/tuning.md). Every family gets the
+# same total budget of objective evaluations on the training set of tuning/robust.toml, whose last
+# four conditions are held back for validation (--validation 4):
+#   pid, scheduled, fuzzy   one run of BUDGET evaluations
+#   fuzzy-rules             staged: pid BUDGET/16 -> scheduled 7 BUDGET/16 -> fuzzy-rules BUDGET/2,
+#                           each stage started from the last one's result
+# Outputs:
+#   controllers/tuned_{pid,scheduled,fuzzy,fuzzy_rules}.toml   seed 1
+#   out/seeds/<family>_seed<S>.toml                            seeds 1..SEEDS (default 5)
+# then every seed's file on all sets with sim_ab, summarised by scripts/seed_study.py.
+#   BUDGET=N   evaluations per controller (default 64000)   SEEDS=N   seeds (default 5)
+#   THREADS=N  threads per run (default: all cores)          SKIP_SEEDS=1   only seed 1
+#   RULES_ARGS="..."  the fuzzy-rules stage's regulariser (default: the documented defaults)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-budget="${BUDGET:-16000}"
+budget="${BUDGET:-64000}"
 seeds="${SEEDS:-5}"
 threads="${THREADS:-$(nproc)}"
+rules_args="${RULES_ARGS:-}"
 bash scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$(nproc)" --target fuzzypid_cli sim_ab
-# Each run prints its evaluations, wall time and evaluations per second.
-for family in pid scheduled fuzzy; do
-  build/bin/fuzzypid tune --family "${family}" --conditions tuning/robust.toml --set training \
-    --budget "${budget}" --seed 1 --threads "${threads}" --out "controllers/tuned_${family}.toml"
-done
-if [ "${SKIP_SEEDS:-0}" = 1 ]; then exit 0; fi
+stages="pid:$((budget / 16)),scheduled:$((budget * 7 / 16)),fuzzy-rules:$((budget - budget / 16 - budget * 7 / 16))"
+# tune_one FAMILY SEED OUT: each run prints its stages, evaluations, wall time and rate.
+tune_one() {
+  local common=(--conditions tuning/robust.toml --set training --validation 4 --seed "$2"
+                --threads "${threads}" --quiet --out "$3")
+  if [ "$1" = fuzzy_rules ]; then
+    # shellcheck disable=SC2086
+    build/bin/fuzzypid tune --stages "${stages}" ${rules_args} "${common[@]}"
+  else
+    build/bin/fuzzypid tune --family "$1" --budget "${budget}" "${common[@]}"
+  fi
+}
 mkdir -p out/seeds
-for family in pid scheduled fuzzy; do
-  for seed in $(seq 1 "${seeds}"); do
-    build/bin/fuzzypid tune --family "${family}" --conditions tuning/robust.toml --set training \
-      --budget "${budget}" --seed "${seed}" --threads "${threads}" --quiet \
-      --out "out/seeds/${family}_seed${seed}.toml"
+last="${seeds}"
+if [ "${SKIP_SEEDS:-0}" = 1 ]; then last=1; fi
+for seed in $(seq 1 "${last}"); do
+  for family in pid scheduled fuzzy fuzzy_rules; do
+    echo "== ${family} seed ${seed}"
+    tune_one "${family}" "${seed}" "out/seeds/${family}_seed${seed}.toml"
   done
 done
-args=()
+for family in pid scheduled fuzzy fuzzy_rules; do
+  cp "out/seeds/${family}_seed1.toml" "controllers/tuned_${family}.toml"
+done
+args=(--controller controllers/paper_pid.toml --controller controllers/paper_fuzzy.toml)
 for f in out/seeds/*_seed*.toml; do args+=(--controller "$f"); done
 build/bin/sim_ab --quiet --conditions tuning/robust.toml "${args[@]}" --out out/seeds/eval
 /usr/bin/python3 scripts/seed_study.py out/seeds/eval
