@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ using fuzzy::Hedge;
 using fuzzy::SNorm;
 using fuzzy::TNorm;
 using fuzzy::Token;
-using Cap = Model::Capacity;
+using Cap = Builder::Capacity;
 
 struct VariableText {
   int line = 0;  // the [InputN] / [OutputN] header
@@ -111,13 +112,13 @@ class Scanner {
 
 class FisParser {
  public:
-  FisParser(const std::string& source, Model& model, LoadError& error, const LoadOptions& options)
+  FisParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
     error_ = LoadError{source, 0, {}};
   }
 
   bool parse(std::string_view text) {
-    model_ = Model{};
+    model_ = Builder{};
     enum class Section { None, System, Input, Output, Rules } section = Section::None;
     VariableText* var = nullptr;
     for (const text::Line& line : text::split_lines(text)) {
@@ -621,7 +622,7 @@ class FisParser {
     bool disjunction = false;
   };
 
-  Model& model_;
+  Builder& model_;
   LoadError& error_;
   const LoadOptions& options_;
   int line_ = 0;
@@ -706,7 +707,9 @@ bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<dou
 
 bool parse_fis(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FisParser(source, model, error, options).parse(text::without_bom(text));
+  const auto builder = std::make_unique<Builder>();
+  return FisParser(source, *builder, error, options).parse(text::without_bom(text)) &&
+         size_to_file(*builder, model, error);
 }
 
 bool to_fis(const Model& m, std::string& out, std::string& error) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,19 +21,19 @@ namespace {
 
 using fuzzy::Defuzzifier;
 using fuzzy::TNorm;
-using Cap = Model::Capacity;
+using Cap = Builder::Capacity;
 
 enum class Section { None, Engine, Input, Output, RuleBlock };
 
 class FllParser {
  public:
-  FllParser(const std::string& source, Model& model, LoadError& error, const LoadOptions& options)
+  FllParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
     error_ = LoadError{source, 0, {}};
   }
 
   bool parse(std::string_view text) {
-    model_ = Model{};
+    model_ = Builder{};
     model_.num_blocks = 0;
     for (const text::Line& line : text::split_lines(text)) {
       line_ = line.number;
@@ -213,7 +214,7 @@ class FllParser {
     return fail("unknown OutputVariable property '" + std::string(key) + "'");
   }
 
-  bool defuzzifier(std::string_view value, fuzzy::OutputSpec<double>& out) {
+  bool defuzzifier(std::string_view value, fuzzy::OutputSpec<double, Cap>& out) {
     const auto words = text::split_words(value);
     if (words.empty()) return fail("defuzzifier needs a name");
     if (words[0] == "none") return true;
@@ -427,7 +428,7 @@ class FllParser {
     return check_model(model_, lines_, error_);
   }
 
-  Model& model_;
+  Builder& model_;
   LoadError& error_;
   const LoadOptions& options_;
   Section section_ = Section::None;
@@ -445,7 +446,9 @@ class FllParser {
 
 bool parse_fll(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FllParser(source, model, error, options).parse(text::without_bom(text));
+  const auto builder = std::make_unique<Builder>();
+  return FllParser(source, *builder, error, options).parse(text::without_bom(text)) &&
+         size_to_file(*builder, model, error);
 }
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {

@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_model.hpp"
@@ -292,14 +293,16 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
         if (sugeno) {
-          Scalar z = term.coefficients[0];
+          // Membership terms of a sized model hold no coefficients.
+          Scalar z = Scalar(0);
           if (term.kind == OutputTermKind::Membership) {
             z = engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points);
           } else if (term.kind == OutputTermKind::Linear) {
-            z = Scalar(0);
             for (std::size_t i = 0; i < model.num_inputs; ++i)
               z += term.coefficients[i] * ws.input[i];
             z += term.coefficients[model.num_inputs];
+          } else {
+            z = term.coefficients[0];
           }
           sum += degree * z;
           weights += degree;
@@ -356,22 +359,29 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   return status;
 }
 
-// A model with its own fixed-size workspace. Large for DefaultCapacity (docs/rule_files.md):
-// create it once, e.g. on the heap at start-up.
+// A model with its own workspace. For a fixed capacity the workspace is fixed too and nothing
+// allocates (large for FixedCapacity, docs/rule_files.md: create it once, e.g. on the heap at
+// start-up); for a sized capacity (DefaultCapacity) set_model copies the model and sizes the
+// workspace to it, which allocates, while evaluate() does not.
 template <class Scalar, class Cap = DefaultCapacity>
 class Engine {
  public:
   using Model = EngineModel<Scalar, Cap>;
+  using Workspace =
+      std::conditional_t<Cap::sized, DynamicWorkspace<Scalar>, EngineWorkspace<Scalar, Cap>>;
 
   Engine() noexcept = default;
   // An invalid model leaves the engine unconfigured: evaluate() returns InvalidConfig.
-  explicit Engine(const Model& model) noexcept { (void)set_model(model); }
+  explicit Engine(const Model& model) noexcept(!Cap::sized) { (void)set_model(model); }
 
   // Also forgets the previous outputs (lock_previous).
-  ModelError set_model(const Model& model) noexcept {
+  ModelError set_model(const Model& model) noexcept(!Cap::sized) {
     const ModelError error = model.validate();
     if (!error) model_ = model;
-    ws_.previous = nan_array<Scalar, Cap::outputs>();
+    if constexpr (Cap::sized)
+      ws_ = error ? Workspace() : Workspace(model_);
+    else
+      ws_.previous = nan_array<Scalar, Cap::outputs>();
     configured_ = !error;
     return error;
   }
@@ -387,11 +397,11 @@ class Engine {
   std::size_t num_outputs() const noexcept { return model_.num_outputs; }
   // Firing strength of rule r in the last evaluation (weight included).
   Scalar rule_strength(std::size_t r) const noexcept { return ws_.strength[r]; }
-  const EngineWorkspace<Scalar, Cap>& workspace() const noexcept { return ws_; }
+  const Workspace& workspace() const noexcept { return ws_; }
 
  private:
   Model model_{};
-  EngineWorkspace<Scalar, Cap> ws_{};
+  Workspace ws_{};
   bool configured_ = false;
 };
 
