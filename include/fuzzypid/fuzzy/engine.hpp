@@ -252,7 +252,8 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   for (std::size_t i = 0; i < model.num_inputs; ++i)
     if (!detail::is_finite(inputs[i])) return Status::NonFiniteInput;
 
-  const Scalar* points = model.points.data();
+  // No pool when no term is Discrete (validate: a Discrete term lies within num_points).
+  const Scalar* points = model.num_points > 0 ? model.points.data() : nullptr;
   for (std::size_t i = 0; i < model.num_inputs; ++i) {
     const auto& in = model.inputs[i];
     const Scalar x = in.lock_range ? detail::clamp(inputs[i], in.min, in.max) : inputs[i];

@@ -135,7 +135,8 @@ template <class Scalar, class Cap = DefaultCapacity>
 struct OutputTerm {
   OutputTermKind kind = OutputTermKind::Membership;
   Term<Scalar> membership{};
-  // Sized models: num_inputs + 1 for Constant and Linear terms, none for Membership terms.
+  // Sized models hold what the kind reads: num_inputs + 1 for Linear, 1 for Constant, none for
+  // Membership terms.
   typename Cap::template Array<Scalar, Cap::inputs + 1> coefficients{};
 };
 
@@ -325,6 +326,13 @@ struct EngineModel {
     return true;
   }
 
+  // The coefficients an output term of `kind` reads.
+  std::size_t coefficients_of(OutputTermKind kind) const noexcept {
+    return kind == OutputTermKind::Linear     ? num_inputs + 1
+           : kind == OutputTermKind::Constant ? 1
+                                              : 0;
+  }
+
   // True when every array holds the counts it is read with (always, for a fixed capacity within
   // its limits; a sized model copied by copy_model()).
   bool storage_holds_counts() const noexcept {
@@ -340,9 +348,7 @@ struct EngineModel {
       const auto& out = outputs[o];
       if (out.terms.size() < out.num_terms || out.term_names.size() < out.num_terms) return false;
       for (std::size_t t = 0; t < out.num_terms; ++t)
-        if (out.terms[t].kind != OutputTermKind::Membership &&
-            out.terms[t].coefficients.size() < num_inputs + 1)
-          return false;
+        if (out.terms[t].coefficients.size() < coefficients_of(out.terms[t].kind)) return false;
     }
     return true;
   }
@@ -441,7 +447,7 @@ struct EngineModel {
           return {"the exact centroid needs piecewise-linear terms of height 1", o,
                   ModelError::Where::Output};
         if (!membership)
-          for (std::size_t c = 0; c <= num_inputs; ++c)
+          for (std::size_t c = 0; c < coefficients_of(term.kind); ++c)
             if (!detail::is_finite(term.coefficients[c]))
               return {"non-finite output coefficient", o, ModelError::Where::Output};
       }
@@ -581,7 +587,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
       auto& tb = b.terms[t];
       tb.kind = ta.kind;
       tb.membership = ta.membership;
-      const std::size_t n = ta.kind == OutputTermKind::Membership ? 0 : from.num_inputs + 1;
+      const std::size_t n = from.coefficients_of(ta.kind);
       if (!reserve_exact(tb.coefficients, n)) return false;
       for (std::size_t c = 0; c < n; ++c)
         tb.coefficients[c] = ta.coefficients[c];
