@@ -123,6 +123,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
     const std::string v = "  m.inputs[" + num(i) + "]";
     h += v + ".min = " + lit(in.min) + ";\n" + v + ".max = " + lit(in.max) + ";\n";
     h += v + ".lock_range = " + b(in.lock_range) + ";\n";
+    h += v + ".enabled = " + b(in.enabled) + ";\n";
     h += v + ".num_terms = " + num(in.num_terms) + ";\n";
     for (std::size_t t = 0; t < in.num_terms; ++t)
       h += v + ".terms[" + num(t) + "] = " + term(in.terms[t]) + ";\n";
@@ -133,6 +134,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
     h += v + ".min = " + lit(out.min) + ";\n" + v + ".max = " + lit(out.max) + ";\n";
     h += v + ".lock_range = " + b(out.lock_range) + ";\n";
     h += v + ".lock_previous = " + b(out.lock_previous) + ";\n";
+    h += v + ".enabled = " + b(out.enabled) + ";\n";
     h += v + ".has_aggregation = " + b(out.has_aggregation) + ";\n";
     h += v + ".default_value = " + lit(out.default_value) + ";\n";
     h += v + ".defuzzifier = " + enum_lit("Defuzzifier", out.defuzzifier) + ";\n";

@@ -519,6 +519,15 @@ bool parse_fcl(std::string_view text, const std::string& source, Model& model, L
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
+  for (std::size_t i = 0; i < m.num_inputs + m.num_outputs; ++i) {
+    const bool input = i < m.num_inputs;
+    if (input ? m.inputs[i].enabled : m.outputs[i - m.num_inputs].enabled) continue;
+    error =
+        std::string(input ? "input '" : "output '") +
+        std::string(text::name_of(input ? m.inputs[i].name : m.outputs[i - m.num_inputs].name)) +
+        "' is disabled, which .fcl cannot express";
+    return false;
+  }
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   const auto range = [](double lo, double hi) {

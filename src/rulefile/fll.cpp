@@ -175,9 +175,7 @@ class FllParser {
     auto& in = model_.inputs[input ? model_.num_inputs - 1 : 0];
     auto& out = model_.outputs[input ? 0 : model_.num_outputs - 1];
     if (key == "enabled") {
-      bool enabled = true;
-      if (!boolean(value, enabled)) return false;
-      return enabled ? true : fail("disabled variables (enabled: false) are not supported");
+      return boolean(value, input ? in.enabled : out.enabled);
     }
     if (key == "range") {
       const auto words = text::split_words(value);
@@ -458,7 +456,8 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    s += "InputVariable: " + names.inputs[i] + "\n  enabled: true\n";
+    s += "InputVariable: " + names.inputs[i] + "\n  enabled: " + (in.enabled ? "true" : "false") +
+         "\n";
     s += "  range: " + format_number(in.min) + " " + format_number(in.max) + "\n";
     s += std::string("  lock-range: ") + (in.lock_range ? "true" : "false") + "\n";
     for (std::size_t t = 0; t < in.num_terms; ++t) {
@@ -474,7 +473,8 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];
     const bool sugeno = fuzzy::is_sugeno(v.defuzzifier);
-    s += "OutputVariable: " + names.outputs[o] + "\n  enabled: true\n";
+    s += "OutputVariable: " + names.outputs[o] + "\n  enabled: " + (v.enabled ? "true" : "false") +
+         "\n";
     s += "  range: " + format_number(v.min) + " " + format_number(v.max) + "\n";
     s += std::string("  lock-range: ") + (v.lock_range ? "true" : "false") + "\n";
     s += std::string("  aggregation: ") +

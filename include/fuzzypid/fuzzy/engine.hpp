@@ -93,7 +93,10 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
       ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
                                                       : apply(block.disjunction, a, b);
     } else {
-      ws.stack[sp++] = proposition(ws, tok);
+      const bool enabled = tok.kind == Token::Kind::OutputProposition
+                               ? model.outputs[tok.input].enabled
+                               : model.inputs[tok.input].enabled;
+      ws.stack[sp++] = enabled ? proposition(ws, tok) : Scalar(0);
     }
   }
   return rule.weight * ws.stack[0];
@@ -107,8 +110,9 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
   Scalar degree = ws.strength[r];
   for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
     const Conclusion& c = model.conclusions[rule.first_conclusion + k];
-    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
     const auto& out = model.outputs[c.output];
+    if (!out.enabled) continue;
+    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
     Scalar& d = ws.degree[c.output * ws.stride + c.term];
     d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
   }
@@ -257,7 +261,8 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   for (std::size_t i = 0; i < model.num_inputs; ++i) {
     const auto& in = model.inputs[i];
     const Scalar x = in.lock_range ? detail::clamp(inputs[i], in.min, in.max) : inputs[i];
-    ws.input[i] = x;
+    ws.input[i] = x;  // Linear terms read disabled inputs too, as fuzzylite
+    if (!in.enabled) continue;
     for (std::size_t t = 0; t < in.num_terms; ++t)
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
@@ -273,6 +278,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   Status status = Status::Ok;
   for (std::size_t o = 0; o < model.num_outputs; ++o) {
     const OutputSpec<Scalar, Cap>& out = model.outputs[o];
+    if (!out.enabled) continue;  // 0, written above
     const bool sugeno = is_sugeno(out.defuzzifier);
     const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
@@ -289,6 +295,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       Scalar degree = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
+        if (!model.outputs[c.output].enabled) continue;
         degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
         if (c.output != o) continue;
         fired = true;

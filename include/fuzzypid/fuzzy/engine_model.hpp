@@ -119,7 +119,10 @@ struct InputSpec {
   Name name{};
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
-  bool lock_range = false;    // clamp the input into [min, max] before fuzzifying
+  bool lock_range = false;  // clamp the input into [min, max] before fuzzifying
+  // false: a disabled input (fuzzylite's `enabled: false`): every proposition on it has degree 0
+  // (hedges and `any` included), and its value is not read.
+  bool enabled = true;
   std::size_t num_terms = 0;  // 0 allowed: an input no rule uses
   typename Cap::template Array<Term<Scalar>, Cap::terms> terms{};
   typename Cap::template Array<Name, Cap::terms> term_names{};
@@ -146,6 +149,10 @@ struct OutputSpec {
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
   bool lock_range = false;  // clamp the crisp output into [min, max]
+  // false: a disabled output (fuzzylite's `enabled: false`): conclusions on it are skipped (their
+  // hedges do not modify the rule's running degree), propositions on it have degree 0, and its
+  // value is 0 without a status (fuzzylite leaves it unchanged: NaN from the start).
+  bool enabled = true;
   // When no rule concluded on the output, keep the last finite value of this workspace
   // (fuzzylite's lock-previous, FCL's DEFAULT := NC) instead of the default.
   bool lock_previous = false;
@@ -558,6 +565,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     b.min = a.min;
     b.max = a.max;
     b.lock_range = a.lock_range;
+    b.enabled = a.enabled;
     b.num_terms = a.num_terms;
     for (std::size_t t = 0; t < a.num_terms; ++t) {
       b.terms[t] = a.terms[t];
@@ -575,6 +583,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     b.max = a.max;
     b.lock_range = a.lock_range;
     b.lock_previous = a.lock_previous;
+    b.enabled = a.enabled;
     b.has_aggregation = a.has_aggregation;
     b.default_value = a.default_value;
     b.defuzzifier = a.defuzzifier;
