@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "export_rule_base.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 
 namespace fuzzypid::codegen {
@@ -156,6 +157,9 @@ std::string check_float_range(const ControllerSpec& spec) {
                                  {"gain_max ki", fc.gain_max.ki},
                                  {"gain_max kd", fc.gain_max.kd}});
   }
+  if (spec.supervisor.rule_model != nullptr)
+    if (std::string bad = check_rule_base_float_range(*spec.supervisor.rule_model); !bad.empty())
+      return bad;
   for (const auto& [name, v] : values) {
     if (std::isnan(v) || (std::isfinite(v) && std::fabs(v) > static_cast<double>(FLT_MAX))) {
       char buf[160];
@@ -194,7 +198,11 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
         "(kGravityFeedforward).\n";
   h += "#pragma once\n\n#include <limits>\n\n";
   h += "#include \"fuzzypid/pid/pid.hpp\"\n";
-  if (spec.family == Family::Fuzzy)
+  const bool rule_file = spec.family == Family::Fuzzy && spec.supervisor.rule_model != nullptr;
+  if (rule_file)
+    h += "#include <array>\n\n#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
+         "#include \"fuzzypid/fuzzy/engine.hpp\"\n";
+  else if (spec.family == Family::Fuzzy)
     h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n#include \"fuzzypid/paper.hpp\"\n";
   if (spec.family == Family::Scheduled)
     h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
@@ -243,7 +251,9 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += "  c.gain_min = " + gains(fc.gain_min) + ";\n";
     h += "  c.gain_max = " + gains(fc.gain_max) + ";\n";
     h += "  return c;\n}\n\n";
-    if (spec.family == Family::Fuzzy) {
+    if (rule_file) {
+      h += export_rule_base(*spec.supervisor.rule_model, spec.supervisor.rule_file);
+    } else if (spec.family == Family::Fuzzy) {
       h += "template <class Scalar>\nusing Supervisor = fuzzypid::paper::System<Scalar>;\n\n";
       h += "// The shared, immutable supervisor the joints point to.\n";
       h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor =\n";

@@ -11,12 +11,19 @@
 namespace fuzzypid::rulefile {
 
 // Where each input, output and rule of the model was written.
+// What the readers fill while parsing: a model of fixed capacity (FixedCapacity, on the heap),
+// copied once parsed into a Model sized to the file (size_to_file).
+using Builder = fuzzy::EngineModel<double, fuzzy::FixedCapacity>;
+
 struct SourceLines {
   std::vector<int> inputs, outputs, rules;
 };
 
 // Validates `model`; on failure fills `error` (its file already set) and returns false.
-bool check_model(const Model& model, const SourceLines& lines, LoadError& error);
+bool check_model(const Builder& model, const SourceLines& lines, LoadError& error);
+
+// Copies a checked `built` into `model`, allocating exactly the counts of the file.
+bool size_to_file(const Builder& built, Model& model, LoadError& error);
 
 // Validates a model about to be written; on failure sets `error` ("invalid model: ...") and
 // returns false.
@@ -24,10 +31,10 @@ bool check_export(const Model& model, std::string& error);
 
 // Variable and rule limits of the capacity, as messages name them.
 inline std::string capacity_text() {
-  return std::to_string(Model::Capacity::inputs) + " inputs, " +
-         std::to_string(Model::Capacity::outputs) + " outputs, " +
-         std::to_string(Model::Capacity::terms) + " terms per variable, " +
-         std::to_string(Model::Capacity::rules) + " rules";
+  return std::to_string(Builder::Capacity::inputs) + " inputs, " +
+         std::to_string(Builder::Capacity::outputs) + " outputs, " +
+         std::to_string(Builder::Capacity::terms) + " terms per variable, " +
+         std::to_string(Builder::Capacity::rules) + " rules";
 }
 
 }  // namespace fuzzypid::rulefile

@@ -17,6 +17,7 @@
 // RULEBLOCK (the standard's place) sets the aggregation of every output that has none of its own.
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,7 @@ namespace {
 
 using fuzzy::SNorm;
 using fuzzy::TNorm;
-using Cap = Model::Capacity;
+using Cap = Builder::Capacity;
 
 struct Statement {
   int line = 0;
@@ -89,13 +90,13 @@ bool statements(std::string_view in, std::vector<Statement>& out, int& bad_line)
 
 class FclParser {
  public:
-  FclParser(const std::string& source, Model& model, LoadError& error, const LoadOptions& options)
+  FclParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
     error_ = LoadError{source, 0, {}};
   }
 
   bool parse(std::string_view text) {
-    model_ = Model{};
+    model_ = Builder{};
     model_.num_blocks = 0;
     std::vector<Statement> list;
     int bad = 0;
@@ -495,7 +496,7 @@ class FclParser {
     return check_model(model_, lines_, error_);
   }
 
-  Model& model_;
+  Builder& model_;
   LoadError& error_;
   const LoadOptions& options_;
   Block block_ = Block::None;
@@ -511,11 +512,22 @@ class FclParser {
 
 bool parse_fcl(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FclParser(source, model, error, options).parse(text::without_bom(text));
+  const auto builder = std::make_unique<Builder>();
+  return FclParser(source, *builder, error, options).parse(text::without_bom(text)) &&
+         size_to_file(*builder, model, error);
 }
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
+  for (std::size_t i = 0; i < m.num_inputs + m.num_outputs; ++i) {
+    const bool input = i < m.num_inputs;
+    if (input ? m.inputs[i].enabled : m.outputs[i - m.num_inputs].enabled) continue;
+    error =
+        std::string(input ? "input '" : "output '") +
+        std::string(text::name_of(input ? m.inputs[i].name : m.outputs[i - m.num_inputs].name)) +
+        "' is disabled, which .fcl cannot express";
+    return false;
+  }
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   const auto range = [](double lo, double hi) {

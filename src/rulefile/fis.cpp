@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ using fuzzy::Hedge;
 using fuzzy::SNorm;
 using fuzzy::TNorm;
 using fuzzy::Token;
-using Cap = Model::Capacity;
+using Cap = Builder::Capacity;
 
 struct VariableText {
   int line = 0;  // the [InputN] / [OutputN] header
@@ -42,6 +43,7 @@ struct VariableText {
   bool has_num_mfs = false;
   // The keys fuzzylite's FisExporter writes (outputs: Default, LockPrevious, LockRange).
   bool lock_range = false, lock_previous = false;
+  bool enabled = true;  // Enabled=0: a disabled variable (fuzzylite's export)
   double default_value = std::numeric_limits<double>::quiet_NaN();
   struct Mf {
     int line = 0;
@@ -111,13 +113,13 @@ class Scanner {
 
 class FisParser {
  public:
-  FisParser(const std::string& source, Model& model, LoadError& error, const LoadOptions& options)
+  FisParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
     error_ = LoadError{source, 0, {}};
   }
 
   bool parse(std::string_view text) {
-    model_ = Model{};
+    model_ = Builder{};
     enum class Section { None, System, Input, Output, Rules } section = Section::None;
     VariableText* var = nullptr;
     for (const text::Line& line : text::split_lines(text)) {
@@ -293,9 +295,9 @@ class FisParser {
       double flag = 0;
       if (!text::parse_number(value, flag) || !(flag == 0 || flag == 1))
         return fail(std::string(key) + " must be 0 or 1, got '" + std::string(value) + "'");
-      if (key == "Enabled")
-        return flag == 1 || fail("disabled variables (Enabled=0) are not supported");
-      (key == "LockRange" ? v.lock_range : v.lock_previous) = flag == 1;
+      (key == "Enabled"     ? v.enabled
+       : key == "LockRange" ? v.lock_range
+                            : v.lock_previous) = flag == 1;
       return true;
     }
     if (key == "Default") {
@@ -501,6 +503,7 @@ class FisParser {
       (void)fuzzy::set_name(in.name, v.name.data(), v.name.size());
       in.min = v.min;
       in.max = v.max;
+      in.enabled = v.enabled;
       in.num_terms = v.mfs.size();
       lines_.inputs.push_back(v.line);
     } else {
@@ -514,6 +517,7 @@ class FisParser {
       out.has_aggregation = has_aggregation_;
       out.lock_range = v.lock_range;
       out.lock_previous = v.lock_previous;
+      out.enabled = v.enabled;
       out.default_value = v.default_value;
       out.resolution = options_.fis_resolution;
       out.exact_centroid = options_.exact_centroid && !weighted;
@@ -621,7 +625,7 @@ class FisParser {
     bool disjunction = false;
   };
 
-  Model& model_;
+  Builder& model_;
   LoadError& error_;
   const LoadOptions& options_;
   int line_ = 0;
@@ -706,7 +710,9 @@ bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<dou
 
 bool parse_fis(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FisParser(source, model, error, options).parse(text::without_bom(text));
+  const auto builder = std::make_unique<Builder>();
+  return FisParser(source, *builder, error, options).parse(text::without_bom(text)) &&
+         size_to_file(*builder, model, error);
 }
 
 bool to_fis(const Model& m, std::string& out, std::string& error) {
@@ -782,16 +788,18 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
   s += std::string("AggMethod='") +
        (first.has_aggregation ? fuzzy::names(first.aggregation).fis : "") + "'\n";
   s += std::string("DefuzzMethod='") + fuzzy::names(first.defuzzifier).fis + "'\n";
+  // A disabled variable is written with fuzzylite's Enabled=0 (MATLAB has no such key).
   const auto variable = [&](const char* kind, std::size_t index, const fuzzy::Name& name, double lo,
-                            double hi, std::size_t n) {
+                            double hi, std::size_t n, bool enabled) {
     s += "\n[" + std::string(kind) + std::to_string(index + 1) + "]\n";
     s += "Name=" + text::quoted(text::name_of(name)) + "\n";
+    if (!enabled) s += "Enabled=0\n";
     s += "Range=[" + format_number(lo) + " " + format_number(hi) + "]\n";
     s += "NumMFs=" + std::to_string(n) + "\n";
   };
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    variable("Input", i, in.name, in.min, in.max, in.num_terms);
+    variable("Input", i, in.name, in.min, in.max, in.num_terms, in.enabled);
     for (std::size_t t = 0; t < in.num_terms; ++t) {
       const std::string w = terms::write_membership(terms::Format::Fis, in.terms[t], m);
       if (w.empty()) {
@@ -805,7 +813,7 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
   }
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];
-    variable("Output", o, v.name, v.min, v.max, v.num_terms);
+    variable("Output", o, v.name, v.min, v.max, v.num_terms, v.enabled);
     for (std::size_t t = 0; t < v.num_terms; ++t) {
       const auto& term = v.terms[t];
       std::string w;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,19 +21,19 @@ namespace {
 
 using fuzzy::Defuzzifier;
 using fuzzy::TNorm;
-using Cap = Model::Capacity;
+using Cap = Builder::Capacity;
 
 enum class Section { None, Engine, Input, Output, RuleBlock };
 
 class FllParser {
  public:
-  FllParser(const std::string& source, Model& model, LoadError& error, const LoadOptions& options)
+  FllParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
     error_ = LoadError{source, 0, {}};
   }
 
   bool parse(std::string_view text) {
-    model_ = Model{};
+    model_ = Builder{};
     model_.num_blocks = 0;
     for (const text::Line& line : text::split_lines(text)) {
       line_ = line.number;
@@ -174,9 +175,7 @@ class FllParser {
     auto& in = model_.inputs[input ? model_.num_inputs - 1 : 0];
     auto& out = model_.outputs[input ? 0 : model_.num_outputs - 1];
     if (key == "enabled") {
-      bool enabled = true;
-      if (!boolean(value, enabled)) return false;
-      return enabled ? true : fail("disabled variables (enabled: false) are not supported");
+      return boolean(value, input ? in.enabled : out.enabled);
     }
     if (key == "range") {
       const auto words = text::split_words(value);
@@ -213,7 +212,7 @@ class FllParser {
     return fail("unknown OutputVariable property '" + std::string(key) + "'");
   }
 
-  bool defuzzifier(std::string_view value, fuzzy::OutputSpec<double>& out) {
+  bool defuzzifier(std::string_view value, fuzzy::OutputSpec<double, Cap>& out) {
     const auto words = text::split_words(value);
     if (words.empty()) return fail("defuzzifier needs a name");
     if (words[0] == "none") return true;
@@ -427,7 +426,7 @@ class FllParser {
     return check_model(model_, lines_, error_);
   }
 
-  Model& model_;
+  Builder& model_;
   LoadError& error_;
   const LoadOptions& options_;
   Section section_ = Section::None;
@@ -445,7 +444,9 @@ class FllParser {
 
 bool parse_fll(std::string_view text, const std::string& source, Model& model, LoadError& error,
                const LoadOptions& options) {
-  return FllParser(source, model, error, options).parse(text::without_bom(text));
+  const auto builder = std::make_unique<Builder>();
+  return FllParser(source, *builder, error, options).parse(text::without_bom(text)) &&
+         size_to_file(*builder, model, error);
 }
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {
@@ -455,7 +456,8 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
-    s += "InputVariable: " + names.inputs[i] + "\n  enabled: true\n";
+    s += "InputVariable: " + names.inputs[i] + "\n  enabled: " + (in.enabled ? "true" : "false") +
+         "\n";
     s += "  range: " + format_number(in.min) + " " + format_number(in.max) + "\n";
     s += std::string("  lock-range: ") + (in.lock_range ? "true" : "false") + "\n";
     for (std::size_t t = 0; t < in.num_terms; ++t) {
@@ -471,7 +473,8 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& v = m.outputs[o];
     const bool sugeno = fuzzy::is_sugeno(v.defuzzifier);
-    s += "OutputVariable: " + names.outputs[o] + "\n  enabled: true\n";
+    s += "OutputVariable: " + names.outputs[o] + "\n  enabled: " + (v.enabled ? "true" : "false") +
+         "\n";
     s += "  range: " + format_number(v.min) + " " + format_number(v.max) + "\n";
     s += std::string("  lock-range: ") + (v.lock_range ? "true" : "false") + "\n";
     s += std::string("  aggregation: ") +

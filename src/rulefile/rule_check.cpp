@@ -182,7 +182,9 @@ RuleCheckReport check_rules(const Model& m, const RuleCheckOptions& options) {
     for (std::size_t r = 0; r < m.num_rules; ++r)
       if (engine->rule_strength(r) > 0) fired[index] |= concludes[r];
   }
-  const unsigned all = n_out >= 32 ? ~0u : (1u << n_out) - 1u;
+  unsigned all = 0;  // the enabled outputs: a disabled one has no value to cover
+  for (std::size_t o = 0; o < n_out && o < 32; ++o)
+    if (m.outputs[o].enabled) all |= 1u << o;
 
   // Gaps: connected sets of grid points where some output has no firing rule.
   std::vector<char> seen(total, 0);

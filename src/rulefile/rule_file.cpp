@@ -11,7 +11,7 @@ std::string LoadError::to_string() const {
   return line > 0 ? file + ":" + std::to_string(line) + ": " + message : file + ": " + message;
 }
 
-bool check_model(const Model& model, const SourceLines& lines, LoadError& error) {
+bool check_model(const Builder& model, const SourceLines& lines, LoadError& error) {
   if (model.num_rules == 0) {
     error.line = 0;
     error.message = "no rules";
@@ -40,6 +40,13 @@ bool check_model(const Model& model, const SourceLines& lines, LoadError& error)
       break;
   }
   error.message = what + e.message;
+  return false;
+}
+
+bool size_to_file(const Builder& built, Model& model, LoadError& error) {
+  if (fuzzy::copy_model(built, model)) return true;
+  error.line = 0;
+  error.message = "the model does not fit its storage";
   return false;
 }
 

@@ -35,7 +35,7 @@ std::vector<std::string> tokenize(std::string_view text) {
 
 class Parser {
  public:
-  Parser(std::vector<std::string> words, Model& model, bool any_case)
+  Parser(std::vector<std::string> words, Builder& model, bool any_case)
       : w_(std::move(words)), model_(model), any_case_(any_case) {}
 
   std::string parse(std::size_t block) {
@@ -196,7 +196,7 @@ class Parser {
   }
 
   std::vector<std::string> w_;
-  Model& model_;
+  Builder& model_;
   bool any_case_;
   std::size_t k_ = 0;
   double weight_ = 1.0;
@@ -253,7 +253,8 @@ ExportNames export_names(const Model& m) {
   return n;
 }
 
-std::string parse_rule(std::string_view rule_text, Model& model, std::size_t block, bool any_case) {
+std::string parse_rule(std::string_view rule_text, Builder& model, std::size_t block,
+                       bool any_case) {
   return Parser(tokenize(rule_text), model, any_case).parse(block);
 }
 

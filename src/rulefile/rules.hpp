@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "check.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 
 namespace fuzzypid::rulefile::rules {
@@ -21,7 +22,7 @@ namespace fuzzypid::rulefile::rules {
 // Parses one rule and appends it to `model` in block `block`. Keywords and hedges are matched in
 // any case when `any_case` (FCL), else in lower case (fuzzylite). Returns an empty string on
 // success, else the reason naming the offending word.
-std::string parse_rule(std::string_view text, Model& model, std::size_t block, bool any_case);
+std::string parse_rule(std::string_view text, Builder& model, std::size_t block, bool any_case);
 
 // The names variables and terms get in .fll/.fcl text: sanitised the way fuzzylite does (only
 // letters, digits, '_' and '.'), "unnamed" when nothing is left, '_' appended to a rule keyword or

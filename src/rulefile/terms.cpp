@@ -89,7 +89,7 @@ bool is_membership_name(Format format, std::string_view type) {
 }
 
 std::string make_membership(Format format, std::string_view type, const std::vector<double>& p,
-                            Model& model, fuzzy::Term<double>& term) {
+                            Builder& model, fuzzy::Term<double>& term) {
   const bool fis = format == Format::Fis;
   for (double x : p)
     if (std::isnan(x)) return "NaN parameter in '" + std::string(type) + "'";

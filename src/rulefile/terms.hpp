@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "check.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 
 namespace fuzzypid::rulefile::terms {
@@ -21,7 +22,7 @@ enum class Format { Fis, Fll, Fcl };
 //              zeros beyond the count are MATLAB 1.x padding and ignored.
 // Returns an empty string on success, else the reason.
 std::string make_membership(Format format, std::string_view type, const std::vector<double>& p,
-                            Model& model, fuzzy::Term<double>& term);
+                            Builder& model, fuzzy::Term<double>& term);
 
 // True when `type` names a membership function in that format (to tell a bad type from others).
 bool is_membership_name(Format format, std::string_view type);

@@ -21,8 +21,17 @@ TEST(ConditionSets, TheShippedFileHasTrainingHeldOutAndStressSets) {
   ASSERT_NE(f.find("training"), nullptr);
   ASSERT_NE(f.find("held-out"), nullptr);
   ASSERT_NE(f.find("stress"), nullptr);
-  const auto& training = f.find("training")->conditions;
-  ASSERT_EQ(training.size(), 6u);
+  const auto& all = f.find("training")->conditions;
+  // Six fixed conditions, then eight draws from the same envelope (the last four are held back
+  // for validation by `fuzzypid tune --validation 4`).
+  ASSERT_EQ(all.size(), 14u);
+  for (std::size_t k = 6; k < all.size(); ++k) {
+    EXPECT_GE(all[k].payload_scale, 0.5);
+    EXPECT_LE(all[k].payload_scale, 2.0);
+    EXPECT_LE(std::abs(all[k].initial_error_rad), 0.08);
+    EXPECT_EQ(all[k].friction_per_s, 0.0);
+  }
+  const std::vector<fuzzypid::sim::Condition> training(all.begin(), all.begin() + 6);
   int ahead = 0, light = 0, heavy = 0;
   for (const auto& c : training) {
     ahead += c.initial_error_rad < 0 ? 1 : 0;

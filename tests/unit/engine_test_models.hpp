@@ -8,7 +8,7 @@
 
 namespace fuzzypid::test {
 
-using Model = fuzzy::EngineModel<double>;
+using Model = fuzzy::EngineModel<double, fuzzy::FixedCapacity>;
 
 inline fuzzy::Token proposition(std::uint8_t input, std::uint8_t term,
                                 fuzzy::Token::Kind kind = fuzzy::Token::Kind::Proposition) {

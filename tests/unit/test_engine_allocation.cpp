@@ -43,7 +43,9 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
       load(FUZZYPID_RULEFILES_DIR "/sugeno_linear.fll"),
       // chained outputs; lock-previous in the workspace
       load(FUZZYPID_RULEFILES_DIR "/corpus/chained_dimmer_two_blocks.fll"),
-      load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_lock_previous_heater.fll")};
+      load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_lock_previous_heater.fll"),
+      // the largest corpus file (729 rules), sized to its counts
+      load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_3inputs_729rules.fis")};
   for (const auto& model : models) {
     ASSERT_TRUE(model);
     auto engine = std::make_unique<fuzzypid::fuzzy::Engine<double>>(*model);

@@ -14,7 +14,7 @@ namespace {
 
 using fuzzypid::Status;
 using fuzzypid::fuzzy::DynamicWorkspace;
-using fuzzypid::fuzzy::Engine;
+using Engine = fuzzypid::fuzzy::Engine<double, fuzzypid::fuzzy::FixedCapacity>;
 using fuzzypid::fuzzy::Token;
 using fuzzypid::test::conclusion;
 using fuzzypid::test::proposition;
@@ -22,7 +22,7 @@ using fuzzypid::test::ramp_model;
 
 TEST(EngineEvaluate, WeightedAverageOfTheFiredConstants) {
   const auto model = ramp_model();
-  auto engine = std::make_unique<Engine<double>>(*model);
+  auto engine = std::make_unique<Engine>(*model);
   const double x = 0.25;  // lo 0.75, hi 0.25
   double y = 0;
   ASSERT_EQ(engine->evaluate(&x, &y), Status::Ok);
@@ -32,7 +32,7 @@ TEST(EngineEvaluate, WeightedAverageOfTheFiredConstants) {
 
 TEST(EngineEvaluate, ANonFiniteInputIsRefusedWithZeroOutputs) {
   const auto model = ramp_model();
-  auto engine = std::make_unique<Engine<double>>(*model);
+  auto engine = std::make_unique<Engine>(*model);
   const double x = std::numeric_limits<double>::quiet_NaN();
   double y = 7;
   EXPECT_EQ(engine->evaluate(&x, &y), Status::NonFiniteInput);
@@ -61,7 +61,7 @@ TEST(EngineEvaluate, AChainedRuleSeesOnlyConclusionsTriggeredBeforeIt) {
   // activation the first reads 0 and does not fire; the last reads hi's degree.
   const Token on_y = proposition(0, 1, Token::Kind::OutputProposition);
   const auto to_z = conclusion(1, 0);
-  auto chained = std::make_unique<fuzzypid::fuzzy::EngineModel<double>>();
+  auto chained = std::make_unique<fuzzypid::test::Model>();
   *chained = *model;
   chained->num_rules = chained->num_tokens = chained->num_conclusions = 0;
   ASSERT_TRUE(chained->add_rule(&on_y, 1, &to_z, 1));
@@ -72,7 +72,7 @@ TEST(EngineEvaluate, AChainedRuleSeesOnlyConclusionsTriggeredBeforeIt) {
   }
   ASSERT_TRUE(chained->add_rule(&on_y, 1, &to_z, 1, 0.5));
   ASSERT_FALSE(chained->validate());
-  auto engine = std::make_unique<Engine<double>>(*chained);
+  auto engine = std::make_unique<Engine>(*chained);
   const double x = 0.75;
   double out[2] = {};
   ASSERT_EQ(engine->evaluate(&x, out), Status::Ok);

@@ -972,9 +972,11 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
   EXPECT_NEAR(y, num / den, 1e-6);
   std::cout << "sizeof EngineModel<float, SmallCapacity> = " << sizeof(Small)
             << " B, Engine<float, SmallCapacity> = " << sizeof(engine) << " B\n"
-            << "sizeof EngineModel<double> = " << sizeof(Model)
-            << " B, EngineWorkspace<double> = " << sizeof(fuzzypid::fuzzy::EngineWorkspace<double>)
-            << " B, Engine<double> = " << sizeof(Engine<double>) << " B\n";
+            << "sizeof EngineModel<double, FixedCapacity> = "
+            << sizeof(fuzzypid::fuzzy::EngineModel<double, fuzzypid::fuzzy::FixedCapacity>)
+            << " B, EngineWorkspace<double, FixedCapacity> = "
+            << sizeof(fuzzypid::fuzzy::EngineWorkspace<double, fuzzypid::fuzzy::FixedCapacity>)
+            << " B\n";
 }
 
 TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {

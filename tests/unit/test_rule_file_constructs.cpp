@@ -336,11 +336,119 @@ TEST(RuleFileFis, AZeroWidthRangeIsRefusedWhereItIsUsed) {
   EXPECT_EQ(e.line, 23) << e.to_string();  // [Output1]
 }
 
-TEST(RuleFileFis, DisabledVariablesAreRefusedByName) {
-  const LoadError e =
-      refusal("s.fis", replace(kSugenoFis, "Enabled=1\nRange=[0 1]", "Enabled=0\nRange=[0 1]"));
-  EXPECT_EQ(e.line, 14) << e.to_string();
-  EXPECT_NE(e.message.find("Enabled=0"), std::string::npos) << e.to_string();
+TEST(RuleFileFis, EnabledZeroDisablesAVariable) {
+  const auto model =
+      load("s.fis", replace(kSugenoFis, "Enabled=1\nRange=[0 1]", "Enabled=0\nRange=[0 1]"));
+  ASSERT_TRUE(model);
+  EXPECT_FALSE(model->inputs[0].enabled);
+  EXPECT_TRUE(model->inputs[1].enabled);
+  std::string fis, error;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, error)) << error;
+  EXPECT_NE(fis.find("Name='x'\nEnabled=0\n"), std::string::npos) << fis;
+  EXPECT_FALSE(fuzzypid::rulefile::to_fcl(*model, fis, error));
+  EXPECT_NE(error.find("'x' is disabled"), std::string::npos) << error;
+}
+
+// x enabled; z and the output b disabled. Fuzzylite's Antecedent gives a proposition on a disabled
+// variable degree 0 before any hedge (`not`, `any` included); its Consequent skips a disabled
+// output's conclusion, hedges included, so c's `somewhat` applies to the rule's own strength.
+const std::string kDisabled = R"(Engine: disabled
+InputVariable: x
+  enabled: true
+  range: 0 1
+  term: lo Ramp 1 0
+  term: hi Ramp 0 1
+InputVariable: z
+  enabled: false
+  range: 0 1
+  term: lo Ramp 1 0
+OutputVariable: a
+  range: 0 3
+  aggregation: Maximum
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: nan
+  term: one Constant 1
+  term: two Constant 2
+OutputVariable: b
+  enabled: false
+  range: 0 20
+  aggregation: Maximum
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: nan
+  term: k Constant 10
+OutputVariable: c
+  range: 0 20
+  aggregation: Maximum
+  defuzzifier: WeightedAverage TakagiSugeno
+  default: nan
+  term: k2 Constant 5
+  term: k3 Constant 15
+RuleBlock: rules
+  conjunction: Minimum
+  disjunction: Maximum
+  activation: General
+  rule: if x is lo and z is lo then a is one
+  rule: if x is hi or z is not lo then a is two
+  rule: if x is lo then b is very k and c is somewhat k2
+  rule: if b is k or z is any then c is k3
+  rule: if x is hi then c is k3 with 0.5
+)";
+
+TEST(RuleFileDisabled, PropositionsOnADisabledVariableAreZeroAndItsConclusionsAreSkipped) {
+  const auto model = load("disabled.fll", kDisabled);
+  ASSERT_TRUE(model);
+  EXPECT_FALSE(model->inputs[1].enabled);
+  EXPECT_FALSE(model->outputs[1].enabled);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x[2] = {0.25, 1.0};  // lo = 0.75, hi = 0.25; z's value is never read
+  double y[3] = {7, 7, 7};
+  ASSERT_EQ(engine->evaluate(x, y), Status::Ok) << "a disabled output raises no NoRuleFired";
+  EXPECT_EQ(engine->rule_strength(0), 0.0);   // min(0.75, z: 0)
+  EXPECT_EQ(engine->rule_strength(1), 0.25);  // max(0.25, not z: 0): `not` is not applied
+  EXPECT_EQ(engine->rule_strength(3), 0.0);   // b (disabled output) and `z is any` are 0
+  EXPECT_EQ(y[0], 2.0);
+  EXPECT_EQ(y[1], 0.0);                     // disabled: no value (fuzzylite's NaN)
+  const double somewhat = std::sqrt(0.75);  // not somewhat(very(0.75)): b's hedge is skipped
+  EXPECT_DOUBLE_EQ(y[2], (5 * somewhat + 15 * 0.125) / (somewhat + 0.125));
+  // Written back to .fll, the flags and the results stay.
+  std::string fll, error;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, error)) << error;
+  const auto again = load("again.fll", fll);
+  ASSERT_TRUE(again);
+  EXPECT_FALSE(again->inputs[1].enabled);
+  EXPECT_FALSE(again->outputs[1].enabled);
+  double z[3] = {};
+  auto engine_again = std::make_unique<Engine<double>>(*again);
+  ASSERT_EQ(engine_again->evaluate(x, z), Status::Ok);
+  EXPECT_EQ(z[2], y[2]);
+}
+
+TEST(RuleFileDisabled, EqualsFuzzylite) {
+  fl::fuzzylite::setMachEps(0.0);
+  const auto model = load("disabled.fll", kDisabled);
+  ASSERT_TRUE(model);
+  std::unique_ptr<fl::Engine> oracle(fl::FllImporter().fromString(kDisabled));
+  auto engine = std::make_unique<Engine<double>>(*model);
+  for (double x = -0.1; x <= 1.1; x += 0.01) {
+    const double in[2] = {x, 0.3};
+    double y[3] = {};
+    const Status s = engine->evaluate(in, y);
+    oracle->getInputVariable(0)->setValue(in[0]);
+    oracle->getInputVariable(1)->setValue(in[1]);
+    oracle->process();
+    for (int o = 0; o < 3; ++o) {
+      const double expected = oracle->getOutputVariable(o)->getValue();
+      if (o == 1) {
+        EXPECT_TRUE(std::isnan(expected)) << "fuzzylite never defuzzifies a disabled output";
+        EXPECT_EQ(y[o], 0.0);
+      } else {
+        EXPECT_EQ(y[o], std::isnan(expected) ? 0.0 : expected) << "x = " << x << ", output " << o;
+        if (std::isnan(expected)) {
+          EXPECT_EQ(s, Status::NoRuleFired) << "x = " << x;
+        }
+      }
+    }
+  }
 }
 
 TEST(RuleFileFis, HybridConstantsUnderAnIntegralDefuzzifierAreFuzzylitesConstantFunctions) {

@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_model.hpp"
@@ -92,7 +93,10 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
       ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
                                                       : apply(block.disjunction, a, b);
     } else {
-      ws.stack[sp++] = proposition(ws, tok);
+      const bool enabled = tok.kind == Token::Kind::OutputProposition
+                               ? model.outputs[tok.input].enabled
+                               : model.inputs[tok.input].enabled;
+      ws.stack[sp++] = enabled ? proposition(ws, tok) : Scalar(0);
     }
   }
   return rule.weight * ws.stack[0];
@@ -106,8 +110,9 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
   Scalar degree = ws.strength[r];
   for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
     const Conclusion& c = model.conclusions[rule.first_conclusion + k];
-    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
     const auto& out = model.outputs[c.output];
+    if (!out.enabled) continue;
+    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
     Scalar& d = ws.degree[c.output * ws.stride + c.term];
     d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
   }
@@ -251,11 +256,13 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   for (std::size_t i = 0; i < model.num_inputs; ++i)
     if (!detail::is_finite(inputs[i])) return Status::NonFiniteInput;
 
-  const Scalar* points = model.points.data();
+  // No pool when no term is Discrete (validate: a Discrete term lies within num_points).
+  const Scalar* points = model.num_points > 0 ? model.points.data() : nullptr;
   for (std::size_t i = 0; i < model.num_inputs; ++i) {
     const auto& in = model.inputs[i];
     const Scalar x = in.lock_range ? detail::clamp(inputs[i], in.min, in.max) : inputs[i];
-    ws.input[i] = x;
+    ws.input[i] = x;  // Linear terms read disabled inputs too, as fuzzylite
+    if (!in.enabled) continue;
     for (std::size_t t = 0; t < in.num_terms; ++t)
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
@@ -271,6 +278,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   Status status = Status::Ok;
   for (std::size_t o = 0; o < model.num_outputs; ++o) {
     const OutputSpec<Scalar, Cap>& out = model.outputs[o];
+    if (!out.enabled) continue;  // 0, written above
     const bool sugeno = is_sugeno(out.defuzzifier);
     const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
@@ -287,19 +295,22 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       Scalar degree = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
+        if (!model.outputs[c.output].enabled) continue;
         degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
         if (c.output != o) continue;
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
         if (sugeno) {
-          Scalar z = term.coefficients[0];
+          // Membership terms of a sized model hold no coefficients.
+          Scalar z = Scalar(0);
           if (term.kind == OutputTermKind::Membership) {
             z = engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points);
           } else if (term.kind == OutputTermKind::Linear) {
-            z = Scalar(0);
             for (std::size_t i = 0; i < model.num_inputs; ++i)
               z += term.coefficients[i] * ws.input[i];
             z += term.coefficients[model.num_inputs];
+          } else {
+            z = term.coefficients[0];
           }
           sum += degree * z;
           weights += degree;
@@ -356,22 +367,29 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
   return status;
 }
 
-// A model with its own fixed-size workspace. Large for DefaultCapacity (docs/rule_files.md):
-// create it once, e.g. on the heap at start-up.
+// A model with its own workspace. For a fixed capacity the workspace is fixed too and nothing
+// allocates (large for FixedCapacity, docs/rule_files.md: create it once, e.g. on the heap at
+// start-up); for a sized capacity (DefaultCapacity) set_model copies the model and sizes the
+// workspace to it, which allocates, while evaluate() does not.
 template <class Scalar, class Cap = DefaultCapacity>
 class Engine {
  public:
   using Model = EngineModel<Scalar, Cap>;
+  using Workspace =
+      std::conditional_t<Cap::sized, DynamicWorkspace<Scalar>, EngineWorkspace<Scalar, Cap>>;
 
   Engine() noexcept = default;
   // An invalid model leaves the engine unconfigured: evaluate() returns InvalidConfig.
-  explicit Engine(const Model& model) noexcept { (void)set_model(model); }
+  explicit Engine(const Model& model) noexcept(!Cap::sized) { (void)set_model(model); }
 
   // Also forgets the previous outputs (lock_previous).
-  ModelError set_model(const Model& model) noexcept {
+  ModelError set_model(const Model& model) noexcept(!Cap::sized) {
     const ModelError error = model.validate();
     if (!error) model_ = model;
-    ws_.previous = nan_array<Scalar, Cap::outputs>();
+    if constexpr (Cap::sized)
+      ws_ = error ? Workspace() : Workspace(model_);
+    else
+      ws_.previous = nan_array<Scalar, Cap::outputs>();
     configured_ = !error;
     return error;
   }
@@ -387,11 +405,11 @@ class Engine {
   std::size_t num_outputs() const noexcept { return model_.num_outputs; }
   // Firing strength of rule r in the last evaluation (weight included).
   Scalar rule_strength(std::size_t r) const noexcept { return ws_.strength[r]; }
-  const EngineWorkspace<Scalar, Cap>& workspace() const noexcept { return ws_; }
+  const Workspace& workspace() const noexcept { return ws_; }
 
  private:
   Model model_{};
-  EngineWorkspace<Scalar, Cap> ws_{};
+  Workspace ws_{};
   bool configured_ = false;
 };
 

@@ -1,20 +1,28 @@
-// The model of a run-time-sized fuzzy inference engine with a capacity fixed at compile time:
-// inputs and outputs with their terms, rule blocks with their operators, rules as postfix
-// antecedents and conclusions. Plain, immutable data: evaluation (fuzzy/engine.hpp) reads it and
-// writes only into a workspace (fuzzy/engine_workspace.hpp), so one model serves many workspaces.
+// The model of a run-time-sized fuzzy inference engine: inputs and outputs with their terms, rule
+// blocks with their operators, rules as postfix antecedents and conclusions. Plain, immutable data:
+// evaluation (fuzzy/engine.hpp) reads it and writes only into a workspace
+// (fuzzy/engine_workspace.hpp), so one model serves many workspaces.
 //
-// Capacity is the template parameter `Cap` (EngineCapacity<...>): inputs, outputs, terms per
-// variable, rules, rule blocks, antecedent tokens and conclusions of all rules, points of Discrete
-// terms. DefaultCapacity holds 8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 rule
-// blocks; SmallCapacity is the paper's shape (2 inputs, 3 outputs, 7 terms, 49 rules) for
-// microcontrollers. Memory: docs/rule_files.md (sizeof printed by tests/unit/test_rule_file.cpp,
-// RuleFileCapacity).
+// Storage is the template parameter `Cap`, in one of two forms with one evaluation code:
+//   EngineCapacity<...>  fixed-capacity arrays (std::array), no heap, constexpr-constructible: for
+//                        microcontrollers and generated headers. SmallCapacity is the paper's
+//                        shape (2 inputs, 3 outputs, 7 terms, 49 rules); FixedCapacity holds
+//                        8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 blocks.
+//   SizedCapacity<Limits> arrays allocated once with the exact counts of one model (variables,
+//                        terms, coefficients, rules, blocks, antecedent tokens, conclusions, names,
+//                        Discrete points), bounded by the fixed capacity `Limits`; copying and
+//                        make_sized() allocate, evaluation does not. DefaultCapacity, what the
+//                        rule-file readers produce, is SizedCapacity<FixedCapacity>.
+// A sized model is filled through copy_model() from a fixed one (readers build into a
+// FixedCapacity model, then copy it to the size of the file). Memory: docs/rule_files.md.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
@@ -23,7 +31,33 @@
 
 namespace fuzzypid::fuzzy {
 
-// The compile-time capacity of an engine model.
+// An array allocated once with a size given at set-up (SizedCapacity's storage): the indexing of
+// std::array over a std::vector that never grows (a copy allocates exactly the same size).
+template <class T>
+class SizedArray {
+ public:
+  SizedArray() noexcept = default;
+  // Set-up: `n` value-initialised elements (allocates; n = 0 allocates nothing).
+  explicit SizedArray(std::size_t n) : items_(n) {}
+
+  T& operator[](std::size_t k) noexcept { return items_[k]; }
+  const T& operator[](std::size_t k) const noexcept { return items_[k]; }
+  T* data() noexcept { return items_.data(); }
+  const T* data() const noexcept { return items_.data(); }
+  std::size_t size() const noexcept { return items_.size(); }
+  T* begin() noexcept { return data(); }
+  T* end() noexcept { return data() + size(); }
+  const T* begin() const noexcept { return data(); }
+  const T* end() const noexcept { return data() + size(); }
+
+  friend bool operator==(const SizedArray& a, const SizedArray& b) { return a.items_ == b.items_; }
+  friend bool operator!=(const SizedArray& a, const SizedArray& b) { return !(a == b); }
+
+ private:
+  std::vector<T> items_;
+};
+
+// The compile-time capacity of an engine model, stored in fixed-size arrays.
 template <std::size_t Inputs, std::size_t Outputs, std::size_t Terms, std::size_t Rules,
           std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points>
 struct EngineCapacity {
@@ -40,9 +74,23 @@ struct EngineCapacity {
   static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
   static constexpr std::size_t points = Points;            // (x, y) pairs of all Discrete terms
   static constexpr std::size_t rule_tokens = 63;           // tokens of one antecedent
+  static constexpr bool sized = false;
+  template <class T, std::size_t N>
+  using Array = std::array<T, N>;
 };
 
-using DefaultCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
+// Storage sized to one model, within the limits of the fixed capacity `Limits`.
+template <class Limits>
+struct SizedCapacity : Limits {
+  static_assert(!Limits::sized, "the limits of a sized capacity are a fixed capacity");
+  using Fixed = Limits;
+  static constexpr bool sized = true;
+  template <class T, std::size_t N>
+  using Array = SizedArray<T>;
+};
+
+using FixedCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
+using DefaultCapacity = SizedCapacity<FixedCapacity>;
 using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
 
 // The default capacity under short names.
@@ -71,10 +119,13 @@ struct InputSpec {
   Name name{};
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
-  bool lock_range = false;    // clamp the input into [min, max] before fuzzifying
+  bool lock_range = false;  // clamp the input into [min, max] before fuzzifying
+  // false: a disabled input (fuzzylite's `enabled: false`): every proposition on it has degree 0
+  // (hedges and `any` included), and its value is not read.
+  bool enabled = true;
   std::size_t num_terms = 0;  // 0 allowed: an input no rule uses
-  std::array<Term<Scalar>, Cap::terms> terms{};
-  std::array<Name, Cap::terms> term_names{};
+  typename Cap::template Array<Term<Scalar>, Cap::terms> terms{};
+  typename Cap::template Array<Name, Cap::terms> term_names{};
 };
 
 enum class OutputTermKind : std::uint8_t {
@@ -87,7 +138,9 @@ template <class Scalar, class Cap = DefaultCapacity>
 struct OutputTerm {
   OutputTermKind kind = OutputTermKind::Membership;
   Term<Scalar> membership{};
-  std::array<Scalar, Cap::inputs + 1> coefficients{};
+  // Sized models hold what the kind reads: num_inputs + 1 for Linear, 1 for Constant, none for
+  // Membership terms.
+  typename Cap::template Array<Scalar, Cap::inputs + 1> coefficients{};
 };
 
 template <class Scalar, class Cap = DefaultCapacity>
@@ -96,6 +149,10 @@ struct OutputSpec {
   Scalar min = Scalar(0);
   Scalar max = Scalar(1);
   bool lock_range = false;  // clamp the crisp output into [min, max]
+  // false: a disabled output (fuzzylite's `enabled: false`): conclusions on it are skipped (their
+  // hedges do not modify the rule's running degree), propositions on it have degree 0, and its
+  // value is 0 without a status (fuzzylite leaves it unchanged: NaN from the start).
+  bool enabled = true;
   // When no rule concluded on the output, keep the last finite value of this workspace
   // (fuzzylite's lock-previous, FCL's DEFAULT := NC) instead of the default.
   bool lock_previous = false;
@@ -108,8 +165,8 @@ struct OutputSpec {
   bool exact_centroid = false;  // Centroid in closed form instead of sampled
   SNorm aggregation = SNorm::Maximum;
   std::size_t num_terms = 0;
-  std::array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
-  std::array<Name, Cap::terms> term_names{};
+  typename Cap::template Array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
+  typename Cap::template Array<Name, Cap::terms> term_names{};
 };
 
 // One element of an antecedent in postfix order: a proposition pushes its degree, And/Or pop two
@@ -211,16 +268,19 @@ struct EngineModel {
   std::size_t num_conclusions = 0;
   std::size_t num_points = 0;
   bool chained = false;  // some antecedent tests an output (set by add_rule)
-  std::array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
-  std::array<OutputSpec<Scalar, Cap>, Cap::outputs> outputs{};
-  std::array<Rule<Scalar>, Cap::rules> rules{};
-  std::array<RuleBlock, Cap::blocks> blocks{};
-  std::array<Token, Cap::tokens> tokens{};
-  std::array<Conclusion, Cap::conclusions> conclusions{};
-  std::array<Scalar, 2 * Cap::points> points{};  // (x, y) pairs of the Discrete terms
+  template <class T, std::size_t N>
+  using Array = typename Cap::template Array<T, N>;
+  Array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
+  Array<OutputSpec<Scalar, Cap>, Cap::outputs> outputs{};
+  Array<Rule<Scalar>, Cap::rules> rules{};
+  Array<RuleBlock, Cap::blocks> blocks{};
+  Array<Token, Cap::tokens> tokens{};
+  Array<Conclusion, Cap::conclusions> conclusions{};
+  Array<Scalar, 2 * Cap::points> points{};  // (x, y) pairs of the Discrete terms
 
-  // Appends a rule to block `block` from its postfix antecedent and its conclusions; false (model
-  // unchanged) when a capacity would be exceeded.
+  // Fixed-capacity models only: appends a rule to block `block` from its postfix antecedent and
+  // its conclusions; false (model unchanged) when a capacity would be exceeded.
+  template <class C = Cap, class = std::enable_if_t<!C::sized>>
   bool add_rule(const Token* antecedent, std::size_t n_tokens, const Conclusion* then,
                 std::size_t n_conclusions, Scalar weight = Scalar(1),
                 std::size_t block = 0) noexcept {
@@ -273,6 +333,33 @@ struct EngineModel {
     return true;
   }
 
+  // The coefficients an output term of `kind` reads.
+  std::size_t coefficients_of(OutputTermKind kind) const noexcept {
+    return kind == OutputTermKind::Linear     ? num_inputs + 1
+           : kind == OutputTermKind::Constant ? 1
+                                              : 0;
+  }
+
+  // True when every array holds the counts it is read with (always, for a fixed capacity within
+  // its limits; a sized model copied by copy_model()).
+  bool storage_holds_counts() const noexcept {
+    if (inputs.size() < num_inputs || outputs.size() < num_outputs || rules.size() < num_rules ||
+        blocks.size() < num_blocks || tokens.size() < num_tokens ||
+        conclusions.size() < num_conclusions || points.size() < 2 * num_points)
+      return false;
+    for (std::size_t i = 0; i < num_inputs; ++i)
+      if (inputs[i].terms.size() < inputs[i].num_terms ||
+          inputs[i].term_names.size() < inputs[i].num_terms)
+        return false;
+    for (std::size_t o = 0; o < num_outputs; ++o) {
+      const auto& out = outputs[o];
+      if (out.terms.size() < out.num_terms || out.term_names.size() < out.num_terms) return false;
+      for (std::size_t t = 0; t < out.num_terms; ++t)
+        if (out.terms[t].coefficients.size() < coefficients_of(out.terms[t].kind)) return false;
+    }
+    return true;
+  }
+
   // Everything evaluate() relies on; the readers check the same things with line numbers first
   // and call this last.
   ModelError validate() const noexcept {
@@ -284,6 +371,7 @@ struct EngineModel {
       return {"number of rule blocks out of capacity", 0};
     if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions || num_points > Cap::points)
       return {"rule or point storage out of capacity", 0};
+    if (!storage_holds_counts()) return {"storage smaller than the model's counts", 0};
     const auto range_ok = [](Scalar lo, Scalar hi) {
       return detail::is_finite(lo) && detail::is_finite(hi) && lo < hi;
     };
@@ -366,7 +454,7 @@ struct EngineModel {
           return {"the exact centroid needs piecewise-linear terms of height 1", o,
                   ModelError::Where::Output};
         if (!membership)
-          for (std::size_t c = 0; c <= num_inputs; ++c)
+          for (std::size_t c = 0; c < coefficients_of(term.kind); ++c)
             if (!detail::is_finite(term.coefficients[c]))
               return {"non-finite output coefficient", o, ModelError::Where::Output};
       }
@@ -425,5 +513,136 @@ struct EngineModel {
     return {};
   }
 };
+
+namespace model_detail {
+
+// Fixed storage: checks that `n` fits; sized storage: allocates exactly `n`.
+template <class T, std::size_t N>
+bool reserve_exact(std::array<T, N>&, std::size_t n) noexcept {
+  return n <= N;
+}
+template <class T>
+bool reserve_exact(SizedArray<T>& a, std::size_t n) {
+  a = SizedArray<T>(n);
+  return true;
+}
+
+}  // namespace model_detail
+
+// Copies `from` into `to` element by element, between any two storage forms: a sized `to` is
+// allocated with the exact counts of `from` (set-up: allocates), a fixed `to` must hold them.
+// False (`to` unspecified) when `from` does not fit `to`'s capacity or its own storage.
+template <class Scalar, class From, class To>
+bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& to) {
+  using model_detail::reserve_exact;
+  if (!from.storage_holds_counts() || from.num_inputs > To::inputs ||
+      from.num_outputs > To::outputs || from.num_rules > To::rules ||
+      from.num_blocks > To::blocks || from.num_tokens > To::tokens ||
+      from.num_conclusions > To::conclusions || from.num_points > To::points)
+    return false;
+  to.name = from.name;
+  to.num_inputs = from.num_inputs;
+  to.num_outputs = from.num_outputs;
+  to.num_rules = from.num_rules;
+  to.num_blocks = from.num_blocks;
+  to.num_tokens = from.num_tokens;
+  to.num_conclusions = from.num_conclusions;
+  to.num_points = from.num_points;
+  to.chained = from.chained;
+  if (!reserve_exact(to.inputs, from.num_inputs) || !reserve_exact(to.outputs, from.num_outputs) ||
+      !reserve_exact(to.rules, from.num_rules) || !reserve_exact(to.blocks, from.num_blocks) ||
+      !reserve_exact(to.tokens, from.num_tokens) ||
+      !reserve_exact(to.conclusions, from.num_conclusions) ||
+      !reserve_exact(to.points, 2 * from.num_points))
+    return false;
+  for (std::size_t i = 0; i < from.num_inputs; ++i) {
+    const auto& a = from.inputs[i];
+    auto& b = to.inputs[i];
+    if (a.num_terms > To::terms || !reserve_exact(b.terms, a.num_terms) ||
+        !reserve_exact(b.term_names, a.num_terms))
+      return false;
+    b.name = a.name;
+    b.min = a.min;
+    b.max = a.max;
+    b.lock_range = a.lock_range;
+    b.enabled = a.enabled;
+    b.num_terms = a.num_terms;
+    for (std::size_t t = 0; t < a.num_terms; ++t) {
+      b.terms[t] = a.terms[t];
+      b.term_names[t] = a.term_names[t];
+    }
+  }
+  for (std::size_t o = 0; o < from.num_outputs; ++o) {
+    const auto& a = from.outputs[o];
+    auto& b = to.outputs[o];
+    if (a.num_terms > To::terms || !reserve_exact(b.terms, a.num_terms) ||
+        !reserve_exact(b.term_names, a.num_terms))
+      return false;
+    b.name = a.name;
+    b.min = a.min;
+    b.max = a.max;
+    b.lock_range = a.lock_range;
+    b.lock_previous = a.lock_previous;
+    b.enabled = a.enabled;
+    b.has_aggregation = a.has_aggregation;
+    b.default_value = a.default_value;
+    b.defuzzifier = a.defuzzifier;
+    b.resolution = a.resolution;
+    b.exact_centroid = a.exact_centroid;
+    b.aggregation = a.aggregation;
+    b.num_terms = a.num_terms;
+    for (std::size_t t = 0; t < a.num_terms; ++t) {
+      const auto& ta = a.terms[t];
+      auto& tb = b.terms[t];
+      tb.kind = ta.kind;
+      tb.membership = ta.membership;
+      const std::size_t n = from.coefficients_of(ta.kind);
+      if (!reserve_exact(tb.coefficients, n)) return false;
+      for (std::size_t c = 0; c < n; ++c)
+        tb.coefficients[c] = ta.coefficients[c];
+      b.term_names[t] = a.term_names[t];
+    }
+  }
+  for (std::size_t r = 0; r < from.num_rules; ++r)
+    to.rules[r] = from.rules[r];
+  for (std::size_t k = 0; k < from.num_blocks; ++k)
+    to.blocks[k] = from.blocks[k];
+  for (std::size_t k = 0; k < from.num_tokens; ++k)
+    to.tokens[k] = from.tokens[k];
+  for (std::size_t k = 0; k < from.num_conclusions; ++k)
+    to.conclusions[k] = from.conclusions[k];
+  for (std::size_t k = 0; k < 2 * from.num_points; ++k)
+    to.points[k] = from.points[k];
+  return true;
+}
+
+// A model sized to `fixed` (set-up: allocates exactly its counts); a default model when `fixed`
+// does not hold its own counts.
+template <class Scalar, class Cap>
+EngineModel<Scalar, SizedCapacity<Cap>> make_sized(const EngineModel<Scalar, Cap>& fixed) {
+  EngineModel<Scalar, SizedCapacity<Cap>> sized;
+  if (!copy_model(fixed, sized)) return {};
+  return sized;
+}
+
+// The bytes a model occupies: the object and, for a sized model, what it allocated.
+template <class Scalar, class Cap>
+std::size_t model_bytes(const EngineModel<Scalar, Cap>& m) noexcept {
+  std::size_t bytes = sizeof(m);
+  if constexpr (Cap::sized) {
+    bytes += m.inputs.size() * sizeof(m.inputs[0]) + m.outputs.size() * sizeof(m.outputs[0]) +
+             m.rules.size() * sizeof(m.rules[0]) + m.blocks.size() * sizeof(m.blocks[0]) +
+             m.tokens.size() * sizeof(m.tokens[0]) +
+             m.conclusions.size() * sizeof(m.conclusions[0]) + m.points.size() * sizeof(Scalar);
+    for (const auto& in : m.inputs)
+      bytes += in.terms.size() * sizeof(in.terms[0]) + in.term_names.size() * sizeof(Name);
+    for (const auto& out : m.outputs) {
+      bytes += out.terms.size() * sizeof(out.terms[0]) + out.term_names.size() * sizeof(Name);
+      for (const auto& t : out.terms)
+        bytes += t.coefficients.size() * sizeof(Scalar);
+    }
+  }
+  return bytes;
+}
 
 }  // namespace fuzzypid::fuzzy

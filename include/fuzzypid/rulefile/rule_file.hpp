@@ -36,8 +36,8 @@ struct LoadOptions {
 };
 
 // Parse `text` as the named format; `source` names it in errors. On failure `model` is left in an
-// unspecified state and `error` says why. The model is large (docs/rule_files.md): keep it on the
-// heap.
+// unspecified state and `error` says why. The model is sized to the file: loading allocates its
+// arrays with the file's exact counts (docs/rule_files.md), evaluation allocates nothing.
 [[nodiscard]] bool parse_fll(std::string_view text, const std::string& source, Model& model,
                              LoadError& error, const LoadOptions& options = {});
 [[nodiscard]] bool parse_fis(std::string_view text, const std::string& source, Model& model,

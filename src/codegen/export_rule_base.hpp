@@ -1,0 +1,25 @@
+// The rule base of a controller file's `[supervisor] rule_file` as C++ for export-header: constexpr
+// data of a fixed-capacity fuzzy::EngineModel sized to the file, and the supervisor FuzzyPid calls,
+// so the target needs no parser and no heap.
+#pragma once
+
+#include <string>
+
+#include "fuzzypid/fuzzy/engine_model.hpp"
+
+namespace fuzzypid::codegen {
+
+// "" when every number of `model` is finite after conversion to float or infinite in the file
+// (open ranges), else the first that a float would turn infinite.
+[[nodiscard]] std::string check_rule_base_float_range(const fuzzy::EngineModel<double>& model);
+
+// Defines, inside the generated namespace: RuleBaseCapacity (the file's exact counts),
+// make_rule_base<Scalar>() and kRuleBase<Scalar> (the model, constexpr, every number an exact
+// hexadecimal literal of the loaded double converted to Scalar), and Supervisor<Scalar> with
+// kSupervisor<Scalar> (fuzzy::evaluate on a fixed EngineWorkspace: e, ec in, dKp, dKi, dKd out,
+// as control::EngineSupervisor). `model` must be valid with 2 inputs and 3 outputs; `rule_file`
+// is named in a comment.
+[[nodiscard]] std::string export_rule_base(const fuzzy::EngineModel<double>& model,
+                                           const std::string& rule_file);
+
+}  // namespace fuzzypid::codegen
