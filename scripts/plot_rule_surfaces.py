@@ -88,6 +88,7 @@ def main():
             ax = fig.add_subplot(1, 3, k + 1, projection="3d")
             ax.plot_surface(e, ec, z, cmap="viridis", linewidth=0, antialiased=True)
             ax.set_zlabel(f"{name} / {name}0")
+            ax.set_box_aspect(None, zoom=0.85)  # room for the z label
         ax.set_xlabel("e / rad")
         ax.set_ylabel("ec / (rad/s)")
         ax.set_title(f"{name} / {name}0")

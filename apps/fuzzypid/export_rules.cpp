@@ -84,10 +84,10 @@ std::string surface_csv(const control::RuleTable<double>& table, const ctl::Cont
 
 int run_export_rules(const ExportRulesOptions& o) {
   // Usage first, before reading anything: what to write, in which format, and where.
-  if (!o.out_given && !o.surface_given)
-    return usage("nothing to write: give --out (a rule file), --surface (a CSV) or both");
   if (o.controller_out_given && !o.out_given)
     return usage("--controller-out: needs --out, the rule file the controller names");
+  if (!o.out_given && !o.surface_given)
+    return usage("nothing to write: give --out (a rule file), --surface (a CSV) or both");
   std::string format = o.format;
   if (o.out_given) {
     const std::string by_name = format_of(o.out);
