@@ -69,10 +69,12 @@ std::string surface_csv(const control::RuleTable<double>& table, const ctl::Cont
   const double y_max = 1.2 * table.ec_centers.back();
   std::string text = "e_rad,ec_rad_s,kp_ratio,ki_ratio,kd_ratio\n";
   char buf[160];
+  // Node k at c (2k - (n - 1)) / (n - 1): symmetric about 0, and 0 itself when n is odd.
+  const auto at = [n](double c, unsigned k) { return c * (2.0 * k - (n - 1.0)) / (n - 1.0); };
   for (unsigned a = 0; a < n; ++a) {
-    const double x = -x_max + 2.0 * x_max * a / (n - 1);
+    const double x = at(x_max, a);
     for (unsigned b = 0; b < n; ++b) {
-      const double y = -y_max + 2.0 * y_max * b / (n - 1);
+      const double y = at(y_max, b);
       std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g,%.17g,%.17g\n",
                     x / spec.supervisor.error_scale, y / spec.supervisor.error_rate_scale,
                     table.ratio(x, y, 0), table.ratio(x, y, 1), table.ratio(x, y, 2));
