@@ -52,7 +52,7 @@ fs::path resolved(const std::string& path) {
   const fs::path p(path);
   const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
   fs::path dir = fs::weakly_canonical(fs::absolute(folder, ec), ec);
-  if (ec) dir = fs::absolute(folder).lexically_normal();
+  if (ec) dir = folder.lexically_normal();  // unreachable after check_output_path
   return dir / p.filename();
 }
 
