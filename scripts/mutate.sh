@@ -41,6 +41,9 @@ mutants=(
   "namespace_allows_std|src/codegen/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "float_range_unchecked|src/codegen/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "rt_loop_ignores_sigterm|apps/rt_loop/main.cpp|s/for (int sig : {SIGINT, SIGTERM, SIGHUP})/for (int sig : {SIGINT})/|build:rt_loop ctest:^rt_loop\.exit_codes"
+  # Our own: export-rules (the fuzzy controller beside the exported rule file, the surface).
+  "fuzzy_from_rule_table_drops_pid_options|src/controller/controller_spec.cpp|s/  s.pid = rules.pid;/  s.pid = {};/|bin:test_controller_file build:fuzzypid_cli build:sim_ab ctest:^cli\.export_rules\."
+  "surface_swaps_the_scales|apps/fuzzypid/export_rules.cpp|s/x \/ spec.supervisor.error_scale, y \/ spec.supervisor.error_rate_scale/x \/ spec.supervisor.error_rate_scale, y \/ spec.supervisor.error_scale/|build:fuzzypid_cli build:fuzzylite_surface ctest:^cli\.export_rules\."
 )
 
 restore_tests() {

@@ -19,6 +19,7 @@ void add_fk_command(CLI::App& app, std::function<int()>& run);
 void add_ik_command(CLI::App& app, std::function<int()>& run);
 void add_tune_command(CLI::App& app, std::function<int()>& run);           // tune.cpp
 void add_export_header_command(CLI::App& app, std::function<int()>& run);  // tune.cpp
+void add_export_rules_command(CLI::App& app, std::function<int()>& run);   // export_rules.cpp
 #endif
 
 }  // namespace fuzzypid::cli

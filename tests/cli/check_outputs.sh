@@ -58,6 +58,11 @@ refused "same file as the input" $fuzzypid export-header c.toml --out c.toml
 refused "same file as the input" $fuzzypid export-header c.toml --out link.toml
 refused "same file as the input" $fuzzypid export-header link.toml --out "$work/c.toml"
 refused "FIFO" $fuzzypid export-header c.toml --out fifo
+refused "is a folder" $fuzzypid export-rules c.toml --format fll --out folder
+refused "same file as the input" $fuzzypid export-rules c.toml --format fll --out link.toml
+refused "same file as the input" $fuzzypid export-rules c.toml --out x.fll --controller-out c.toml
+refused "read-only|Permission denied" $fuzzypid export-rules c.toml --out x.fll --controller-out ro/x.toml
+refused "FIFO" $fuzzypid export-rules c.toml --surface fifo
 refused "not a file name" "$rt_loop" --period-ms 0 --ticks 3 --csv ''
 refused "same file as the input" "$rt_loop" --period-ms 0 --ticks 3 --controller c.toml --csv c.toml
 refused "same file as the input" "$rt_loop" --period-ms 0 --ticks 3 --controller link.toml --csv c.toml
@@ -69,6 +74,7 @@ refused "read-only|Permission denied" "$sim_ab" --quiet --out ro/out
 if [ "$have_dev" -eq 1 ]; then
   refused "character device" $tune --conditions cond.toml --out full
   refused "character device" $fuzzypid export-header c.toml --out full
+  refused "character device" $fuzzypid export-rules c.toml --surface full
   refused "character device" "$rt_loop" --period-ms 0 --ticks 3 --csv full
   refused "character device" "$sim_ab" --quiet --out full
   [ -c full ] || fail "the device node was replaced: $(ls -l full)"
@@ -79,6 +85,7 @@ cmp -s cond.toml cond.orig || fail "an input condition file was changed"
 [ -h link.toml ] || fail "link.toml is no longer a link"
 [ -z "$(ls -A ro)$(ls -A folder)" ] || fail "something was written: $(ls -A ro) $(ls -A folder)"
 ls -A | grep -q '\.tmp' && fail "temporary left: $(ls -A)"
+[ -e x.fll ] && fail "export-rules wrote its rule file although another output was refused"
 
 # A base with a rule file and an --out without a folder: the rule file is named relative to the
 # current folder (this used to fail after the whole budget with a filesystem error).

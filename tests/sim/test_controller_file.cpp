@@ -1,17 +1,24 @@
-// Controller files (fuzzypid/controller_file): exact round trip, the shipped paper files, and
-// file:line:column errors for malformed files.
+// Controller files (fuzzypid/controller_file): exact round trip, the shipped paper files,
+// file:line:column errors for malformed files, and the fuzzy controller that runs a fuzzy-rules
+// controller's exported table (controller::fuzzy_from_rule_table).
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
+#include <memory>
 #include <ostream>
+#include <random>
 #include <sstream>
 #include <string>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/rulefile/rule_table_export.hpp"
 
 namespace {
 
@@ -327,6 +334,110 @@ TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
             fuzzypid::control::GainUpdate::Incremental);
   EXPECT_EQ(ctl::fuzzy_pid_config(ctl::paper_fuzzy(), 1.0).gain_update,
             fuzzypid::control::GainUpdate::Absolute);
+}
+
+// A fuzzy-rules controller with an uneven table, non-uniform centres, R != 1, bounds that clamp
+// and non-default PID options, in the given form.
+ctl::ControllerSpec fuzzy_rules_example(ctl::PidForm form) {
+  ctl::ControllerSpec s;
+  s.family = ctl::Family::FuzzyRules;
+  s.units.form = form;
+  s.gains = {548.2, 6.56, 360.5};
+  s.supervisor.error_scale = 84.3;
+  s.supervisor.error_rate_scale = 1.76;
+  s.supervisor.output_scale = {0.294, 0.0101, 1.152};
+  auto& t = s.supervisor.rule_table;
+  t.error_centres = {-1.5, -0.8, -0.3, 0.0, 0.3, 0.8, 1.5};
+  t.error_rate_centres = {-1.0, -0.6, -0.2, 0.0, 0.2, 0.6, 1.0};
+  for (std::size_t i = 0; i < 7; ++i)
+    for (std::size_t j = 0; j < 7; ++j) {
+      t.ratio[0][i][j] = 0.7 + 0.05 * i + 0.03 * j;
+      t.ratio[1][i][j] = 1.0 + 0.1 * (i > 3 ? i - 3 : 3 - i) - 0.04 * j;
+      t.ratio[2][i][j] = 1.2 - 0.04 * static_cast<double>(i * j % 5);
+    }
+  s.gain_min = {50.0, 0.0, 0.0};
+  s.gain_max = {600.0, std::numeric_limits<double>::infinity(), 420.0};
+  s.pid.derivative_on = fuzzypid::pid::DerivativeOn::Measurement;
+  s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;
+  s.pid.derivative_filter_s = 0.02;
+  s.feedforward.gravity = true;
+  return s;
+}
+
+// The fuzzy controller that runs a fuzzy-rules controller's table exported as .fll keeps every
+// setting but the supervisor's, and ticks like the original on random inputs (per-tick and
+// continuous gains).
+TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
+  for (const ctl::PidForm form : {ctl::PidForm::PerTick, ctl::PidForm::Continuous}) {
+    SCOPED_TRACE(ctl::to_string(form));
+    ctl::ControllerSpec rules = fuzzy_rules_example(form);
+    rules.description = "tuned";
+    rules.tuning = ctl::Tuning{};
+    ASSERT_EQ(ctl::validate(rules), "");
+    std::string text, error;
+    ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(ctl::rule_table(rules), text, error))
+        << error;
+    auto model = std::make_shared<fuzzypid::rulefile::Model>();
+    fuzzypid::rulefile::LoadError load_error;
+    ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "t.fll", *model, load_error))
+        << load_error.to_string();
+    const ctl::ControllerSpec fuzzy =
+        ctl::fuzzy_from_rule_table(rules, "../rules/t.fll", model, "exported");
+    ASSERT_EQ(ctl::validate(fuzzy), "");
+    EXPECT_EQ(fuzzy.family, ctl::Family::Fuzzy);
+    EXPECT_EQ(fuzzy.description, "exported");
+    EXPECT_EQ(fuzzy.units.form, form);
+    EXPECT_EQ(fuzzy.gains, rules.gains);
+    EXPECT_EQ(fuzzy.supervisor.error_scale, rules.supervisor.error_scale);
+    EXPECT_EQ(fuzzy.supervisor.error_rate_scale, rules.supervisor.error_rate_scale);
+    EXPECT_EQ(fuzzy.supervisor.output_scale,
+              (std::array<double, 3>{rules.gains.kp, rules.gains.ki, rules.gains.kd}));
+    EXPECT_EQ(fuzzy.supervisor.gain_update, fuzzypid::control::GainUpdate::Absolute);
+    EXPECT_EQ(fuzzy.supervisor.rule_file, "../rules/t.fll");
+    EXPECT_EQ(fuzzy.gain_min, rules.gain_min);
+    EXPECT_EQ(fuzzy.gain_max, rules.gain_max);
+    EXPECT_EQ(fuzzy.pid.derivative_on, rules.pid.derivative_on);
+    EXPECT_EQ(fuzzy.pid.anti_windup, rules.pid.anti_windup);
+    EXPECT_EQ(fuzzy.pid.derivative_filter_s, rules.pid.derivative_filter_s);
+    EXPECT_TRUE(fuzzy.feedforward.gravity);
+    EXPECT_FALSE(fuzzy.tuning.has_value());
+
+    ctl::Vector limit;
+    limit.fill(5.0);  // saturates now and then: the anti-windup paths run too
+    auto a = ctl::JointControllers::create(rules, limit, error);
+    ASSERT_TRUE(a) << error;
+    auto b = ctl::JointControllers::create(fuzzy, limit, error);
+    ASSERT_TRUE(b) << error;
+    const std::uint64_t seed = 20261202;
+    std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+    std::mt19937_64 rng(seed);
+    // Errors across the universe (|Ke e| up to 2 c_max), rates likewise.
+    std::uniform_real_distribution<double> e(-0.035, 0.035), ec(-1.2, 1.2);
+    double worst = 0.0;
+    for (int tick = 0; tick < 4000; ++tick) {
+      ctl::Input in;
+      for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+        in.desired_position_rad[j] = 0.1 * static_cast<double>(j);
+        in.measured_position_rad[j] =
+            in.desired_position_rad[j] - e(rng) * (tick % 7 == 0 ? 0.01 : 1);
+        in.measured_velocity_rad_s[j] = ec(rng) * (tick % 5 == 0 ? 0.01 : 1);
+      }
+      const ctl::Command ca = a->step(in, rules.units.tick_s);
+      const ctl::Command cb = b->step(in, rules.units.tick_s);
+      ASSERT_EQ(ca.status, cb.status) << "tick " << tick;
+      for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+        const double d = std::fabs(ca.torque_nm[j] - cb.torque_nm[j]) /
+                         std::fmax(1.0, std::fabs(ca.torque_nm[j]));
+        worst = std::fmax(worst, d);
+        const auto ga = a->gains(j), gb = b->gains(j);
+        EXPECT_NEAR(gb.kp, ga.kp, 1e-9 * ga.kp) << "tick " << tick;
+        EXPECT_NEAR(gb.ki, ga.ki, 1e-9 * ga.ki) << "tick " << tick;
+        EXPECT_NEAR(gb.kd, ga.kd, 1e-9 * ga.kd) << "tick " << tick;
+      }
+    }
+    std::printf("max |command difference| %.3g (relative above 1)\n", worst);
+    EXPECT_LE(worst, 1e-9);
+  }
 }
 
 }  // namespace

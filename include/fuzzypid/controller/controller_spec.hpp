@@ -290,6 +290,17 @@ struct ControllerSpec {
 [[nodiscard]] ControllerSpec paper_pid();
 [[nodiscard]] ControllerSpec paper_fuzzy();
 
+// The fuzzy family's description of a fuzzy-rules controller `rules` whose rule table was written
+// as a rule file (rulefile::rule_table_to_fll/fcl/fis): the same units, K0, Ke, Kec, bounds, PID
+// options and feed-forward; output_scale S = K0 (file units) and the absolute update, so
+// K = K0 + K0 dK with dK = ratio - 1 as the file encodes it. `rule_file` is the path the new file
+// names (relative to its folder), `model` the rule file as loaded (it may be null until then:
+// validate() wants it). The tuning record, which describes the search of the fuzzy-rules family,
+// is not carried over; `description` replaces the description.
+[[nodiscard]] ControllerSpec fuzzy_from_rule_table(
+    const ControllerSpec& rules, std::string rule_file,
+    std::shared_ptr<const fuzzy::EngineModel<double>> model, std::string description);
+
 // Checks the values (finite, positive where needed, bounds ordered, family-specific settings).
 // Returns an empty string or what is wrong.
 [[nodiscard]] std::string validate(const ControllerSpec& spec);
