@@ -50,8 +50,8 @@ class SizedArray {
   const T* begin() const noexcept { return data(); }
   const T* end() const noexcept { return data() + size(); }
 
-  friend bool operator==(const SizedArray& a, const SizedArray& b) { return a.items_ == b.items_; }
-  friend bool operator!=(const SizedArray& a, const SizedArray& b) { return !(a == b); }
+  bool operator==(const SizedArray& other) const { return items_ == other.items_; }
+  bool operator!=(const SizedArray& other) const { return !(*this == other); }
 
  private:
   std::vector<T> items_;
