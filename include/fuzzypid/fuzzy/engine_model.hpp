@@ -50,8 +50,8 @@ class SizedArray {
   const T* begin() const noexcept { return data(); }
   const T* end() const noexcept { return data() + size(); }
 
-  friend bool operator==(const SizedArray& a, const SizedArray& b) { return a.items_ == b.items_; }
-  friend bool operator!=(const SizedArray& a, const SizedArray& b) { return !(a == b); }
+  bool operator==(const SizedArray& other) const { return items_ == other.items_; }
+  bool operator!=(const SizedArray& other) const { return !(*this == other); }
 
  private:
   std::vector<T> items_;
@@ -331,6 +331,16 @@ struct EngineModel {
           (blocks[b].implication != TNorm::Minimum && blocks[b].implication != TNorm::Product))
         return false;
     return true;
+  }
+
+  // True when some input or output is disabled (evaluation then checks each proposition's and
+  // conclusion's variable; otherwise it skips those checks).
+  bool has_disabled_variables() const noexcept {
+    for (std::size_t i = 0; i < num_inputs; ++i)
+      if (!inputs[i].enabled) return true;
+    for (std::size_t o = 0; o < num_outputs; ++o)
+      if (!outputs[o].enabled) return true;
+    return false;
   }
 
   // The coefficients an output term of `kind` reads.
