@@ -79,9 +79,11 @@ Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   return hedge_right_to_left(tok.hedges, n, degrees[tok.input * ws.stride + tok.term]);
 }
 
-// Weight times the antecedent of rule r (postfix evaluation on ws.stack).
+// Weight times the antecedent of rule r (postfix evaluation on ws.stack). `disabled`: the model
+// has disabled variables, whose propositions are 0.
 template <class Scalar, class Model>
-Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
+Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r,
+                     bool disabled) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
   const RuleBlock& block = model.blocks[rule.block];
   std::size_t sp = 0;
@@ -93,9 +95,9 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
       ws.stack[sp - 1] = tok.kind == Token::Kind::And ? apply(block.conjunction, a, b)
                                                       : apply(block.disjunction, a, b);
     } else {
-      const bool enabled = tok.kind == Token::Kind::OutputProposition
-                               ? model.outputs[tok.input].enabled
-                               : model.inputs[tok.input].enabled;
+      const bool enabled = !disabled || (tok.kind == Token::Kind::OutputProposition
+                                             ? model.outputs[tok.input].enabled
+                                             : model.inputs[tok.input].enabled);
       ws.stack[sp++] = enabled ? proposition(ws, tok) : Scalar(0);
     }
   }
@@ -174,7 +176,7 @@ bool compare(Comparison c, Scalar a, Scalar b) noexcept {
 // triggered before it; Proportional, Highest and Lowest evaluate all of the block's rules first.
 template <class Scalar, class Model>
 std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t b,
-                           std::size_t n) noexcept {
+                           std::size_t n, bool disabled) noexcept {
   const Scalar zero = Scalar(0);
   const RuleBlock& block = model.blocks[b];
   const auto in_block = [&](std::size_t r) { return model.rules[r].block == b; };
@@ -193,7 +195,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       for (std::size_t k = 0; k < model.num_rules; ++k) {
         const std::size_t r = last ? model.num_rules - 1 - k : k;
         if (!in_block(r)) continue;
-        const Scalar w = ws.strength[r] = rule_strength(model, ws, r);
+        const Scalar w = ws.strength[r] = rule_strength(model, ws, r, disabled);
         bool fires = w > zero;
         if (block.activation == ActivationMethod::Threshold)
           fires = fires && compare(block.comparison, w, threshold);
@@ -209,7 +211,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
     case ActivationMethod::Proportional: {
       Scalar sum = zero;
       for (std::size_t r = 0; r < model.num_rules; ++r)
-        if (in_block(r)) sum += ws.strength[r] = rule_strength(model, ws, r);
+        if (in_block(r)) sum += ws.strength[r] = rule_strength(model, ws, r, disabled);
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
         ws.strength[r] = ws.strength[r] / sum;
@@ -227,7 +229,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       std::size_t size = 0;
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
-        ws.strength[r] = rule_strength(model, ws, r);
+        ws.strength[r] = rule_strength(model, ws, r, disabled);
         if (!(ws.strength[r] > zero)) continue;
         ws.heap[size++] = static_cast<std::uint32_t>(r);
         std::push_heap(ws.heap, ws.heap + size, before);
@@ -267,12 +269,13 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
 
+  const bool disabled = model.has_disabled_variables();
   if (model.chained)
     for (std::size_t k = 0; k < model.num_outputs * ws.stride; ++k)
       ws.degree[k] = Scalar(0);
   std::size_t fired_rules = 0;
   for (std::size_t b = 0; b < model.num_blocks; ++b)
-    fired_rules = engine_detail::activate_block(model, ws, b, fired_rules);
+    fired_rules = engine_detail::activate_block(model, ws, b, fired_rules, disabled);
 
   const bool merged = model.merges_activations();
   Status status = Status::Ok;
@@ -295,7 +298,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       Scalar degree = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
-        if (!model.outputs[c.output].enabled) continue;
+        if (disabled && !model.outputs[c.output].enabled) continue;
         degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
         if (c.output != o) continue;
         fired = true;

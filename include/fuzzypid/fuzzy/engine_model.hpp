@@ -333,6 +333,16 @@ struct EngineModel {
     return true;
   }
 
+  // True when some input or output is disabled (evaluation then checks each proposition's and
+  // conclusion's variable; otherwise it skips those checks).
+  bool has_disabled_variables() const noexcept {
+    for (std::size_t i = 0; i < num_inputs; ++i)
+      if (!inputs[i].enabled) return true;
+    for (std::size_t o = 0; o < num_outputs; ++o)
+      if (!outputs[o].enabled) return true;
+    return false;
+  }
+
   // The coefficients an output term of `kind` reads.
   std::size_t coefficients_of(OutputTermKind kind) const noexcept {
     return kind == OutputTermKind::Linear     ? num_inputs + 1
