@@ -12,6 +12,7 @@
 #   BUDGET=N   evaluations per controller (default 64000)   SEEDS=N   seeds (default 5)
 #   THREADS=N  threads per run (default: all cores)          SKIP_SEEDS=1   only seed 1
 #   RULES_ARGS="..."  the fuzzy-rules stage's regulariser (default: the documented defaults)
+#   RESUME=1   keep the seed files that exist (the runs are deterministic for a seed)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 budget="${BUDGET:-64000}"
@@ -39,6 +40,8 @@ last="${seeds}"
 if [ "${SKIP_SEEDS:-0}" = 1 ]; then last=1; fi
 for seed in $(seq 1 "${last}"); do
   for family in pid scheduled fuzzy fuzzy_rules; do
+    out="out/seeds/${family}_seed${seed}.toml"
+    if [ "${RESUME:-0}" = 1 ] && [ -f "${out}" ]; then echo "== ${family} seed ${seed}: kept"; continue; fi
     echo "== ${family} seed ${seed}"
     tune_one "${family}" "${seed}" "out/seeds/${family}_seed${seed}.toml"
   done

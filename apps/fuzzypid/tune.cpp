@@ -55,7 +55,7 @@ struct TuneOptions {
   std::string family_name, conditions, set = "training", out, base_file, init_file, stages;
   std::uint64_t budget = 16000, seed = 1, population = 0, validation = 0;
   bool budget_given = false;
-  std::string symmetry = "even", unvisited = "seed";
+  std::string symmetry = "even", unvisited = "seed", partition = "tuned";
   tune::TableOptions table;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   ctl::Objective objective;
@@ -132,6 +132,7 @@ int run_tune(const TuneOptions& t) {
   opt.table = t.table;
   opt.table.symmetry = *fuzzypid::parse_enum(tune::kSymmetryNames, t.symmetry);
   opt.table.unvisited = *fuzzypid::parse_enum(tune::kUnvisitedNames, t.unvisited);
+  opt.table.partition = t.partition == "tuned";
   opt.validation = t.validation;
   opt.family = family;
   opt.budget = t.budget;
@@ -339,13 +340,6 @@ int run_export_header(const ExportOptions& o) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
     return 1;
   }
-  if (!spec.supervisor.rule_file.empty()) {
-    std::fprintf(stderr,
-                 "fuzzypid export-header: %s: a rule file (%s) cannot be exported as a header; "
-                 "only the built-in tables can\n",
-                 in.c_str(), spec.supervisor.rule_file.c_str());
-    return 1;
-  }
   if (const std::string bad = fuzzypid::codegen::check_float_range(spec); !bad.empty()) {
     std::fprintf(stderr, "fuzzypid export-header: %s: %s\n", in.c_str(), bad.c_str());
     return 1;
@@ -395,8 +389,10 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "fuzzy-rules: table symmetry, even (T(+-x, +-y) equal), odd (log T(-x, -y) = "
                   "-log T(x, y)) or none (default even)")
       ->check(CLI::IsMember({"even", "odd", "none"}));
-  cmd->add_flag("--tune-partition", t->table.partition,
-                "fuzzy-rules: search the inner set centres too (ordered, symmetric)");
+  cmd->add_option("--partition", t->partition,
+                  "fuzzy-rules: search the inner set centres too (tuned: ordered, symmetric) or "
+                  "keep the start's (fixed) (default tuned)")
+      ->check(CLI::IsMember({"tuned", "fixed"}));
   cmd->add_option("--smoothness", t->table.smoothness,
                   "fuzzy-rules: weight of the squared log10 differences of neighbouring cells "
                   "(default 0)")
