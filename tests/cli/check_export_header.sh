@@ -38,6 +38,25 @@ EOF
   done
 done
 
+# A controller whose supervisor is a rule file (its rule base becomes constexpr data) and a
+# fuzzy-rules controller (its table becomes constexpr data) go through the command as well.
+for file in tests/sim/data/engine_fuzzy.toml tests/cli/data/fuzzy_rules.toml; do
+  header="$work/from_file.hpp"
+  "$fuzzypid" export-header "$src/$file" --namespace from_file --out "$header" 2>"$work/err" ||
+    fail "export-header $file refused: $(cat "$work/err")"
+  cat >"$work/use.cpp" <<EOF
+#include "$header"
+void use() {
+  auto f = from_file::make_controller<float>(1.0f);
+  auto d = from_file::make_controller<double>(1.0);
+  (void)f;
+  (void)d;
+}
+EOF
+  "$cxx" -std=c++17 -fsyntax-only -Wall -Wextra -Wpedantic -Werror -I"$src/include" \
+    "$work/use.cpp" 2>"$work/err" || fail "$file's header does not compile: $(cat "$work/err")"
+done
+
 # Refused namespaces: exit 2, the reason on stderr, nothing written.
 for ns in class int and xor_eq main std a::std fuzzypid a::fuzzypid final 1abc __x a__b _Abc _lower \
   a::_B NULL EOF errno linux unix 'a::' '::a' 'a:::b' 'a b' 'a-b' 'caf\303\251' '' 'a::b::'; do
