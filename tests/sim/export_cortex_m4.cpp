@@ -1,13 +1,15 @@
 // Compiled (not run) for a Cortex-M4F, float, -fno-exceptions -fno-rtti: a controller exported by
 // `fuzzypid export-header` needs no parser, heap or OS on the target, one with a rule file
-// (engine_tip_fuzzy: a Mamdani rule base as constexpr data) included.
+// (engine_tip_fuzzy: a Mamdani rule base as constexpr data) and a tuned fuzzy-rules table included.
 #include "engine_tip_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
+#include "tuned_fuzzy_rules.hpp"
 #include "tuned_scheduled.hpp"
 
 namespace {
 auto fuzzy = tuned_fuzzy::make_controller<float>(5.0f);
 auto scheduled = tuned_scheduled::make_controller<float>(5.0f);
+auto rules = tuned_fuzzy_rules::make_controller<float>(5.0f);
 auto tipper = engine_tip_fuzzy::make_controller<float>(5.0f);
 }  // namespace
 
@@ -17,6 +19,7 @@ extern "C" float exported_tick(float setpoint, float measurement) {
   in.measurement = measurement;
   const bool ok = !fuzzypid::is_fault(fuzzy.update(in, 0.05f)) &&
                   !fuzzypid::is_fault(scheduled.update(in, 0.05f)) &&
-                  !fuzzypid::is_fault(tipper.update(in, 0.05f));
-  return ok ? fuzzy.output() + scheduled.output() + tipper.output() : 0.0f;
+                  !fuzzypid::is_fault(tipper.update(in, 0.05f)) &&
+                  !fuzzypid::is_fault(rules.update(in, 0.05f));
+  return ok ? fuzzy.output() + scheduled.output() + tipper.output() + rules.output() : 0.0f;
 }

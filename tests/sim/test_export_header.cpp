@@ -15,6 +15,7 @@
 #include "fuzzypid/sim/random.hpp"
 #include "paper_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
+#include "tuned_fuzzy_rules.hpp"
 #include "tuned_pid.hpp"
 #include "tuned_scheduled.hpp"
 
@@ -77,6 +78,7 @@ TEST(ExportHeader, GeneratedControllersEqualTheFilesBitForBit) {
   expect_equal_to_file("tuned_pid.toml", tuned_pid::make_controller<double>(3.0));
   expect_equal_to_file("tuned_scheduled.toml", tuned_scheduled::make_controller<double>(3.0));
   expect_equal_to_file("tuned_fuzzy.toml", tuned_fuzzy::make_controller<double>(3.0));
+  expect_equal_to_file("tuned_fuzzy_rules.toml", tuned_fuzzy_rules::make_controller<double>(3.0));
   expect_equal_to_file("paper_fuzzy.toml", paper_fuzzy::make_controller<double>(3.0));
 }
 
@@ -118,6 +120,34 @@ TEST(ExportHeader, GeneratedConfigurationIsConstexprAndInstantiatesForFloat) {
   EXPECT_EQ(joint.update(in, 0.05f), Status::Ok);
   EXPECT_GT(joint.output(), 0.0f);
   EXPECT_STREQ(tuned_fuzzy::kFamily, "fuzzy");
+}
+
+}  // namespace
+
+namespace {
+
+// The tuned rule table as constexpr data: every ratio, centre and R of the file, bit for bit (the
+// random ticks above mostly saturate Ke e, so they reach few of the table's inner cells).
+TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError err;
+  ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/controllers/tuned_fuzzy_rules.toml", spec, err))
+      << err.to_string();
+  const control::RuleTable<double> file = ctl::rule_table(spec);
+  const auto& header = tuned_fuzzy_rules::kSupervisor<double>;
+  bool some_cell_is_not_one = false;
+  for (std::size_t g = 0; g < 3; ++g) {
+    EXPECT_TRUE(same_bits(file.schedule_ratio[g], header.schedule_ratio[g]));
+    for (std::size_t i = 0; i < 7; ++i) {
+      EXPECT_TRUE(same_bits(file.e_centers[i], header.e_centers[i]));
+      EXPECT_TRUE(same_bits(file.ec_centers[i], header.ec_centers[i]));
+      for (std::size_t j = 0; j < 7; ++j) {
+        EXPECT_TRUE(same_bits(file.table[g][i][j], header.table[g][i][j])) << g << i << j;
+        some_cell_is_not_one = some_cell_is_not_one || header.table[g][i][j] != 1.0;
+      }
+    }
+  }
+  EXPECT_TRUE(some_cell_is_not_one);
 }
 
 }  // namespace
