@@ -71,8 +71,8 @@ void BM_ControllerStep6_scheduled(benchmark::State& state) {
   const auto k0 = tick_pid_config().gains;
   using Joint = fuzzypid::control::FuzzyPid<double, Schedule>;
   run_ticks(state, fuzzypid::control::JointController<double, kJoints, Joint>(Joint(
-                       &kSchedule, supervised_config<Schedule>(
-                                       {-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd}))));
+                       &kSchedule,
+                       supervised_config<Schedule>({-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd}))));
 }
 BENCHMARK(BM_ControllerStep6_scheduled)->Name("BM_ControllerStep6/scheduled");
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
 
 namespace {
@@ -52,6 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!cf::parse(written, "written.toml", back, error)) std::abort();
   if (cf::to_toml(back) != written) std::abort();
   std::string build_error;
-  if (!ctl::JointControllers::create(spec, ctl::Vector{1, 1, 1, 1, 1, 1}, build_error)) std::abort();
+  if (!ctl::JointControllers::create(spec, ctl::Vector{1, 1, 1, 1, 1, 1}, build_error))
+    std::abort();
   return 0;
 }

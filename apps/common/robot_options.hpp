@@ -135,9 +135,7 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
     names.emplace_back(e.name);
   app.add_option_function<std::string>(
          "--dynamics",
-         [&o](const std::string& s) {
-           o.dynamics = *fuzzypid::parse_enum(sim::kDynamicsNames, s);
-         },
+         [&o](const std::string& s) { o.dynamics = *fuzzypid::parse_enum(sim::kDynamicsNames, s); },
          "plant: decoupled joints J_i theta'' = tau (the paper's model, default) or coupled "
          "rigid-body dynamics M(q) q'' + C q' + g = tau")
       ->check(CLI::IsMember(names));

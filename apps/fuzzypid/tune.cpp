@@ -14,8 +14,8 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
@@ -239,10 +239,12 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 ctl::to_string(family), training->conditions.size() - t.validation,
-                 t.set.c_str(), total_budget, t.seed, t.threads);
+                 ctl::to_string(family), training->conditions.size() - t.validation, t.set.c_str(),
+                 total_budget, t.seed, t.threads);
     if (t.validation != 0)
-      std::fprintf(stderr, "fuzzypid tune: the last %" PRIu64 " conditions of the set held back for validation\n",
+      std::fprintf(stderr,
+                   "fuzzypid tune: the last %" PRIu64
+                   " conditions of the set held back for validation\n",
                    t.validation);
     double last = -1.0;
     opt.progress = [last](const tune::Progress& p) mutable {
@@ -258,7 +260,8 @@ int run_tune(const TuneOptions& t) {
   }
   if (t.validation >= training->conditions.size()) {
     std::fprintf(stderr,
-                 "fuzzypid tune: --validation %" PRIu64 " leaves no training condition (set %s has %zu)\n",
+                 "fuzzypid tune: --validation %" PRIu64
+                 " leaves no training condition (set %s has %zu)\n",
                  t.validation, t.set.c_str(), training->conditions.size());
     return kExitUsage;
   }
@@ -418,9 +421,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "docs/your_robot.md)")
       ->required();
   cmd->add_option("--set", t->set, "the training set's name (default training)");
-  CLI::Option* budget =
-      cmd->add_option("--budget", t->budget, "objective evaluations, never exceeded (default 16000)")
-          ->check(unsigned_in(14, 100000000));
+  CLI::Option* budget = cmd->add_option("--budget", t->budget,
+                                        "objective evaluations, never exceeded (default 16000)")
+                            ->check(unsigned_in(14, 100000000));
   cmd->add_option("--seed", t->seed, "random seed (default 1)")->check(unsigned_in(0, 4294967295u));
   cmd->add_option("--threads", t->threads,
                   "threads evaluating the conditions (default: all cores; the result does not "

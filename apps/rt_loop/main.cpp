@@ -70,7 +70,7 @@ namespace cli = fuzzypid::cli;
 namespace robot = fuzzypid::robot;
 namespace sim = fuzzypid::sim;
 namespace cf = fuzzypid::controller_file;
-  namespace ctl = fuzzypid::controller;
+namespace ctl = fuzzypid::controller;
 
 using fuzzypid::rt_loop::kTool;
 using fuzzypid::rt_loop::Options;

@@ -163,11 +163,12 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
       const std::string rules =
           (fs::path(c.source).parent_path() / s.supervisor.rule_file).lexically_normal().string();
       std::fprintf(f, " gain_update=%s rule_file=%s rule_file_fnv1a64=%s",
-                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update), rules.c_str(),
-                   cf::file_hash(rules).c_str());
+                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update),
+                   rules.c_str(), cf::file_hash(rules).c_str());
     }
     if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
-    std::fprintf(f, " derivative=%s\n", fuzzypid::name_of(ctl::kDerivativeSourceNames, s.pid.derivative));
+    std::fprintf(f, " derivative=%s\n",
+                 fuzzypid::name_of(ctl::kDerivativeSourceNames, s.pid.derivative));
   }
 }
 

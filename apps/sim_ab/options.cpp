@@ -65,15 +65,18 @@ CLI::Option* add_list(CLI::App& app, const std::string& name, std::array<double,
 
 template <class Enum, std::size_t N>
 CLI::Option* add_enum(CLI::App& app, const std::string& name, Enum& target,
-                      const std::array<fuzzypid::EnumName<Enum>, N>& table, const std::string& help) {
+                      const std::array<fuzzypid::EnumName<Enum>, N>& table,
+                      const std::string& help) {
   std::vector<std::string> names;
   names.reserve(N);
   for (const auto& e : table)
     names.emplace_back(e.name);
   return app
       .add_option_function<std::string>(
-          name, [&target, &table](const std::string& s) { target = *fuzzypid::parse_enum(table, s); },
-          help + " (" + fuzzypid::names_of(table) + "; default " + fuzzypid::name_of(table, target) + ")")
+          name,
+          [&target, &table](const std::string& s) { target = *fuzzypid::parse_enum(table, s); },
+          help + " (" + fuzzypid::names_of(table) + "; default " +
+              fuzzypid::name_of(table, target) + ")")
       ->check(CLI::IsMember(names));
 }
 

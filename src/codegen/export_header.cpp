@@ -271,8 +271,9 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
         return out + "}";
       };
       h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::RuleTable<Scalar>;\n\n";
-      h += "// The shared, immutable supervisor the joints point to: the schedule's ratios R, the\n"
-           "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centres.\n";
+      h +=
+          "// The shared, immutable supervisor the joints point to: the schedule's ratios R, the\n"
+          "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centres.\n";
       h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{\n";
       h += "    " + list(t.schedule_ratio) + ",\n    {{\n";
       for (const auto& table : t.table) {

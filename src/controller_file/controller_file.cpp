@@ -67,7 +67,8 @@ std::shared_ptr<const fuzzy::EngineModel<double>> load_rule_model(const TableRea
 
 // n numbers at `key`, each finite.
 template <std::size_t N>
-std::array<double, N> read_numbers(TableReader& r, const toml::node& node, const std::string& what) {
+std::array<double, N> read_numbers(TableReader& r, const toml::node& node,
+                                   const std::string& what) {
   const auto* a = node.as_array();
   if (a == nullptr || a->size() != N)
     r.fail(node, what + " must be an array of " + std::to_string(N) + " numbers");
@@ -256,8 +257,8 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     }
     tu.init = t->text("init", std::string());
     tu.validation_conditions = t->count("validation_conditions", 0);
-    tu.validation_cost = t->number("validation_cost", std::numeric_limits<double>::quiet_NaN(),
-                                   true);
+    tu.validation_cost =
+        t->number("validation_cost", std::numeric_limits<double>::quiet_NaN(), true);
     if (const toml::array* stages = t->array("stages", false)) {
       for (const toml::node& entry : *stages) {
         const auto* st = entry.as_table();
@@ -328,7 +329,8 @@ std::string format_double(double v) {
   return s;
 }
 
-bool parse(std::string_view text, const std::string& source, ControllerSpec& spec, FileError& error) {
+bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
+           FileError& error) {
   try {
     const toml::table root = parse_toml(text, source);
     ControllerSpec s = read_spec(root, source);
@@ -375,7 +377,8 @@ std::string to_toml(const ControllerSpec& s) {
     o += "error_rate_scale = " + format_double(sup.error_rate_scale) + "\n";
     o += "output_scale = " +
          triple_text(sup.output_scale[0], sup.output_scale[1], sup.output_scale[2]);
-    o += s.family == Family::Fuzzy ? "  # Sp, Si, Sd\n" : "  # large-error gain ratios Rp, Ri, Rd\n";
+    o +=
+        s.family == Family::Fuzzy ? "  # Sp, Si, Sd\n" : "  # large-error gain ratios Rp, Ri, Rd\n";
     if (s.family == Family::Fuzzy) {
       o += "gain_update = " + quoted(name_of(kGainUpdateNames, sup.gain_update)) + "\n";
       if (!sup.rule_file.empty()) {
@@ -388,7 +391,8 @@ std::string to_toml(const ControllerSpec& s) {
   }
   if (s.family == Family::FuzzyRules) {
     const RuleTableSpec& t = s.supervisor.rule_table;
-    o += "\n[rule_table]  # the rule \"x is set i and y is set j\" multiplies the schedule's gain by "
+    o += "\n[rule_table]  # the rule \"x is set i and y is set j\" multiplies the schedule's gain "
+         "by "
          "ratio[i][j]\n";
     o += "# sets NB NM NS ZO PS PM PB of x = error_scale e (rows) and y = error_rate_scale ec "
          "(columns)\n";
@@ -444,7 +448,8 @@ std::string to_toml(const ControllerSpec& s) {
              ", fnv1a64 = " + quoted(f.fnv1a64) + " },\n";
       o += "]\n";
     }
-    if (!t.init.empty()) o += "init = " + quoted(t.init) + "  # the controller the search started from\n";
+    if (!t.init.empty())
+      o += "init = " + quoted(t.init) + "  # the controller the search started from\n";
     if (t.validation_conditions != 0) {
       o += "validation_conditions = " + std::to_string(t.validation_conditions) +
            "  # held back from the training set\n";

@@ -63,8 +63,7 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
 }
 
 ClosedLoop::ClosedLoop(const Experiment& experiment, const Condition& condition,
-                       const robot::JointPathResult& path,
-                       controller::JointControllers controller)
+                       const robot::JointPathResult& path, controller::JointControllers controller)
     : experiment_(&experiment),
       path_(&path),
       condition_(condition),

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <set>
 
-#include "fuzzypid_support/toml_reader.hpp"
 #include "fuzzypid/sim/random.hpp"
+#include "fuzzypid_support/toml_reader.hpp"
 
 namespace fuzzypid::sim {
 
@@ -87,8 +87,8 @@ Condition read_condition(const toml::node& node, const std::string& file,
   const toml::table* t = node.as_table();
   if (t == nullptr)
     throw ReadError{fuzzypid::FileError{file, static_cast<int>(node.source().begin.line),
-                                           static_cast<int>(node.source().begin.column),
-                                           "a condition must be a table"}};
+                                        static_cast<int>(node.source().begin.column),
+                                        "a condition must be a table"}};
   TableReader r(*t, file);
   Condition c = defaults;
   const std::string base = r.text("scenario", std::string());

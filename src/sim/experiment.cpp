@@ -33,8 +33,8 @@ bool is_bundled_urdf(const std::string& urdf) {
 }  // namespace
 
 ControllerSpec default_controller(const ExperimentOptions& o, controller::Family family) {
-  ControllerSpec s = family == controller::Family::Fuzzy ? controller::paper_fuzzy()
-                                                              : controller::paper_pid();
+  ControllerSpec s =
+      family == controller::Family::Fuzzy ? controller::paper_fuzzy() : controller::paper_pid();
   s.family = family;
   s.units.gains = o.gain_units;
   s.units.form = o.pid_form;
@@ -270,8 +270,7 @@ std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] =
-        paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, u_max));
+    joints[i] = paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, u_max));
   }
   return joints;
 }

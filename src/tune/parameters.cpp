@@ -14,8 +14,8 @@ const char* const kGainNames[3] = {"kp", "ki", "kd"};
 
 // log10 bounds, acceleration units, per tick at 0.05 s (docs/tuning.md explains each).
 constexpr double kPidBox[3][2] = {{-1.0, 4.0}, {-6.0, 1.0}, {0.0, 4.0}};
-constexpr double kScaleBox[2][2] = {{-1.0, 4.0}, {-3.0, 2.0}};  // ke, kec
-constexpr double kRatioBox[2] = {-2.0, 2.0};                    // rp, ri, rd
+constexpr double kScaleBox[2][2] = {{-1.0, 4.0}, {-3.0, 2.0}};               // ke, kec
+constexpr double kRatioBox[2] = {-2.0, 2.0};                                 // rp, ri, rd
 constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
 // An inner centre as a fraction of the next one out: 0.1 .. 0.955.
 constexpr double kFractionBox[2] = {-1.0, -0.02};
@@ -42,7 +42,8 @@ std::size_t mirror(std::size_t i) {
 // The total log10 gain ratio at node (i, j): the schedule's ramp there times the table.
 double node_log_ratio(const ControllerSpec& s, std::size_t g, std::size_t i, std::size_t j) {
   const RuleTableSpec& t = s.supervisor.rule_table;
-  const double w = std::min(1.0, std::fabs(t.error_centres[i]) + std::fabs(t.error_rate_centres[j]));
+  const double w =
+      std::min(1.0, std::fabs(t.error_centres[i]) + std::fabs(t.error_rate_centres[j]));
   return std::log10((1.0 + (s.supervisor.output_scale[g] - 1.0) * w) * t.ratio[g][i][j]);
 }
 
@@ -78,8 +79,9 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
       !(options.smoothness >= 0.0) || !std::isfinite(options.smoothness) ||
       !(options.monotone >= 0.0) || !std::isfinite(options.monotone) ||
       !(options.visit_threshold >= 0.0) || !(options.visit_threshold < 1.0)) {
-    error = "table options: cell_log10 > 0, smoothness and monotone >= 0 and finite, "
-            "0 <= visit_threshold < 1";
+    error =
+        "table options: cell_log10 > 0, smoothness and monotone >= 0 and finite, "
+        "0 <= visit_threshold < 1";
     return std::nullopt;
   }
   if (options.unvisited == Unvisited::Seed && visits == nullptr) {
@@ -115,9 +117,8 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
         CellClass& c = classes[k];
         c.gain = g;
         c.cells.push_back({i, j});
-        c.sign.push_back(options.symmetry == Symmetry::Odd && k != std::array<std::size_t, 2>{i, j}
-                             ? -1
-                             : 1);
+        c.sign.push_back(
+            options.symmetry == Symmetry::Odd && k != std::array<std::size_t, 2>{i, j} ? -1 : 1);
       }
     for (auto& [k, c] : classes) {
       bool visited = options.unvisited == Unvisited::Free;
@@ -170,7 +171,8 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   for (std::size_t k = 0; k < classes_.size(); ++k) {
     const CellClass& c = classes_[k];
     for (std::size_t n = 0; n < c.cells.size(); ++n)
-      t.ratio[c.gain][c.cells[n][0]][c.cells[n][1]] = std::pow(10.0, c.sign[n] * x[first_cell_ + k]);
+      t.ratio[c.gain][c.cells[n][0]][c.cells[n][1]] =
+          std::pow(10.0, c.sign[n] * x[first_cell_ + k]);
   }
   return s;
 }

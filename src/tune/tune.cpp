@@ -337,8 +337,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
 
   std::vector<SearchBox> box = space->box();
   for (const SearchBox& b : options.box) {
-    const auto it = std::find_if(box.begin(), box.end(),
-                                 [&](const SearchBox& d) { return d.name == b.name; });
+    const auto it =
+        std::find_if(box.begin(), box.end(), [&](const SearchBox& d) { return d.name == b.name; });
     if (it == box.end()) {
       error = "the " + std::string(controller::to_string(options.family)) +
               " family has no parameter '" + b.name + "'";
@@ -368,8 +368,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   if (options.init) mo.start = space->from_spec(*start);
   if (!data.validation.empty())
     mo.improved = [&](const std::vector<double>& x, double) {
-      const Cost v = evaluate_in(arena.get(), data.validation_ex, data.validation,
-                                 space->to_spec(x), o);
+      const Cost v =
+          evaluate_in(arena.get(), data.validation_ex, data.validation, space->to_spec(x), o);
       ++validation_runs;
       if (!chosen_validation || v.total <= chosen_validation->total) {
         chosen_validation = v;
@@ -430,9 +430,9 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
       return std::nullopt;
     }
     total += stage.budget;
-    records.push_back({stage.family, stage.budget, r->evaluations, r->cost.total + r->penalty,
-                       r->validation ? r->validation->total
-                                     : std::numeric_limits<double>::quiet_NaN()});
+    records.push_back(
+        {stage.family, stage.budget, r->evaluations, r->cost.total + r->penalty,
+         r->validation ? r->validation->total : std::numeric_limits<double>::quiet_NaN()});
     init = r->controller;
     results.push_back(std::move(*r));
   }

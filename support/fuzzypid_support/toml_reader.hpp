@@ -5,13 +5,13 @@
 // installed, so toml++ never reaches a user's include path.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
 #include <type_traits>
-#include <cmath>
 
 #include <toml++/toml.h>
 
@@ -73,10 +73,10 @@ class TableReader {
   std::set<std::string, std::less<>> used_;
 };
 
-
 namespace detail {
 
-inline FileError at(const std::string& file, const toml::source_region& where, std::string message) {
+inline FileError at(const std::string& file, const toml::source_region& where,
+                    std::string message) {
   FileError e;
   e.file = file;
   e.line = static_cast<int>(where.begin.line);
@@ -138,13 +138,14 @@ inline double number_of(const TableReader& where, const toml::node& node, const 
 }
 
 inline double TableReader::number(std::string_view key, std::optional<double> fallback,
-                           bool allow_infinite) {
+                                  bool allow_infinite) {
   const toml::node* node = find(key, fallback.has_value());
   if (node == nullptr) return *fallback;
   return number_of(*this, *node, "'" + std::string(key) + "'", allow_infinite);
 }
 
-inline std::uint64_t TableReader::count(std::string_view key, std::optional<std::uint64_t> fallback) {
+inline std::uint64_t TableReader::count(std::string_view key,
+                                        std::optional<std::uint64_t> fallback) {
   const toml::node* node = find(key, fallback.has_value());
   if (node == nullptr) return *fallback;
   const auto* i = node->as_integer();
@@ -170,8 +171,8 @@ inline bool TableReader::flag(std::string_view key, std::optional<bool> fallback
 }
 
 inline std::array<double, 3> TableReader::triple(std::string_view key,
-                                          std::optional<std::array<double, 3>> fallback,
-                                          bool allow_infinite) {
+                                                 std::optional<std::array<double, 3>> fallback,
+                                                 bool allow_infinite) {
   const toml::node* node = find(key, fallback.has_value());
   if (node == nullptr) return *fallback;
   const auto* a = node->as_array();
@@ -203,7 +204,8 @@ inline const toml::array* TableReader::array(std::string_view key, bool required
 inline void TableReader::finish() const {
   for (auto&& [key, node] : table_) {
     if (used_.count(key.str()) == 0) {
-      throw ReadError{detail::at(file_, key.source(), "unknown key '" + std::string(key.str()) + "'")};
+      throw ReadError{
+          detail::at(file_, key.source(), "unknown key '" + std::string(key.str()) + "'")};
     }
   }
 }

@@ -14,16 +14,16 @@
 #include <sstream>
 #include <string>
 
-#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
 
 namespace {
 
 namespace cf = fuzzypid::controller_file;
-  namespace ctl = fuzzypid::controller;
+namespace ctl = fuzzypid::controller;
 
 std::string read(const std::string& path) {
   std::ifstream in(path);
@@ -107,8 +107,9 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
 TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
   ctl::ControllerSpec spec = ctl::paper_pid();
   EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);
-  EXPECT_NE(fuzzypid::codegen::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
-            std::string::npos);
+  EXPECT_NE(
+      fuzzypid::codegen::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
+      std::string::npos);
   spec.feedforward.gravity = true;
   EXPECT_NE(cf::to_toml(spec).find("[feedforward]\ngravity = true"), std::string::npos);
   const std::string header = fuzzypid::codegen::export_header(spec, "ns", "x.toml");

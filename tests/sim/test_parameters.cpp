@@ -101,9 +101,8 @@ TEST(Convert, ConversionsWithoutAnExactFormAreRefused) {
   EXPECT_NE(error.find("no exact"), std::string::npos);
   EXPECT_FALSE(tune::convert(schedule(), ctl::Family::Pid, out, error));
   EXPECT_FALSE(tune::convert(ctl::paper_fuzzy(), ctl::Family::FuzzyRules, out, error));
-  EXPECT_FALSE(
-      tune::convert(converted(schedule(), ctl::Family::FuzzyRules), ctl::Family::Scheduled, out,
-                    error));
+  EXPECT_FALSE(tune::convert(converted(schedule(), ctl::Family::FuzzyRules), ctl::Family::Scheduled,
+                             out, error));
 }
 
 tune::VisitMap all_visited() {
@@ -120,9 +119,8 @@ tune::ParameterSpace space(tune::Symmetry symmetry, bool partition,
   o.symmetry = symmetry;
   o.partition = partition;
   std::string error;
-  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules,
-                                        converted(schedule(), ctl::Family::FuzzyRules), o,
-                                        &visits, error);
+  auto p = tune::ParameterSpace::create(
+      ctl::Family::FuzzyRules, converted(schedule(), ctl::Family::FuzzyRules), o, &visits, error);
   EXPECT_TRUE(p) << error;
   return *p;
 }
@@ -163,12 +161,14 @@ TEST(ParameterSpace, APointBecomesAControllerAndComesBack) {
 }
 
 TEST(ParameterSpace, TheTableHasTheSymmetryItWasAskedFor) {
-  const ctl::ControllerSpec even = space(tune::Symmetry::Even, false).to_spec(
-      random_point(space(tune::Symmetry::Even, false), 3));
+  const ctl::ControllerSpec even =
+      space(tune::Symmetry::Even, false)
+          .to_spec(random_point(space(tune::Symmetry::Even, false), 3));
   const ctl::ControllerSpec odd =
       space(tune::Symmetry::Odd, false).to_spec(random_point(space(tune::Symmetry::Odd, false), 3));
-  const ctl::ControllerSpec none = space(tune::Symmetry::None, false)
-                                       .to_spec(random_point(space(tune::Symmetry::None, false), 3));
+  const ctl::ControllerSpec none =
+      space(tune::Symmetry::None, false)
+          .to_spec(random_point(space(tune::Symmetry::None, false), 3));
   bool none_is_even = true;
   for (std::size_t g = 0; g < 3; ++g)
     for (std::size_t i = 0; i < kSets; ++i)

@@ -19,7 +19,7 @@
 namespace {
 
 namespace cf = fuzzypid::controller_file;
-  namespace ctl = fuzzypid::controller;
+namespace ctl = fuzzypid::controller;
 namespace tune = fuzzypid::tune;
 
 // ITAE of a unit double integrator (x'' = u, zero-order hold, exact discretisation at dt) under
@@ -146,8 +146,8 @@ class TuneOnTheRobot : public ::testing::Test {
 };
 
 TEST_F(TuneOnTheRobot, TheSameSeedGivesTheSameFileWithAnyThreadCount) {
-  for (const ctl::Family f : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy,
-                              ctl::Family::FuzzyRules}) {
+  for (const ctl::Family f :
+       {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy, ctl::Family::FuzzyRules}) {
     const std::string a = tuned(f, 1, 5);
     EXPECT_EQ(a, tuned(f, 1, 5));
     EXPECT_EQ(a, tuned(f, 2, 5));
@@ -219,9 +219,8 @@ class StagedTuning : public TuneOnTheRobot {
 
   std::vector<fuzzypid::sim::Condition> conditions_;
   std::optional<fuzzypid::sim::ExperimentSet> set_;
-  std::vector<tune::Stage> stages_ = {{ctl::Family::Pid, 100},
-                                      {ctl::Family::Scheduled, 100},
-                                      {ctl::Family::FuzzyRules, 120}};
+  std::vector<tune::Stage> stages_ = {
+      {ctl::Family::Pid, 100}, {ctl::Family::Scheduled, 100}, {ctl::Family::FuzzyRules, 120}};
 };
 
 TEST_F(StagedTuning, StagesAddUpAndTheResultIsTheLastFamilysAtAnyThreadCount) {
@@ -232,8 +231,8 @@ TEST_F(StagedTuning, StagesAddUpAndTheResultIsTheLastFamilysAtAnyThreadCount) {
   const ctl::Tuning& t = *a->controller.tuning;
   ASSERT_EQ(t.stages.size(), 3u);
   EXPECT_EQ(t.budget, 320u);
-  EXPECT_EQ(t.evaluations, t.stages[0].evaluations + t.stages[1].evaluations +
-                               t.stages[2].evaluations);
+  EXPECT_EQ(t.evaluations,
+            t.stages[0].evaluations + t.stages[1].evaluations + t.stages[2].evaluations);
   EXPECT_LE(t.evaluations, 320u);
   EXPECT_EQ(t.validation_conditions, 1u);
   a->controller.tuning->threads = b->controller.tuning->threads = 0;
@@ -256,8 +255,7 @@ TEST_F(StagedTuning, TheHeldBackConditionsAreScoredNotTrainedOn) {
   const tune::Objective o;
   const std::vector<fuzzypid::sim::Condition> held = {conditions_.back()};
   const auto& setup = *set_;
-  const double validation =
-      tune::evaluate(setup.of(2), held, r->controller, o, 1).total;
+  const double validation = tune::evaluate(setup.of(2), held, r->controller, o, 1).total;
   EXPECT_EQ(validation, r->controller.tuning->validation_cost);
   const double training = tune::evaluate(*experiment_, training_, r->controller, o, 1).total;
   EXPECT_EQ(training + r->penalty, r->controller.tuning->training_cost);

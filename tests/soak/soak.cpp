@@ -68,7 +68,7 @@
 
 namespace {
 
-  namespace ctl = fuzzypid::controller;
+namespace ctl = fuzzypid::controller;
 namespace cli = fuzzypid::cli;
 namespace control = fuzzypid::control;
 namespace pid = fuzzypid::pid;

@@ -28,7 +28,7 @@ namespace fuzzypid::codegen {
 
 // The header's text. `ns`: the namespace of the generated code (check_namespace() must accept
 // it); `source`: named in the header's comment.
-[[nodiscard]] std::string export_header(const controller::ControllerSpec& spec, const std::string& ns,
-                                        const std::string& source);
+[[nodiscard]] std::string export_header(const controller::ControllerSpec& spec,
+                                        const std::string& ns, const std::string& source);
 
 }  // namespace fuzzypid::codegen

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/pid/pid.hpp"
@@ -32,18 +32,18 @@ namespace fuzzypid::controller {
 // Vocabulary. Every enum is parsed from the same table that names it (parse_enum / to_string).
 
 enum class Family : std::uint8_t {
-  Pid,        // Kp, Ki, Kd
-  Scheduled,  // K = K0 + K0 (R - 1) w(Ke e, Kec ec), control/gain_schedule.hpp
-  Fuzzy,      // K = K0 + S dK(Ke e, Kec ec), the paper's supervisor (Eq. 6) or a rule file
-  FuzzyRules, // K = K0 (1 + (R - 1) w) T(Ke e, Kec ec): the schedule refined by a tuned rule table
+  Pid,         // Kp, Ki, Kd
+  Scheduled,   // K = K0 + K0 (R - 1) w(Ke e, Kec ec), control/gain_schedule.hpp
+  Fuzzy,       // K = K0 + S dK(Ke e, Kec ec), the paper's supervisor (Eq. 6) or a rule file
+  FuzzyRules,  // K = K0 (1 + (R - 1) w) T(Ke e, Kec ec): the schedule refined by a tuned rule table
 };
 
 // The supervisor that retunes a family's gains every tick (joint_controllers.hpp builds it).
 enum class SupervisorKind : std::uint8_t {
-  None,             // a fixed PID
-  Schedule,         // control::GainSchedule
-  TablesOrRuleFile, // the paper's Tables 2-4 (paper::System) or a rule file (EngineSupervisor)
-  RuleTable,        // control::RuleTable: the schedule's ramp times a rule table
+  None,              // a fixed PID
+  Schedule,          // control::GainSchedule
+  TablesOrRuleFile,  // the paper's Tables 2-4 (paper::System) or a rule file (EngineSupervisor)
+  RuleTable,         // control::RuleTable: the schedule's ramp times a rule table
 };
 
 // One row per family: its name in files and on command lines, what it is, its supervisor.
@@ -231,14 +231,14 @@ struct StageRecord {
 
 // How a fuzzy-rules table was kept readable and safe where training never goes (tune/).
 struct TableRegulariser {
-  std::string symmetry = "even";  // even | odd | none (tune::kSymmetryNames)
-  bool partition = false;         // were the set centres searched too
-  double smoothness = 0.0;        // weight of the squared log10 differences of neighbouring cells
-  double monotone = 0.0;          // weight of the squared violations of monotone rows and columns
-  std::string unvisited = "seed"; // seed: cells training never visits keep the start's values
-  double visit_threshold = 0.0;   // a cell is visited above this share of the firing weight
-  std::uint64_t frozen_cells = 0; // cells (of 49 per gain, summed) held at the start's values
-  double cell_log10 = 0.0;        // each searched cell's box: log10 ratio in [-cell_log10, +]
+  std::string symmetry = "even";   // even | odd | none (tune::kSymmetryNames)
+  bool partition = false;          // were the set centres searched too
+  double smoothness = 0.0;         // weight of the squared log10 differences of neighbouring cells
+  double monotone = 0.0;           // weight of the squared violations of monotone rows and columns
+  std::string unvisited = "seed";  // seed: cells training never visits keep the start's values
+  double visit_threshold = 0.0;    // a cell is visited above this share of the firing weight
+  std::uint64_t frozen_cells = 0;  // cells (of 49 per gain, summed) held at the start's values
+  double cell_log10 = 0.0;         // each searched cell's box: log10 ratio in [-cell_log10, +]
 };
 
 struct Tuning {

@@ -67,13 +67,13 @@ struct TickInjection {
 };
 
 struct TickResult {
-  double t_s = 0.0;                    // time of the sample
-  robot::JointVector theta_d{};        // reference angle given to the controller, rad
-  robot::JointVector theta_d_dot{};    // reference velocity, rad/s
-  robot::JointVector theta{};          // true angle at the sample (before the plant step), rad
-  robot::JointVector theta_dot{};      // true velocity at the sample, rad/s
-  controller::Command command{};  // the controller's output and statuses
-  robot::JointVector torque_nm{};      // the torque asked of the plant
+  double t_s = 0.0;                  // time of the sample
+  robot::JointVector theta_d{};      // reference angle given to the controller, rad
+  robot::JointVector theta_d_dot{};  // reference velocity, rad/s
+  robot::JointVector theta{};        // true angle at the sample (before the plant step), rad
+  robot::JointVector theta_dot{};    // true velocity at the sample, rad/s
+  controller::Command command{};     // the controller's output and statuses
+  robot::JointVector torque_nm{};    // the torque asked of the plant
   robot::PlantStatus plant = robot::PlantStatus::Ok;  // of the step (Ok when not advanced)
 };
 
@@ -88,9 +88,10 @@ class ClosedLoop {
   // The same with a controller built by the caller (e.g. JointControllers::create with one
   // configuration per joint). Its output limits should be experiment.output_limit(condition,
   // units) so that the controller knows when the plant saturates.
-  [[nodiscard]] static std::optional<ClosedLoop> create(
-      const Experiment& experiment, const Condition& condition,
-      controller::JointControllers controller, std::string& error);
+  [[nodiscard]] static std::optional<ClosedLoop> create(const Experiment& experiment,
+                                                        const Condition& condition,
+                                                        controller::JointControllers controller,
+                                                        std::string& error);
 
   // One tick at path sample k (k < samples()); `advance` = false skips the plant step (the last
   // sample of a run has nothing after it).

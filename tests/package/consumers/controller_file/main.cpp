@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include <fuzzypid/controller_file/controller_file.hpp>
 #include <fuzzypid/controller/joint_controllers.hpp>
+#include <fuzzypid/controller_file/controller_file.hpp>
 
 int main(int argc, char** argv) {
   namespace cf = fuzzypid::controller_file;

@@ -23,8 +23,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "experiment: %s\n", error.c_str());
     return 1;
   }
-  const sim::RunResult run =
-      experiment->run(*sim::find_scenario("paper"), controller::paper_pid());
+  const sim::RunResult run = experiment->run(*sim::find_scenario("paper"), controller::paper_pid());
   const double itae = sim::total_itae(run.rows, experiment->options().tick_s);
   std::printf("summed ITAE of the fixed PID: %.6g\n", itae);
   return run.ok && run.controller_faults == 0 && itae > 0.0 ? 0 : 1;
