@@ -104,13 +104,15 @@ int run_tune(const TuneOptions& t) {
       return kExitUsage;
     }
   }
-  if (t.family_name.empty() && stages.empty()) {
+  ctl::Family family = ctl::Family::Pid;
+  if (!t.family_name.empty()) {
+    family = *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
+  } else if (!stages.empty()) {
+    family = stages.back().family;
+  } else {
     std::fprintf(stderr, "fuzzypid tune: --family or --stages is required\n");
     return kExitUsage;
   }
-  const ctl::Family family = t.family_name.empty()
-                                 ? stages.back().family
-                                 : *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
   std::uint64_t total_budget = t.budget;
   if (!stages.empty()) {
     total_budget = 0;

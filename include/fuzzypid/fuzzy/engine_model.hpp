@@ -84,6 +84,8 @@ template <class Limits>
 struct SizedCapacity : Limits {
   static_assert(!Limits::sized, "the limits of a sized capacity are a fixed capacity");
   using Fixed = Limits;
+  // Hides the fixed capacity's `sized` on purpose: the same name tells the two forms apart.
+  // cppcheck-suppress duplInheritedMember
   static constexpr bool sized = true;
   template <class T, std::size_t N>
   using Array = SizedArray<T>;
