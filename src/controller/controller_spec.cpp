@@ -99,7 +99,7 @@ std::string validate(const ControllerSpec& s) {
   if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
     return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
   if (s.family == Family::FuzzyRules)
-    if (const std::string bad = validate(sup.rule_table); !bad.empty()) return bad;
+    if (std::string bad = validate(sup.rule_table); !bad.empty()) return bad;
   const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
   const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
   for (int k = 0; k < 3; ++k)
