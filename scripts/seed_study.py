@@ -7,7 +7,8 @@ usage: scripts/seed_study.py DIR     (DIR: a sim_ab --out directory whose contro
 
 For every set and family: the summed ITAE (six joints, all conditions of the set) per seed, its
 median and range. Then per seed S the ratios of summed ITAE fuzzy_rules / scheduled, fuzzy /
-scheduled and fuzzy / pid with the conditions each wins; the worst overshoot of each family on the
+scheduled and fuzzy / pid with the conditions each wins (and, when present, the control
+scheduled_staged: a schedule started from the same PID stage with the same total budget); the worst overshoot of each family on the
 held-out set; and, per stress condition, fuzzy_rules / scheduled. Last, the issue's targets for the
 fuzzy-rules family: median held-out ratio <= 0.85 and no seed above 1.0; no stress condition worse
 than the schedule by more than 10 %; worst held-out overshoot <= 25 %.
@@ -18,7 +19,7 @@ import re
 import statistics
 import sys
 
-FAMILIES = ("pid", "scheduled", "fuzzy", "fuzzy_rules")
+FAMILIES = ("pid", "scheduled", "fuzzy", "fuzzy_rules", "scheduled_staged")
 
 
 def main():
@@ -32,7 +33,7 @@ def main():
         overshoot[key] = max(overshoot[key], float(r["overshoot_pct"]))
     runs = collections.defaultdict(dict)  # family -> seed -> controller
     for (c, _) in itae:
-        m = re.fullmatch(r"(fuzzy_rules|pid|scheduled|fuzzy)_seed(\d+)", c)
+        m = re.fullmatch(r"(fuzzy_rules|scheduled_staged|pid|scheduled|fuzzy)_seed(\d+)", c)
         if m:
             runs[m.group(1)][int(m.group(2))] = c
     set_names = sorted(set(sets.values()), key=lambda s: (s != "training", s))
@@ -57,8 +58,9 @@ def main():
     print("|---|---|---|---|---|---|---|")
     ratios_of = {}
     for s in set_names:
-        for a, b in (("fuzzy_rules", "scheduled"), ("fuzzy_rules", "pid"), ("fuzzy", "scheduled"),
-                     ("fuzzy", "pid")):
+        for a, b in (("fuzzy_rules", "scheduled"), ("fuzzy_rules", "scheduled_staged"),
+                     ("scheduled_staged", "scheduled"), ("fuzzy_rules", "pid"),
+                     ("fuzzy", "scheduled"), ("fuzzy", "pid")):
             ratios, wins = [], []
             for k in sorted(set(runs[a]) & set(runs[b])):
                 ratios.append(total(runs[a][k], s) / total(runs[b][k], s))

@@ -5,6 +5,8 @@
 #   pid, scheduled, fuzzy   one run of BUDGET evaluations
 #   fuzzy-rules             staged: pid BUDGET/16 -> scheduled 7 BUDGET/16 -> fuzzy-rules BUDGET/2,
 #                           each stage started from the last one's result
+#   scheduled_staged        the control of that: pid BUDGET/16 -> scheduled 15 BUDGET/16 (the same
+#                           start, the same total, no rule table)
 # Outputs:
 #   controllers/tuned_{pid,scheduled,fuzzy,fuzzy_rules}.toml   seed 1
 #   out/seeds/<family>_seed<S>.toml                            seeds 1..SEEDS (default 5)
@@ -24,6 +26,7 @@ bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$(nproc)" --target fuzzypid_cli sim_ab
 stages="pid:$((budget / 16)),scheduled:$((budget * 7 / 16)),fuzzy-rules:$((budget - budget / 16 - budget * 7 / 16))"
+control="pid:$((budget / 16)),scheduled:$((budget - budget / 16))"
 # tune_one FAMILY SEED OUT: each run prints its stages, evaluations, wall time and rate.
 tune_one() {
   local common=(--conditions tuning/robust.toml --set training --validation 4 --seed "$2"
@@ -31,6 +34,8 @@ tune_one() {
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086
     build/bin/fuzzypid tune --stages "${stages}" ${rules_args} "${common[@]}"
+  elif [ "$1" = scheduled_staged ]; then
+    build/bin/fuzzypid tune --stages "${control}" "${common[@]}"
   else
     build/bin/fuzzypid tune --family "$1" --budget "${budget}" "${common[@]}"
   fi
@@ -39,7 +44,7 @@ mkdir -p out/seeds
 last="${seeds}"
 if [ "${SKIP_SEEDS:-0}" = 1 ]; then last=1; fi
 for seed in $(seq 1 "${last}"); do
-  for family in pid scheduled fuzzy fuzzy_rules; do
+  for family in pid scheduled fuzzy fuzzy_rules scheduled_staged; do
     out="out/seeds/${family}_seed${seed}.toml"
     if [ "${RESUME:-0}" = 1 ] && [ -f "${out}" ]; then echo "== ${family} seed ${seed}: kept"; continue; fi
     echo "== ${family} seed ${seed}"

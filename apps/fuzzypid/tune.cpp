@@ -306,11 +306,16 @@ int run_tune(const TuneOptions& t) {
     return 1;
   }
   const double rate = static_cast<double>(result->evaluations) / result->wall_s;
-  for (const auto& st : result->controller.tuning->stages)
+  const auto& stage_records = result->controller.tuning->stages;
+  for (std::size_t k = 0; k < stage_records.size(); ++k) {
+    const auto& st = stage_records[k];
+    const double wall = k < result->stage_wall_s.size() ? result->stage_wall_s[k] : 0.0;
     std::printf("stage %s: %" PRIu64 " evaluations (budget %" PRIu64
-                "), training cost %.6g, validation cost %.6g\n",
-                ctl::to_string(st.family), st.evaluations, st.budget, st.training_cost,
+                ") in %.1f s, %.1f evaluations/s, training cost %.6g, validation cost %.6g\n",
+                ctl::to_string(st.family), st.evaluations, st.budget, wall,
+                wall > 0.0 ? static_cast<double>(st.evaluations) / wall : 0.0, st.training_cost,
                 st.validation_cost);
+  }
   std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64
               ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "

@@ -460,6 +460,9 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
   }
   out.evaluations = evaluations;
   out.wall_s = wall;
+  out.stage_wall_s.clear();
+  for (const Result& r : results)
+    out.stage_wall_s.push_back(r.wall_s);
   controller::Tuning& t = *out.controller.tuning;
   t.budget = total;
   t.evaluations = evaluations;
