@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The main job: builds sim_ab into build/ and runs the six-way A/B without re-tuning: the six
-# controller files of controllers/ (the paper's fixed and fuzzy PID; a fixed, a gain-scheduled,
-# a fuzzy PID with the paper's tables and a tuned rule table, all tuned on tuning/robust.toml
-# with the same optimiser and total budget) on every
-# condition of tuning/robust.toml (training, held-out and stress sets). Prints the six-way table
+# The main job: builds sim_ab into build/ and runs the six-way A/B without re-tuning: the
+# controller files of controllers/ -- the paper's fixed and fuzzy PID; a fixed PID, a gain
+# schedule, a fuzzy PID with the paper's tables and a tuned rule table (fuzzy-rules), all tuned on
+# tuning/robust.toml with the same optimiser and total budget; and the control that explains the
+# rule table's result, the schedule tuned in two stages (PID first) with the same budget -- on
+# every condition of tuning/robust.toml (training, held-out and stress sets). Prints the table
 # (docs/tuning.md), writes out/ab/{trajectory,metrics,endeffector,conditions}.csv,
 # out/ab/settings.txt, the figures out/ab/*.png, and the robustness sweeps out/sweep-payload/ and
 # out/sweep-torque/ with their plots. Arguments replace the default run: sim_ab with them, output
@@ -15,7 +16,8 @@ bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-}
 cmake --build build -j "$(nproc)" --target sim_ab
 controllers=()
-for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_fuzzy tuned_fuzzy_rules; do
+for name in paper_pid paper_fuzzy tuned_pid tuned_scheduled tuned_scheduled_staged tuned_fuzzy \
+    tuned_fuzzy_rules; do
   controllers+=(--controller "controllers/${name}.toml")
 done
 if [ $# -gt 0 ]; then

@@ -8,7 +8,7 @@
 #   scheduled_staged        the control of that: pid BUDGET/16 -> scheduled 15 BUDGET/16 (the same
 #                           start, the same total, no rule table)
 # Outputs:
-#   controllers/tuned_{pid,scheduled,fuzzy,fuzzy_rules}.toml   seed 1
+#   controllers/tuned_{pid,scheduled,fuzzy,fuzzy_rules,scheduled_staged}.toml   seed 1
 #   out/seeds/<family>_seed<S>.toml                            seeds 1..SEEDS (default 5)
 # then every seed's file on all sets with sim_ab, summarised by scripts/seed_study.py.
 #   BUDGET=N   evaluations per controller (default 64000)   SEEDS=N   seeds (default 5)
@@ -51,7 +51,7 @@ for seed in $(seq 1 "${last}"); do
     tune_one "${family}" "${seed}" "out/seeds/${family}_seed${seed}.toml"
   done
 done
-for family in pid scheduled fuzzy fuzzy_rules; do
+for family in pid scheduled fuzzy fuzzy_rules scheduled_staged; do
   cp "out/seeds/${family}_seed1.toml" "controllers/tuned_${family}.toml"
 done
 args=(--controller controllers/paper_pid.toml --controller controllers/paper_fuzzy.toml)
