@@ -17,27 +17,12 @@ namespace fuzzypid::codegen {
 
 using namespace controller;
 
-namespace {
-
-// The tick as written in the comment: "%.17g".
-std::string number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 
-// An exact literal of v converted to Scalar.
 std::string lit(double v) {
-  if (std::isinf(v))
-    return v > 0 ? "std::numeric_limits<Scalar>::infinity()"
-                 : "-std::numeric_limits<Scalar>::infinity()";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "Scalar(%a)", v);
-  return buf;
+  return scalar_literal(v);
 }
 
 std::string gains(const pid::Gains<double>& g) {
@@ -182,7 +167,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   if (!spec.description.empty()) h += "// " + comment_safe(spec.description) + "\n";
   h += "// Family " + std::string(to_string(spec.family)) +
        "; the file's units: " + to_string(spec.units.gains) + " gains, " +
-       to_string(spec.units.form) + " at " + number(spec.units.tick_s) +
+       to_string(spec.units.form) + " at " + format_double(spec.units.tick_s) +
        " s. Below: the continuous-time SI configuration fuzzypid builds from the file, as\n"
        "// exact hexadecimal literals (the double controller equals the file's bit for bit).\n";
   if (spec.units.gains == GainUnits::Acceleration)

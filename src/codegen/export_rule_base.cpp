@@ -13,15 +13,8 @@ namespace {
 
 using Model = fuzzy::EngineModel<double>;
 
-// An exact literal of v converted to Scalar.
 std::string lit(double v) {
-  if (std::isnan(v)) return "std::numeric_limits<Scalar>::quiet_NaN()";
-  if (std::isinf(v))
-    return v > 0 ? "std::numeric_limits<Scalar>::infinity()"
-                 : "-std::numeric_limits<Scalar>::infinity()";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "Scalar(%a)", v);
-  return buf;
+  return scalar_literal(v);
 }
 
 std::string num(std::size_t n) {
@@ -218,6 +211,16 @@ inline constexpr Supervisor<Scalar> kSupervisor{};
 
 )";
   return h;
+}
+
+std::string scalar_literal(double v) {
+  if (std::isnan(v)) return "std::numeric_limits<Scalar>::quiet_NaN()";
+  if (std::isinf(v))
+    return v > 0 ? "std::numeric_limits<Scalar>::infinity()"
+                 : "-std::numeric_limits<Scalar>::infinity()";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "Scalar(%a)", v);
+  return buf;
 }
 
 }  // namespace fuzzypid::codegen

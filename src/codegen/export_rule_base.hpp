@@ -9,6 +9,10 @@
 
 namespace fuzzypid::codegen {
 
+// An exact C++ literal of v converted to the generated code's `Scalar` (hexadecimal floating
+// point; infinities and NaN through std::numeric_limits<Scalar>).
+[[nodiscard]] std::string scalar_literal(double v);
+
 // "" when every number of `model` is finite after conversion to float or infinite in the file
 // (open ranges), else the first that a float would turn infinite.
 [[nodiscard]] std::string check_rule_base_float_range(const fuzzy::EngineModel<double>& model);

@@ -13,8 +13,9 @@ bool positive_finite(double v) {
   return std::isfinite(v) && v > 0.0;
 }
 
-// A value in a message as the controller file writes it ("%.17g", with ".0" on whole numbers).
-std::string number(double v) {
+}  // namespace
+
+std::string format_double(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   char buf[64];
@@ -23,8 +24,6 @@ std::string number(double v) {
   if (s.find_first_of(".eE") == std::string::npos) s += ".0";
   return s;
 }
-
-}  // namespace
 
 ControllerSpec paper_pid() {
   ControllerSpec s;
@@ -112,8 +111,8 @@ std::string validate(const ControllerSpec& s) {
     const char* names[3] = {"kp", "ki", "kd"};
     for (int k = 0; k < 3; ++k)
       if (k0[k] < lo[k] || k0[k] > hi[k])
-        return std::string("gains.") + names[k] + " = " + number(k0[k]) +
-               " lies outside [bounds] " + number(lo[k]) + " .. " + number(hi[k]);
+        return std::string("gains.") + names[k] + " = " + format_double(k0[k]) +
+               " lies outside [bounds] " + format_double(lo[k]) + " .. " + format_double(hi[k]);
   }
   if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
     return "derivative_filter_s must be finite and >= 0";

@@ -319,16 +319,6 @@ std::string file_hash(const std::string& path) {
   return out;
 }
 
-std::string format_double(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  std::string s = buf;
-  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
-  return s;
-}
-
 bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
            FileError& error) {
   try {

@@ -286,6 +286,10 @@ struct ControllerSpec {
   std::optional<Tuning> tuning;
 };
 
+// A value as controller files and messages write it: "%.17g", always with a '.', 'e', "inf" or
+// "nan" (so TOML reads it as a float).
+[[nodiscard]] std::string format_double(double v);
+
 // The paper's controllers in the sim's default units (acceleration, per-tick, 0.05 s).
 [[nodiscard]] ControllerSpec paper_pid();
 [[nodiscard]] ControllerSpec paper_fuzzy();

@@ -24,9 +24,6 @@ using controller::ControllerSpec;
 // The file's text; the tools write it through their one output writer (apps/common/output_files).
 [[nodiscard]] std::string to_toml(const ControllerSpec& spec);
 
-// "%.17g", always with a '.', 'e', "inf" or "nan" so TOML reads it as a float.
-[[nodiscard]] std::string format_double(double v);
-
 // 64-bit FNV-1a of a file's bytes as 16 hex digits (controller::TrainedOn); empty when the file
 // cannot be read.
 [[nodiscard]] std::string file_hash(const std::string& path);
