@@ -443,7 +443,8 @@ std::string to_toml(const ControllerSpec& s) {
     if (t.validation_conditions != 0) {
       o += "validation_conditions = " + std::to_string(t.validation_conditions) +
            "  # held back from the training set\n";
-      o += "validation_cost = " + format_double(t.validation_cost) + "\n";
+      if (!std::isnan(t.validation_cost))
+        o += "validation_cost = " + format_double(t.validation_cost) + "\n";
     }
     if (!t.stages.empty()) {
       o += "stages = [\n";
@@ -452,7 +453,10 @@ std::string to_toml(const ControllerSpec& s) {
              ", budget = " + std::to_string(st.budget) +
              ", evaluations = " + std::to_string(st.evaluations) +
              ", training_cost = " + format_double(st.training_cost) +
-             ", validation_cost = " + format_double(st.validation_cost) + " },\n";
+             (std::isnan(st.validation_cost)
+                  ? std::string()
+                  : ", validation_cost = " + format_double(st.validation_cost)) +
+             " },\n";
       o += "]\n";
     }
     if (t.regulariser) {
