@@ -347,13 +347,10 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
     *it = b;
   }
   const Objective& o = options.objective;
-  Cost best{kInf, 0.0, 0.0, 0};
   const auto objective = [&](const std::vector<double>& x) {
     const ControllerSpec spec = space->to_spec(x);
     const Cost c = evaluate_in(arena.get(), data.training_ex, data.training, spec, o);
-    const double total = c.total + space->penalty(spec);
-    if (total < best.total + 0.0 && c.total <= total) best = c;
-    return total;
+    return c.total + space->penalty(spec);
   };
   // Early stopping: every new best point of the search is scored on the validation conditions;
   // the result is the one that scores best there.

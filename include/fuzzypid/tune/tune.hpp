@@ -106,10 +106,10 @@ struct Options {
 };
 
 struct Result {
-  ControllerSpec controller;       // with its tuning record filled in (except conditions and set)
-  Cost cost;                       // on the training conditions, without the regulariser
-  double penalty = 0.0;            // the regulariser's cost of the result
-  std::optional<Cost> validation;  // on the held-back conditions
+  ControllerSpec controller;         // with its tuning record filled in (except conditions and set)
+  Cost cost;                         // on the training conditions, without the regulariser
+  double penalty = 0.0;              // the regulariser's cost of the result
+  std::optional<Cost> validation;    // on the held-back conditions
   std::vector<double> stage_wall_s;  // tune_staged: the wall time of each stage
   std::uint64_t evaluations = 0;
   std::uint64_t population = 0;
