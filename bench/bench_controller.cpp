@@ -8,9 +8,7 @@
 
 #include "bench_inputs.hpp"
 #include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
-#include "fuzzypid/control/rule_table.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 
@@ -53,44 +51,18 @@ void BM_ControllerStep6_fuzzy(benchmark::State& state) {
 }
 BENCHMARK(BM_ControllerStep6_fuzzy)->Name("BM_ControllerStep6/fuzzy");
 
-// The supervised families as the tuner builds them (K0 the tick PID's gains, Ke = 12, Kec = 0.7).
-template <class Supervisor>
-fuzzypid::control::FuzzyPidConfig<double> supervised_config(
-    const std::array<double, 3>& output_scale) {
-  fuzzypid::control::FuzzyPidConfig<double> c;
-  c.pid = tick_pid_config();
-  c.error_scale = 12.0;
-  c.error_rate_scale = 0.7;
-  c.output_scale = output_scale;
-  return c;
-}
-
 void BM_ControllerStep6_scheduled(benchmark::State& state) {
-  using Schedule = fuzzypid::control::GainSchedule<double>;
-  static constexpr Schedule kSchedule{};
-  const auto k0 = tick_pid_config().gains;
-  using Joint = fuzzypid::control::FuzzyPid<double, Schedule>;
-  run_ticks(state, fuzzypid::control::JointController<double, kJoints, Joint>(Joint(
-                       &kSchedule,
-                       supervised_config<Schedule>({-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd}))));
+  run_ticks(state, fuzzypid::control::JointController<double, kJoints,
+                                                      decltype(fuzzypid::bench::scheduled_joint())>(
+                       fuzzypid::bench::scheduled_joint()));
 }
 BENCHMARK(BM_ControllerStep6_scheduled)->Name("BM_ControllerStep6/scheduled");
 
 void BM_ControllerStep6_fuzzy_rules(benchmark::State& state) {
-  using Table = fuzzypid::control::RuleTable<double>;
-  static const Table kTable = [] {
-    Table t;
-    t.schedule_ratio = {0.3, 4.0, 1.6};
-    for (std::size_t g = 0; g < 3; ++g)
-      for (std::size_t i = 0; i < Table::num_sets(); ++i)
-        for (std::size_t j = 0; j < Table::num_sets(); ++j)
-          t.table[g][i][j] = 1.0 + 0.05 * static_cast<double>((i * 7 + j * 3 + g) % 5);
-    return t;
-  }();
-  const auto k0 = tick_pid_config().gains;
-  using Joint = fuzzypid::control::FuzzyPid<double, Table>;
-  run_ticks(state, fuzzypid::control::JointController<double, kJoints, Joint>(
-                       Joint(&kTable, supervised_config<Table>({k0.kp, k0.ki, k0.kd}))));
+  run_ticks(state,
+            fuzzypid::control::JointController<double, kJoints,
+                                               decltype(fuzzypid::bench::fuzzy_rules_joint())>(
+                fuzzypid::bench::fuzzy_rules_joint()));
 }
 BENCHMARK(BM_ControllerStep6_fuzzy_rules)->Name("BM_ControllerStep6/fuzzy_rules");
 

@@ -6,7 +6,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/control/rule_table.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 
@@ -77,6 +80,41 @@ inline pid::Config<double> tick_pid_config() {
   c.gains = paper::kNominalGains<double>;
   c.derivative_source = pid::DerivativeSource::Rates;
   return c;
+}
+
+// The supervised families as the tuner builds them (K0 the tick PID's gains, Ke = 12, Kec = 0.7).
+inline control::FuzzyPidConfig<double> supervised_config(
+    const std::array<double, 3>& output_scale) {
+  control::FuzzyPidConfig<double> c;
+  c.pid = tick_pid_config();
+  c.error_scale = 12.0;
+  c.error_rate_scale = 0.7;
+  c.output_scale = output_scale;
+  return c;
+}
+
+// A gain schedule (the default ramp), its output scale S = (R - 1) K0 with R = (0.3, 4, 1.6).
+inline control::FuzzyPid<double, control::GainSchedule<double>> scheduled_joint() {
+  static constexpr control::GainSchedule<double> kSchedule{};
+  const auto k0 = tick_pid_config().gains;
+  return {&kSchedule, supervised_config({-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd})};
+}
+
+// A fuzzy-rules table with the same ramp and every cell away from 1 (the cost of a tick does not
+// depend on the cells' values; S = K0).
+inline control::FuzzyPid<double, control::RuleTable<double>> fuzzy_rules_joint() {
+  using Table = control::RuleTable<double>;
+  static const Table kTable = [] {
+    Table t;
+    t.schedule_ratio = {0.3, 4.0, 1.6};
+    for (std::size_t g = 0; g < 3; ++g)
+      for (std::size_t i = 0; i < Table::num_sets(); ++i)
+        for (std::size_t j = 0; j < Table::num_sets(); ++j)
+          t.table[g][i][j] = 1.0 + 0.05 * static_cast<double>((i * 7 + j * 3 + g) % 5);
+    return t;
+  }();
+  const auto k0 = tick_pid_config().gains;
+  return {&kTable, supervised_config({k0.kp, k0.ki, k0.kd})};
 }
 
 }  // namespace fuzzypid::bench

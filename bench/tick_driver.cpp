@@ -5,7 +5,8 @@
 //   1000 valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bin/fuzzypid_tick_driver
 //   fuzzy 101000
 //
-// (instructions per tick = difference of the two totals / 100,000; kinds: fuzzy, pid, infer).
+// (instructions per tick = difference of the two totals / 100,000; kinds: fuzzy, pid, scheduled,
+// fuzzy_rules, infer).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -50,7 +51,8 @@ template <class Controller>
 
 int main(int argc, char** argv) {
   if (argc != 3 || std::atol(argv[2]) < 1) {
-    std::fprintf(stderr, "usage: fuzzypid_tick_driver fuzzy|pid|infer COUNT\n");
+    std::fprintf(stderr,
+                 "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n");
     return 2;
   }
   const long n = std::atol(argv[2]);
@@ -65,10 +67,19 @@ int main(int argc, char** argv) {
     fuzzypid::control::JointController<double, 6, fuzzypid::pid::Pid<double>> controller{
         fuzzypid::pid::Pid<double>(tick_pid_config())};
     sum = run(controller, n);
+  } else if (std::strcmp(argv[1], "scheduled") == 0) {
+    fuzzypid::control::JointController<double, 6, decltype(fuzzypid::bench::scheduled_joint())>
+        controller{fuzzypid::bench::scheduled_joint()};
+    sum = run(controller, n);
+  } else if (std::strcmp(argv[1], "fuzzy_rules") == 0) {
+    fuzzypid::control::JointController<double, 6, decltype(fuzzypid::bench::fuzzy_rules_joint())>
+        controller{fuzzypid::bench::fuzzy_rules_joint()};
+    sum = run(controller, n);
   } else if (std::strcmp(argv[1], "infer") == 0) {
     sum = infer(n);
   } else {
-    std::fprintf(stderr, "usage: fuzzypid_tick_driver fuzzy|pid|infer COUNT\n");
+    std::fprintf(stderr,
+                 "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n");
     return 2;
   }
   std::printf("%.17g\n", sum);
