@@ -22,9 +22,10 @@ constexpr double kDt = 0.05;  // s, the paper's 50 ms tick
 using fuzzypid::bench::tick_pid_config;
 using fuzzypid::bench::TickInput;
 
-template <class Controller>
-void run_ticks(benchmark::State& state,
-               fuzzypid::control::JointController<double, kJoints, Controller> controller) {
+// Every joint runs a copy of `joint`.
+template <class Joint>
+void run_ticks(benchmark::State& state, const Joint& joint) {
+  fuzzypid::control::JointController<double, kJoints, Joint> controller(joint);
   const auto table = fuzzypid::bench::make_tick_table();
   std::size_t k = 0;
   for (auto _ : state) {
@@ -37,8 +38,7 @@ void run_ticks(benchmark::State& state,
 
 void BM_ControllerStep6_pid(benchmark::State& state) {
   using Pid = fuzzypid::pid::Pid<double>;
-  run_ticks(state,
-            fuzzypid::control::JointController<double, kJoints, Pid>(Pid(tick_pid_config())));
+  run_ticks(state, Pid(tick_pid_config()));
 }
 BENCHMARK(BM_ControllerStep6_pid)->Name("BM_ControllerStep6/pid");
 
@@ -46,23 +46,17 @@ void BM_ControllerStep6_fuzzy(benchmark::State& state) {
   using FuzzyPid = fuzzypid::paper::FuzzyPid<double>;
   auto config = fuzzypid::paper::paper_config<double>();
   config.pid = tick_pid_config();
-  run_ticks(state, fuzzypid::control::JointController<double, kJoints, FuzzyPid>(
-                       FuzzyPid(&fuzzypid::paper::kSystem<double>, config)));
+  run_ticks(state, FuzzyPid(&fuzzypid::paper::kSystem<double>, config));
 }
 BENCHMARK(BM_ControllerStep6_fuzzy)->Name("BM_ControllerStep6/fuzzy");
 
 void BM_ControllerStep6_scheduled(benchmark::State& state) {
-  run_ticks(state, fuzzypid::control::JointController<double, kJoints,
-                                                      decltype(fuzzypid::bench::scheduled_joint())>(
-                       fuzzypid::bench::scheduled_joint()));
+  run_ticks(state, fuzzypid::bench::scheduled_joint());
 }
 BENCHMARK(BM_ControllerStep6_scheduled)->Name("BM_ControllerStep6/scheduled");
 
 void BM_ControllerStep6_fuzzy_rules(benchmark::State& state) {
-  run_ticks(state,
-            fuzzypid::control::JointController<double, kJoints,
-                                               decltype(fuzzypid::bench::fuzzy_rules_joint())>(
-                fuzzypid::bench::fuzzy_rules_joint()));
+  run_ticks(state, fuzzypid::bench::fuzzy_rules_joint());
 }
 BENCHMARK(BM_ControllerStep6_fuzzy_rules)->Name("BM_ControllerStep6/fuzzy_rules");
 

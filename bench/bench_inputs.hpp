@@ -100,7 +100,7 @@ inline control::FuzzyPid<double, control::GainSchedule<double>> scheduled_joint(
   return {&kSchedule, supervised_config({-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd})};
 }
 
-// A fuzzy-rules table with the same ramp and every cell away from 1 (the cost of a tick does not
+// A fuzzy-rules table with the same ramp and cells from 1.0 to 1.2 (the cost of a tick does not
 // depend on the cells' values; S = K0).
 inline control::FuzzyPid<double, control::RuleTable<double>> fuzzy_rules_joint() {
   using Table = control::RuleTable<double>;

@@ -22,8 +22,13 @@ using fuzzypid::bench::tick_pid_config;
 // The tick table of bench_controller.cpp.
 const auto g_table = fuzzypid::bench::make_tick_table();
 
-template <class Controller>
-[[gnu::noinline]] double run(Controller& controller, long n) {
+constexpr const char* kUsage =
+    "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n";
+
+// n ticks of six joints, each a copy of `joint`.
+template <class Joint>
+[[gnu::noinline]] double run(const Joint& joint, long n) {
+  fuzzypid::control::JointController<double, 6, Joint> controller(joint);
   double sum = 0.0;
   for (long k = 0; k < n; ++k) {
     const auto out =
@@ -51,8 +56,7 @@ template <class Controller>
 
 int main(int argc, char** argv) {
   if (argc != 3 || std::atol(argv[2]) < 1) {
-    std::fprintf(stderr,
-                 "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n");
+    std::fputs(kUsage, stderr);
     return 2;
   }
   const long n = std::atol(argv[2]);
@@ -60,26 +64,17 @@ int main(int argc, char** argv) {
   if (std::strcmp(argv[1], "fuzzy") == 0) {
     auto config = fuzzypid::paper::paper_config<double>();
     config.pid = tick_pid_config();
-    fuzzypid::paper::JointController<double, 6> controller(
-        fuzzypid::paper::FuzzyPid<double>(&fuzzypid::paper::kSystem<double>, config));
-    sum = run(controller, n);
+    sum = run(fuzzypid::paper::FuzzyPid<double>(&fuzzypid::paper::kSystem<double>, config), n);
   } else if (std::strcmp(argv[1], "pid") == 0) {
-    fuzzypid::control::JointController<double, 6, fuzzypid::pid::Pid<double>> controller{
-        fuzzypid::pid::Pid<double>(tick_pid_config())};
-    sum = run(controller, n);
+    sum = run(fuzzypid::pid::Pid<double>(tick_pid_config()), n);
   } else if (std::strcmp(argv[1], "scheduled") == 0) {
-    fuzzypid::control::JointController<double, 6, decltype(fuzzypid::bench::scheduled_joint())>
-        controller{fuzzypid::bench::scheduled_joint()};
-    sum = run(controller, n);
+    sum = run(fuzzypid::bench::scheduled_joint(), n);
   } else if (std::strcmp(argv[1], "fuzzy_rules") == 0) {
-    fuzzypid::control::JointController<double, 6, decltype(fuzzypid::bench::fuzzy_rules_joint())>
-        controller{fuzzypid::bench::fuzzy_rules_joint()};
-    sum = run(controller, n);
+    sum = run(fuzzypid::bench::fuzzy_rules_joint(), n);
   } else if (std::strcmp(argv[1], "infer") == 0) {
     sum = infer(n);
   } else {
-    std::fprintf(stderr,
-                 "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n");
+    std::fputs(kUsage, stderr);
     return 2;
   }
   std::printf("%.17g\n", sum);
