@@ -9,6 +9,7 @@
 #   5. fuzz      libFuzzer targets of every parser of outside input (scripts/fuzz.sh).
 #   6. soak      fuzzypid_soak for CI_SOAK_TICKS ticks (default 10,000,000, under a minute).
 #   7. main      the README's main command, scripts/run-main.sh, as a fresh user runs it.
+#   8. format    clang-format --dry-run -Werror over every C and C++ file git tracks (seconds).
 # Any error, finding or sanitizer report fails the run. Environment:
 #   CI_FUZZ_SECONDS  per fuzz target (default 45)
 #   CI_SOAK_TICKS    soak length (default 10000000)
@@ -17,7 +18,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$(pwd)"
 jobs="$(nproc)"
-stages="${CI_STAGES:-asan werror tidy cppcheck fuzz soak main}"
+stages="${CI_STAGES:-format asan werror tidy cppcheck fuzz soak main}"
 
 bash scripts/install-deps.sh
 
@@ -112,7 +113,17 @@ stage_main() {
   done
 }
 
+# Formatting that nothing checks drifts: every tracked C/C++ file must be as the checked-in
+# .clang-format writes it (ReflowComments is off, so comments and code samples in them are kept).
+stage_format() {
+  local files
+  mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h' '*.cpp.in' ':!:fuzz/corpus/**')
+  clang-format --dry-run -Werror "${files[@]}"
+  echo "clang-format: ${#files[@]} files as .clang-format writes them"
+}
+
 total_start=${SECONDS}
+run_stage format stage_format
 run_stage asan stage_asan
 run_stage werror stage_werror
 run_stage tidy stage_tidy
