@@ -1,5 +1,6 @@
 // `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
 // `fuzzypid export-header`: a controller file as a self-contained C++ header.
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -304,6 +305,18 @@ int run_tune(const TuneOptions& t) {
       !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
     return 1;
+  }
+  for (const ctl::BoundHit& h : result->controller.tuning->on_bound) {
+    const auto& box = result->controller.tuning->box;
+    const auto b = std::find_if(box.begin(), box.end(),
+                                [&](const ctl::SearchBox& s) { return s.name == h.name; });
+    std::fprintf(stderr,
+                 "fuzzypid tune: warning: %s ended on the %s of its box (log10 %.4g in [%.4g, "
+                 "%.4g]): the optimum may lie outside; widen it with --box %s=MIN:MAX and "
+                 "re-tune (recorded as on_bound in %s)\n",
+                 h.name.c_str(), h.upper ? "top" : "bottom", h.log10,
+                 b != box.end() ? b->log10_min : h.log10, b != box.end() ? b->log10_max : h.log10,
+                 h.name.c_str(), t.out.c_str());
   }
   const double rate = static_cast<double>(result->evaluations) / result->wall_s;
   const auto& stage_records = result->controller.tuning->stages;

@@ -237,6 +237,24 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
       br.finish();
       tu.box.push_back(b);
     }
+    if (const toml::array* hits = t->array("on_bound", false)) {
+      for (const toml::node& entry : *hits) {
+        const auto* ht = entry.as_table();
+        if (ht == nullptr)
+          t->fail(entry,
+                  "on_bound entries must be { name = \"...\", side = \"min|max\", log10 = x }");
+        TableReader hr(*ht, file);
+        BoundHit h;
+        h.name = hr.text("name");
+        const std::string side = hr.text("side");
+        if (side != "min" && side != "max")
+          hr.fail(*ht->get("side"), "on_bound side must be \"min\" or \"max\"");
+        h.upper = side == "max";
+        h.log10 = hr.number("log10");
+        hr.finish();
+        tu.on_bound.push_back(h);
+      }
+    }
     if (const toml::array* files = t->array("trained_on", false)) {
       for (const toml::node& entry : *files) {
         const auto* ft = entry.as_table();
@@ -431,6 +449,13 @@ std::string to_toml(const ControllerSpec& s) {
       o += "  { name = " + quoted(b.name) + ", log10 = [" + format_double(b.log10_min) + ", " +
            format_double(b.log10_max) + "] },\n";
     o += "]\n";
+    if (!t.on_bound.empty()) {
+      o += "on_bound = [  # parameters that ended on a side of their box: widen it and re-tune\n";
+      for (const BoundHit& h : t.on_bound)
+        o += "  { name = " + quoted(h.name) + ", side = " + quoted(h.upper ? "max" : "min") +
+             ", log10 = " + format_double(h.log10) + " },\n";
+      o += "]\n";
+    }
     if (!t.trained_on.empty()) {
       o += "trained_on = [  # robot and path files of the training conditions\n";
       for (const TrainedOn& f : t.trained_on)

@@ -226,6 +226,22 @@ std::optional<Minimum> minimize(const std::function<double(const std::vector<dou
   return m;
 }
 
+std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
+                                           const std::vector<SearchBox>& box, double fraction) {
+  std::vector<controller::BoundHit> hits;
+  for (std::size_t k = 0; k < box.size() && k < x.size(); ++k) {
+    const SearchBox& b = box[k];
+    const double width = b.log10_max - b.log10_min;
+    if (!(width > 0.0)) continue;
+    const double margin = fraction * width;
+    if (x[k] >= b.log10_max - margin)
+      hits.push_back({b.name, true, x[k]});
+    else if (x[k] <= b.log10_min + margin)
+      hits.push_back({b.name, false, x[k]});
+  }
+  return hits;
+}
+
 namespace {
 
 // The runs of the controllers of one evaluation: training and validation conditions.
@@ -395,6 +411,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   t.training_cost = result.cost.total + result.penalty;
   t.objective = o;
   t.box = box;
+  t.on_bound = on_bound(chosen, box);
   t.validation_conditions = data.validation.size();
   if (chosen_validation) t.validation_cost = chosen_validation->total;
   if (options.family == Family::FuzzyRules) t.regulariser = space->record();
@@ -447,6 +464,7 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
     out.controller.tuning = results.back().controller.tuning;
     out.controller.tuning->training_cost = results[pick].controller.tuning->training_cost;
     out.controller.tuning->validation_cost = results[pick].controller.tuning->validation_cost;
+    out.controller.tuning->on_bound = results[pick].controller.tuning->on_bound;
     out.penalty = 0.0;  // a converted table of ones is as smooth and monotone as its schedule
   }
   std::uint64_t evaluations = 0;

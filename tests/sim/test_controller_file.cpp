@@ -56,6 +56,7 @@ ctl::ControllerSpec tuned_example() {
   t.training_cost = 0.058396812345678901;
   t.box = {{"kp", -1.0, 4.0},  {"ki", -6.0, 1.0}, {"kd", 0.0, 4.0},  {"ke", -1.0, 4.0},
            {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0},  {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
+  t.on_bound = {{"kp", true, 3.9987654321}, {"ki", false, -6.0}};
   t.trained_on = {{"urdf", "../urdf/ur5_class.urdf", "0123456789abcdef"},
                   {"path", "../paths/contour.csv", "fedcba9876543210"}};
   s.tuning = t;
@@ -84,6 +85,12 @@ void expect_same(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
       EXPECT_EQ(a.tuning->trained_on[k].kind, b.tuning->trained_on[k].kind);
       EXPECT_EQ(a.tuning->trained_on[k].file, b.tuning->trained_on[k].file);
       EXPECT_EQ(a.tuning->trained_on[k].fnv1a64, b.tuning->trained_on[k].fnv1a64);
+    }
+    ASSERT_EQ(a.tuning->on_bound.size(), b.tuning->on_bound.size());
+    for (std::size_t k = 0; k < a.tuning->on_bound.size(); ++k) {
+      EXPECT_EQ(a.tuning->on_bound[k].name, b.tuning->on_bound[k].name);
+      EXPECT_EQ(a.tuning->on_bound[k].upper, b.tuning->on_bound[k].upper);
+      EXPECT_EQ(a.tuning->on_bound[k].log10, b.tuning->on_bound[k].log10);
     }
     EXPECT_EQ(a.tuning->training_cost, b.tuning->training_cost);
     EXPECT_EQ(a.tuning->evaluations, b.tuning->evaluations);

@@ -52,6 +52,21 @@ double double_integrator_itae(const std::vector<double>& x) {
 const std::vector<ctl::SearchBox> kToyBox = {
     {"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
 
+TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
+  const std::vector<ctl::SearchBox> box = {
+      {"kp", 0.0, 4.0}, {"ki", -3.0, 1.0}, {"kd", 0.0, 4.0}, {"held", 2.0, 2.0}};
+  // kp 0.96 % of the width below the top, ki 0.9 % above the bottom, kd 1.1 % below the top; a
+  // parameter held fixed (zero width) is never on a bound.
+  const auto hits = tune::on_bound({3.9616, -2.964, 3.956, 2.0}, box);
+  ASSERT_EQ(hits.size(), 2u);
+  EXPECT_EQ(hits[0].name, "kp");
+  EXPECT_TRUE(hits[0].upper);
+  EXPECT_DOUBLE_EQ(hits[0].log10, 3.9616);
+  EXPECT_EQ(hits[1].name, "ki");
+  EXPECT_FALSE(hits[1].upper);
+  EXPECT_TRUE(tune::on_bound({2.0, -1.0, 2.0, 2.0}, box).empty());
+}
+
 TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
   // Brute force on a 61 x 41 x 61 grid (0.05 decade steps in kp and kd, 0.1 in ki).
   std::vector<double> best_x;

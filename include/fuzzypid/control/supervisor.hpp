@@ -7,8 +7,8 @@
 //
 //   template <class Scalar> class SomeSupervisor {
 //    public:
-//     using Workspace = ...;                 // per-joint scratch; an empty struct for table
-//     systems Workspace make_workspace() const;      // set-up: may allocate (sized to the model)
+//     using Workspace = ...;             // per-joint scratch (an empty struct for table systems)
+//     Workspace make_workspace() const;  // set-up: may allocate (sized to the model)
 //     // One inference. Fills delta = (dKp, dKi, dKd). Returns Ok, NoRuleFired (delta = 0) or a
 //     // fault (delta = 0). noexcept, allocation-free, const: safe to call from many joints.
 //     [[nodiscard]] Status infer(Scalar e, Scalar ec, Workspace& ws,

@@ -204,6 +204,14 @@ struct SearchBox {
   double log10_max = 0.0;
 };
 
+// A searched parameter that ended on (within 1 % of the width of) a side of its box: the optimum
+// may lie outside it, and the box should be widened (`fuzzypid tune --box NAME=MIN:MAX`).
+struct BoundHit {
+  std::string name;
+  bool upper = false;  // the box's maximum (true) or minimum (false)
+  double log10 = 0.0;  // where the parameter ended
+};
+
 struct Objective {
   double overshoot_bound_pct = 20.0;  // overshoot above this is penalised (paper: 20 %)
   double overshoot_weight = 0.1;      // cost per percentage point above the bound, per joint
@@ -253,6 +261,7 @@ struct Tuning {
   double training_cost = 0.0;
   Objective objective{};
   std::vector<SearchBox> box;
+  std::vector<BoundHit> on_bound;     // parameters of the result on a side of `box`
   std::vector<TrainedOn> trained_on;  // empty: the bundled ER50-C20 on the section 6 line
   // Staged tuning (`fuzzypid tune --init`, `--stages`): the controller file the search started
   // from ("" for none), the stages run (family, evaluations, costs) and the validation conditions

@@ -98,8 +98,6 @@ using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
 // The default capacity under short names.
 inline constexpr std::size_t kMaxInputs = DefaultCapacity::inputs;
 inline constexpr std::size_t kMaxOutputs = DefaultCapacity::outputs;
-inline constexpr std::size_t kMaxTerms = DefaultCapacity::terms;
-inline constexpr std::size_t kMaxRules = DefaultCapacity::rules;
 inline constexpr std::size_t kMaxNameLength = 31;
 inline constexpr std::size_t kMaxHedges = 4;  // per proposition
 

@@ -152,12 +152,6 @@ Scalar apply(Hedge h, Scalar x) noexcept {
   return x;
 }
 
-// The conjunction of the table system (kept under its historical name).
-template <class Scalar>
-constexpr Scalar conjoin(TNorm op, Scalar a, Scalar b) noexcept {
-  return apply(op, a, b);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Names: fuzzylite's class names (also what .fll files use), the .fis names (MATLAB's, and
 // fuzzylite's FisExporter names for what MATLAB lacks), whether MATLAB has the operator, and the

@@ -12,9 +12,4 @@ namespace fuzzypid::fuzzy {
 template <class Scalar, std::size_t NE, std::size_t NEC>
 using RuleTable = std::array<std::array<Scalar, NEC>, NE>;
 
-// Consequents as indices into an output variable's terms (Mamdani); a negative index means the
-// cell holds no rule.
-template <std::size_t NE, std::size_t NEC>
-using TermTable = std::array<std::array<int, NEC>, NE>;
-
 }  // namespace fuzzypid::fuzzy

@@ -149,11 +149,6 @@ struct TskSystem {
                                                              0, output, trace);
   }
 
-  template <Conjunction Op>
-  static constexpr Scalar conjoin(Scalar a, Scalar b) noexcept {
-    return Op == Conjunction::Minimum ? detail::min(a, b) : a * b;
-  }
-
   // Fires the 2 x 2 block of rules (k .. k + 1) x (m .. m + 1) of two uniform partitions, in rule
   // order, and defuzzifies. Degrees of 0 fire rules of strength 0, which add exact zeros.
   template <bool kTrace, Conjunction Op>

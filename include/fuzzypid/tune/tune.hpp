@@ -82,6 +82,12 @@ struct Minimum {
     const std::function<double(const std::vector<double>&)>& f, const std::vector<SearchBox>& box,
     const MinimizeOptions& options, std::string& error);
 
+// The parameters of x (in the box's units) that lie within `fraction` of their box's width of a
+// side, in box order. A box of zero width (a parameter held fixed) is never reported.
+[[nodiscard]] std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
+                                                         const std::vector<SearchBox>& box,
+                                                         double fraction = 0.01);
+
 struct Options {
   Family family = Family::Fuzzy;
   std::uint64_t budget = 16000;  // objective evaluations, never exceeded
