@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -25,15 +26,16 @@ namespace fuzzypid::cli {
 struct RobotOptions {
   sim::RobotSetup setup;  // --urdf, --base-link, --tip-link, --path, --tick-ms, --armature, ...
   std::optional<double> payload_kg;
+  // Unset: the robot's default (sim::default_dynamics, sim::default_gravity).
   std::optional<robot::PlantCoupling> dynamics;
-  bool gravity = false;
+  std::optional<bool> gravity;
   bool tick_given = false;
 
   // Whether any option naming the robot, its path or its plant was given.
   [[nodiscard]] bool any() const {
     return !setup.urdf.empty() || !setup.base_link.empty() || !setup.tip_link.empty() ||
            !setup.path.empty() || tick_given || setup.armature_kgm2 || setup.ik_seed_rad ||
-           payload_kg || dynamics || gravity;
+           payload_kg || dynamics || gravity.has_value();
   }
   // The options applied to a condition.
   void apply(sim::Condition& c) const {
@@ -45,8 +47,8 @@ struct RobotOptions {
     c.robot.armature_kgm2 = setup.armature_kgm2;
     c.robot.ik_seed_rad = setup.ik_seed_rad;
     if (payload_kg) c.payload_kg = *payload_kg;
-    if (dynamics) c.dynamics = *dynamics;
-    c.gravity = gravity;
+    c.dynamics = dynamics.value_or(sim::default_dynamics(c.robot));
+    c.gravity = gravity.value_or(sim::default_gravity(c.robot, c.dynamics));
   }
 };
 
@@ -136,16 +138,23 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
   app.add_option_function<std::string>(
          "--dynamics",
          [&o](const std::string& s) { o.dynamics = *fuzzypid::parse_enum(sim::kDynamicsNames, s); },
-         "plant: decoupled joints J_i theta'' = tau (the paper's model, default) or coupled "
-         "rigid-body dynamics M(q) q'' + C q' + g = tau")
+         "plant: decoupled joints J_i theta'' = tau (the paper's model; the default for the "
+         "bundled ER50-C20) or coupled rigid-body dynamics M(q) q'' + C q' + g = tau (the "
+         "default for any other URDF)")
       ->check(CLI::IsMember(names));
-  app.add_flag("--gravity", o.gravity, "gravity in the plant (needs --dynamics coupled)");
+  app.add_flag_function(
+      "--gravity,!--no-gravity", [&o](std::int64_t n) { o.gravity = n > 0; },
+      "gravity in the plant (needs the coupled dynamics; default: on for a coupled plant of any "
+      "URDF but the bundled ER50-C20)");
 }
 
 // Usage errors the options can have on their own; empty when none.
 inline std::string check_robot_options(const RobotOptions& o) {
-  const bool coupled = o.dynamics && *o.dynamics == robot::PlantCoupling::Coupled;
-  if (o.gravity && !coupled) return "--gravity needs --dynamics coupled";
+  const robot::PlantCoupling dynamics = o.dynamics.value_or(sim::default_dynamics(o.setup));
+  if (o.gravity.value_or(false) && dynamics != robot::PlantCoupling::Coupled)
+    return o.dynamics ? "--gravity needs --dynamics coupled"
+                      : "--gravity needs --dynamics coupled (the bundled ER50-C20 runs the paper's "
+                        "decoupled plant by default)";
   return {};
 }
 

@@ -44,6 +44,14 @@ std::string Condition::validate() const {
   return robot.validate();
 }
 
+robot::PlantCoupling default_dynamics(const RobotSetup& robot) noexcept {
+  return robot.urdf.empty() ? robot::PlantCoupling::Decoupled : robot::PlantCoupling::Coupled;
+}
+
+bool default_gravity(const RobotSetup& robot, robot::PlantCoupling dynamics) noexcept {
+  return !robot.urdf.empty() && dynamics == robot::PlantCoupling::Coupled;
+}
+
 bool RobotSetup::operator==(const RobotSetup& o) const noexcept {
   return urdf == o.urdf && base_link == o.base_link && tip_link == o.tip_link && path == o.path &&
          start_m == o.start_m && end_m == o.end_m && tick_s == o.tick_s &&

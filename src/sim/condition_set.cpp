@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 #include "fuzzypid/sim/random.hpp"
@@ -22,8 +23,25 @@ std::string resolve(const std::string& name, const std::string& condition_file) 
   return (fs::path(condition_file).parent_path() / name).lexically_normal().string();
 }
 
+// The plant keys as written: a key left out of a condition takes its set's value, and one left out
+// of both the robot's default (default_dynamics, default_gravity), decided once the robot is known.
+struct PlantKeys {
+  std::optional<robot::PlantCoupling> dynamics;
+  std::optional<bool> gravity;
+
+  void read(TableReader& r) {
+    if (r.has("dynamics"))
+      dynamics = r.choice("dynamics", kDynamicsNames, robot::PlantCoupling::Decoupled);
+    if (r.has("gravity")) gravity = r.flag("gravity", false);
+  }
+  void apply(Condition& c) const {
+    c.dynamics = dynamics.value_or(default_dynamics(c.robot));
+    c.gravity = gravity.value_or(default_gravity(c.robot, c.dynamics));
+  }
+};
+
 // The robot, path and plant keys (set tables and conditions alike).
-void read_robot(TableReader& r, Condition& c) {
+void read_robot(TableReader& r, Condition& c, PlantKeys& plant) {
   RobotSetup& s = c.robot;
   if (r.has("urdf")) s.urdf = resolve(r.text("urdf"), r.file());
   s.base_link = r.text("base_link", s.base_link);
@@ -61,8 +79,7 @@ void read_robot(TableReader& r, Condition& c) {
     if (!(c.payload_kg >= 0.0 && c.payload_kg <= kMaxPayloadKg))
       r.fail(*r.raw().get("payload_kg"), "'payload_kg' must be within 0 .. 1e4");
   }
-  c.dynamics = r.choice("dynamics", kDynamicsNames, c.dynamics);
-  c.gravity = r.flag("gravity", c.gravity);
+  plant.read(r);
 }
 
 // The fields of a condition common to listed conditions and Monte-Carlo sets.
@@ -82,8 +99,8 @@ void read_fields(TableReader& r, Condition& c) {
   c.initial_error_rad = r.number("initial_error", c.initial_error_rad);
 }
 
-Condition read_condition(const toml::node& node, const std::string& file,
-                         const Condition& defaults) {
+Condition read_condition(const toml::node& node, const std::string& file, const Condition& defaults,
+                         PlantKeys plant) {
   const toml::table* t = node.as_table();
   if (t == nullptr)
     throw ReadError{fuzzypid::FileError{file, static_cast<int>(node.source().begin.line),
@@ -98,15 +115,14 @@ Condition read_condition(const toml::node& node, const std::string& file,
     c = *s;
     c.robot = defaults.robot;
     c.payload_kg = defaults.payload_kg;
-    c.dynamics = defaults.dynamics;
-    c.gravity = defaults.gravity;
   }
   c.name = r.text("name");
   if (c.name.empty() || c.name.find_first_of(",\n\r\"") != std::string::npos)
     r.fail(*t->get("name"), "a condition name must be non-empty, without commas or quotes");
   c.description = r.text("description", c.description);
   read_fields(r, c);
-  read_robot(r, c);
+  read_robot(r, c, plant);
+  plant.apply(c);
   r.finish();
   if (const std::string bad = c.validate(); !bad.empty())
     r.fail_here("condition " + c.name + ": " + bad);
@@ -127,7 +143,7 @@ std::pair<double, double> range(TableReader& r, const char* key, double lo, doub
 }
 
 void read_monte_carlo(TableReader& r, const std::string& set_name, const Condition& defaults,
-                      ConditionSet& set) {
+                      PlantKeys plant, ConditionSet& set) {
   const std::uint64_t count = r.count("count");
   if (count == 0 || count > 10000) r.fail(*r.raw().get("count"), "'count' must be 1..10000");
   const std::uint64_t seed = r.count("seed");
@@ -136,7 +152,8 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
   const auto friction = range(r, "friction", 0.0, 0.0);
   const auto initial = range(r, "initial_error", 0.05, 0.05);
   Condition base = defaults;
-  read_robot(r, base);
+  read_robot(r, base, plant);
+  plant.apply(base);
   base.reverse = r.flag("reverse", false);
   base.contact_rad_s2 = r.number("contact", 0.0);
   base.torque_limit_rad_s2 = r.number("torque_limit", 0.0);
@@ -191,17 +208,19 @@ bool parse_conditions(std::string_view text, const std::string& source, Conditio
       set.name = name;
       set.description = st->text("description", std::string());
       Condition defaults;
-      read_robot(*st, defaults);
+      PlantKeys plant;
+      read_robot(*st, defaults, plant);
       std::set<std::string> names;
       if (const toml::array* list = st->array("conditions", false)) {
         for (const toml::node& n : *list) {
-          Condition c = read_condition(n, source, defaults);
+          Condition c = read_condition(n, source, defaults, plant);
           if (!names.insert(c.name).second)
             st->fail(n, "duplicate condition name '" + c.name + "'");
           set.conditions.push_back(std::move(c));
         }
       }
-      if (auto mc = st->table("monte_carlo", false)) read_monte_carlo(*mc, name, defaults, set);
+      if (auto mc = st->table("monte_carlo", false))
+        read_monte_carlo(*mc, name, defaults, plant, set);
       st->finish();
       if (set.conditions.empty()) st->fail_here("set '" + name + "' has no conditions");
       out.sets.push_back(std::move(set));

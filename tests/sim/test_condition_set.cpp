@@ -143,4 +143,50 @@ TEST(ConditionSets, MonteCarloPayloadAndFrictionAreIndependentDraws) {
   EXPECT_EQ(coupled_initial, 0u);
 }
 
+TEST(ConditionSets, AUsersUrdfRunsCoupledWithGravityUnlessTheFileSaysOtherwise) {
+  using fuzzypid::robot::PlantCoupling;
+  // The file's own URDF name is never opened by the parser: only the keys are read here.
+  const std::string text = R"(
+[sets.a]
+urdf = "arm.urdf"
+conditions = [
+  { name = "default" },
+  { name = "decoupled", dynamics = "decoupled" },
+  { name = "no-gravity", gravity = false },
+  { name = "scenario", scenario = "payload-heavy" },
+]
+monte_carlo = { count = 2, seed = 1 }
+[sets.b]
+urdf = "arm.urdf"
+dynamics = "decoupled"
+conditions = [ { name = "inherited" }, { name = "own", dynamics = "coupled" } ]
+[sets.paper]
+conditions = [ { name = "bundled" }, { name = "bundled-coupled", dynamics = "coupled" } ]
+)";
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(parse_conditions(text, "plants.toml", f, e)) << e.to_string();
+  const auto& a = f.find("a")->conditions;
+  ASSERT_EQ(a.size(), 6u);
+  for (std::size_t k : {0u, 3u, 4u, 5u}) {  // defaults, a scenario, the Monte-Carlo draws
+    EXPECT_EQ(a[k].dynamics, PlantCoupling::Coupled) << a[k].name;
+    EXPECT_TRUE(a[k].gravity) << a[k].name;
+  }
+  EXPECT_EQ(a[1].dynamics, PlantCoupling::Decoupled);
+  EXPECT_FALSE(a[1].gravity);
+  EXPECT_EQ(a[2].dynamics, PlantCoupling::Coupled);
+  EXPECT_FALSE(a[2].gravity);
+  const auto& b = f.find("b")->conditions;
+  EXPECT_EQ(b[0].dynamics, PlantCoupling::Decoupled);  // the set's key, not the robot's default
+  EXPECT_FALSE(b[0].gravity);
+  EXPECT_EQ(b[1].dynamics, PlantCoupling::Coupled);
+  EXPECT_TRUE(b[1].gravity);
+  // The bundled ER50-C20 keeps the paper's plant, coupled or not.
+  const auto& paper = f.find("paper")->conditions;
+  EXPECT_EQ(paper[0].dynamics, PlantCoupling::Decoupled);
+  EXPECT_FALSE(paper[0].gravity);
+  EXPECT_EQ(paper[1].dynamics, PlantCoupling::Coupled);
+  EXPECT_FALSE(paper[1].gravity);
+}
+
 }  // namespace

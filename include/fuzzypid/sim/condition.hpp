@@ -98,6 +98,8 @@ struct Condition {
   // Robot, path and tick.
   RobotSetup robot;
   double payload_kg = 0.0;  // point mass at the tool flange, added to the plant's model only
+  // The plant. These defaults are the paper's (for the bundled ER50-C20); the tools and condition
+  // files give any other URDF default_dynamics() and default_gravity() instead.
   robot::PlantCoupling dynamics = robot::PlantCoupling::Decoupled;  // the paper's model
   bool gravity = false;  // rigid-body gravity (coupled dynamics only)
 
@@ -106,8 +108,14 @@ struct Condition {
   [[nodiscard]] PulseTrain pulses() const noexcept { return contact_pulses(contact_rad_s2); }
 };
 
-// Kept for the programs that still say "scenario".
-using Scenario = Condition;
+// The plant a robot runs on unless told otherwise. The bundled ER50-C20 keeps the paper's model
+// (decoupled joints, no gravity) so that the reproduction stays the paper's; any other URDF -- a
+// user's arm, with the inertials every URDF here must have -- runs the coupled rigid-body dynamics
+// with gravity, the plant its controller will meet: a controller tuned on the idealised plant can
+// be unstable on the real one (docs/your_robot.md).
+[[nodiscard]] robot::PlantCoupling default_dynamics(const RobotSetup& robot) noexcept;
+// Gravity on by default where the plant is coupled and the robot is not the bundled ER50-C20.
+[[nodiscard]] bool default_gravity(const RobotSetup& robot, robot::PlantCoupling dynamics) noexcept;
 
 // The named scenarios in the order `--scenario all` runs them; "paper" first.
 [[nodiscard]] const std::vector<Condition>& scenarios();
