@@ -297,6 +297,12 @@ int run_tune(const TuneOptions& t) {
     if (!setup.urdf.empty()) add("urdf", setup.urdf);
     if (!setup.path.empty()) add("path", setup.path);
   }
+  {
+    double tick = experiments->experiment(0).options().tick_s;
+    for (std::size_t k = 1; k < experiments->size(); ++k)
+      if (experiments->experiment(k).options().tick_s != tick) tick = 0.0;
+    result->controller.tuning->tick_s = tick;
+  }
   result->controller.tuning->set = t.set;
   result->controller.tuning->init = t.init_file;
   result->controller.description =

@@ -57,6 +57,7 @@
 #include "fuzzypid/sim/closed_loop.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/mismatch.hpp"
 #include "fuzzypid/status.hpp"
 #include "histogram.hpp"
 #include "options.hpp"
@@ -309,6 +310,10 @@ int run(int argc, char** argv) {
       return cli::kExitFailure;
     }
   }
+  for (const std::string& why :
+       {sim::tick_mismatch(spec, dt_s), sim::feedforward_mismatch(spec, condition)})
+    if (!why.empty())
+      std::fprintf(stderr, "%s: warning: %s: %s\n", kTool, o.controller.c_str(), why.c_str());
   auto loop = sim::ClosedLoop::create(*experiment, condition, spec, error);
   if (!loop) {
     std::fprintf(stderr, "%s: %s\n", kTool, error.c_str());

@@ -24,6 +24,7 @@
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
+#include "fuzzypid/sim/mismatch.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
 #include "robot_options.hpp"
@@ -377,6 +378,24 @@ int main(int argc, char** argv) {
                      "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "
                      "to continuous gains and run at a %g s tick\n",
                      c.name.c_str(), c.spec.units.tick_s, ex.options().tick_s);
+  }
+  // What the controller files say they were made for, against what they now run on.
+  for (const auto& c : controllers) {
+    for (std::size_t k = 0; k < experiments->size(); ++k)
+      if (const std::string why =
+              sim::tick_mismatch(c.spec, experiments->experiment(k).options().tick_s);
+          !why.empty()) {
+        std::fprintf(stderr, "sim_ab: warning: %s: %s\n", c.name.c_str(), why.c_str());
+        break;
+      }
+    std::size_t without_gravity = 0;
+    for (const Run& r : runs)
+      if (const std::string why = sim::feedforward_mismatch(c.spec, r.condition); !why.empty())
+        if (++without_gravity == 1)
+          std::fprintf(stderr, "sim_ab: warning: %s: %s\n", c.name.c_str(), why.c_str());
+    if (without_gravity > 1)
+      std::fprintf(stderr, "sim_ab: warning: %s: the same on %zu conditions in all\n",
+                   c.name.c_str(), without_gravity);
   }
   if (o.sweep) return run_sweep(o, *experiments, runs.front().condition, controllers);
 

@@ -273,6 +273,9 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
         tu.trained_on.push_back(f);
       }
     }
+    tu.tick_s = t->number("tick_s", 0.0);
+    if (!(tu.tick_s >= 0.0))
+      t->fail(*t->raw().get("tick_s"), "tick_s (the training tick, s) must be >= 0");
     tu.init = t->text("init", std::string());
     tu.validation_conditions = t->count("validation_conditions", 0);
     tu.validation_cost =
@@ -463,6 +466,8 @@ std::string to_toml(const ControllerSpec& s) {
              ", fnv1a64 = " + quoted(f.fnv1a64) + " },\n";
       o += "]\n";
     }
+    if (t.tick_s > 0.0)
+      o += "tick_s = " + format_double(t.tick_s) + "  # the training conditions' tick\n";
     if (!t.init.empty())
       o += "init = " + quoted(t.init) + "  # the controller the search started from\n";
     if (t.validation_conditions != 0) {

@@ -145,7 +145,10 @@ TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
 
 TEST(ControllerFile, ShippedTunedFilesReadBackToTheirOwnText) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
-  for (const char* file : {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml"}) {
+  for (const char* file :
+       {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml", "tuned_fuzzy_rules.toml",
+        "tuned_scheduled_staged.toml", "ur5_class_tuned_pid.toml", "ur5_class_tuned_scheduled.toml",
+        "ur5_class_tuned_fuzzy.toml"}) {
     ctl::ControllerSpec loaded;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();

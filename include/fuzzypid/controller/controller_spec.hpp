@@ -263,6 +263,8 @@ struct Tuning {
   std::vector<SearchBox> box;
   std::vector<BoundHit> on_bound;     // parameters of the result on a side of `box`
   std::vector<TrainedOn> trained_on;  // empty: the bundled ER50-C20 on the section 6 line
+  // The controller tick of the training conditions, s (0: not recorded, or they differ).
+  double tick_s = 0.0;
   // Staged tuning (`fuzzypid tune --init`, `--stages`): the controller file the search started
   // from ("" for none), the stages run (family, evaluations, costs) and the validation conditions
   // held back from the training set that chose among them (0: none; the cost is then NaN).

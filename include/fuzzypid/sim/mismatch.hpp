@@ -1,0 +1,26 @@
+// What a controller file says about the plant it was made for, against the condition it is run
+// on: set-up checks the tools print as warnings (the run goes ahead; the result may not mean what
+// the controller's record suggests).
+#pragma once
+
+#include <string>
+
+#include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/sim/condition.hpp"
+
+namespace fuzzypid::sim {
+
+// Empty, or why running `controller` at a `tick_s` controller tick departs from its tuning: it
+// was tuned at another tick (Tuning::tick_s), so its gains, its ringing and its margins there say
+// nothing about this tick (a controller tuned at 4 ms can diverge at 50 ms). A relative
+// difference below 1e-9 counts as the same tick; a controller with no recorded tick passes.
+[[nodiscard]] std::string tick_mismatch(const controller::ControllerSpec& controller,
+                                        double tick_s);
+
+// Empty, or why `controller`'s gravity feed-forward does not fit `condition`: it adds g^(q_d)
+// to the torque of a plant without gravity, so that torque pushes the arm off its path instead
+// of holding it up.
+[[nodiscard]] std::string feedforward_mismatch(const controller::ControllerSpec& controller,
+                                               const Condition& condition);
+
+}  // namespace fuzzypid::sim

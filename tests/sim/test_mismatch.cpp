@@ -1,0 +1,46 @@
+// What a controller file was made for against what it runs on (fuzzypid/sim/mismatch.hpp): the
+// training tick and gravity feed-forward on a plant without gravity.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fuzzypid/sim/mismatch.hpp"
+
+namespace {
+
+namespace ctl = fuzzypid::controller;
+namespace sim = fuzzypid::sim;
+
+ctl::ControllerSpec tuned_at(double tick_s) {
+  ctl::ControllerSpec s = ctl::paper_pid();
+  s.tuning = ctl::Tuning{};
+  s.tuning->tick_s = tick_s;
+  return s;
+}
+
+TEST(TickMismatch, AControllerRunAtAnotherTickThanItsTrainingOneIsNamedWithBothTicks) {
+  const std::string why = sim::tick_mismatch(tuned_at(0.004), 0.05);
+  EXPECT_NE(why.find("tuned at a 4 ms tick and runs at 50 ms"), std::string::npos) << why;
+  EXPECT_NE(sim::tick_mismatch(tuned_at(0.05), 0.01), "");
+}
+
+TEST(TickMismatch, TheSameTickAnUnrecordedTickAndAnUntunedControllerPass) {
+  EXPECT_EQ(sim::tick_mismatch(tuned_at(0.01), 10.0 * 1e-3), "");  // the tick of tick_ms = 10
+  EXPECT_EQ(sim::tick_mismatch(tuned_at(0.0), 0.05), "");
+  EXPECT_EQ(sim::tick_mismatch(ctl::paper_pid(), 0.004), "");
+}
+
+TEST(FeedforwardMismatch, GravityFeedForwardOnAPlantWithoutGravityIsNamedWithTheCondition) {
+  ctl::ControllerSpec s = ctl::paper_pid();
+  sim::Condition c;
+  c.name = "flat";
+  EXPECT_EQ(sim::feedforward_mismatch(s, c), "");  // no feed-forward
+  s.feedforward.gravity = true;
+  const std::string why = sim::feedforward_mismatch(s, c);
+  EXPECT_NE(why.find("condition flat has no gravity"), std::string::npos) << why;
+  c.dynamics = fuzzypid::robot::PlantCoupling::Coupled;
+  c.gravity = true;
+  EXPECT_EQ(sim::feedforward_mismatch(s, c), "");
+}
+
+}  // namespace
