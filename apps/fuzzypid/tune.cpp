@@ -338,11 +338,13 @@ int run_tune(const TuneOptions& t) {
   std::printf("family %s: %" PRIu64 " evaluations (budget %" PRIu64
               ") in %.1f s, %.1f "
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
-              "penalty %.6g, regulariser %.6g, %zu faulted runs)",
+              "penalty %.6g, chatter penalty %.6g, effort penalty %.6g, regulariser %.6g, %zu "
+              "faulted runs)",
               ctl::to_string(family), result->evaluations, total_budget, result->wall_s, rate,
               rate * static_cast<double>(training->conditions.size() - t.validation),
               result->cost.total, result->cost.itae, result->cost.overshoot_penalty,
-              result->penalty, result->cost.faulted_runs);
+              result->cost.chatter_penalty, result->cost.effort_penalty, result->penalty,
+              result->cost.faulted_runs);
   if (result->validation) std::printf(", validation cost %.6g", result->validation->total);
   std::printf(" -> %s\n", t.out.c_str());
   return 0;
@@ -471,6 +473,13 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--fault-cost", t->objective.fault_cost,
                   "cost of a run that faults, diverges or gives non-finite ITAE (default 1000)")
       ->check(finite_in(0.0, 1e12));
+  cmd->add_option("--chatter-weight", t->objective.chatter_weight,
+                  "cost per unit of each joint's command reversal share (0..1: the share of ticks "
+                  "on which the command's change reverses; docs/tuning.md) (default 0)")
+      ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--effort-weight", t->objective.effort_weight,
+                  "cost per unit of each joint's RMS command over its limit (0..1) (default 0)")
+      ->check(finite_in(0.0, 1e9));
   cmd->add_option("--divergence", t->objective.divergence_rad,
                   "a run diverged once any |e| exceeds this, rad (default 1)")
       ->check(finite_in(1e-9, 1e3));

@@ -220,6 +220,11 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     tu.objective.overshoot_weight = o->number("overshoot_weight");
     tu.objective.fault_cost = o->number("fault_cost");
     tu.objective.divergence_rad = o->number("divergence_rad");
+    tu.objective.chatter_weight = o->number("chatter_weight", 0.0);
+    tu.objective.effort_weight = o->number("effort_weight", 0.0);
+    for (const char* key : {"chatter_weight", "effort_weight"})
+      if (o->has(key) && !(o->number(key) >= 0.0))
+        o->fail(*o->raw().get(key), std::string(key) + " must be >= 0");
     o->finish();
     const toml::array* box = t->array("box", true);
     for (const toml::node& entry : *box) {
@@ -506,6 +511,10 @@ std::string to_toml(const ControllerSpec& s) {
     o += "overshoot_weight = " + format_double(t.objective.overshoot_weight) + "\n";
     o += "fault_cost = " + format_double(t.objective.fault_cost) + "\n";
     o += "divergence_rad = " + format_double(t.objective.divergence_rad) + "\n";
+    if (t.objective.chatter_weight != 0.0)
+      o += "chatter_weight = " + format_double(t.objective.chatter_weight) + "\n";
+    if (t.objective.effort_weight != 0.0)
+      o += "effort_weight = " + format_double(t.objective.effort_weight) + "\n";
   }
   return o;
 }

@@ -24,29 +24,59 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The terms of one run's cost.
+struct RunCost {
+  double itae = 0.0, overshoot = 0.0, chatter = 0.0, effort = 0.0;
+  bool faulted = false;
+};
+
+// The chatter and effort terms of a run's rows (tick-major, joints 1..6), unweighted.
+void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::JointVector& limit,
+                 double& chatter, double& effort) {
+  const std::size_t ticks = rows.size() / robot::kNumJoints;
+  std::vector<double> u(ticks);
+  chatter = 0.0;
+  effort = 0.0;
+  for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
+    double sum_sq = 0.0;
+    for (std::size_t k = 0; k < ticks; ++k) {
+      u[k] = rows[k * robot::kNumJoints + j].u;
+      sum_sq += u[k] * u[k];
+    }
+    chatter += reversal_share(u);
+    if (ticks > 0 && limit[j] > 0.0 && std::isfinite(limit[j]))
+      effort += std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
+  }
+}
+
 // The cost of one run; `faulted` set when it adds only the fault cost.
-double run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
-                const Objective& o, double& itae_out, double& penalty_out, bool& faulted) {
+RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
+                 const Objective& o) {
   sim::RunLimits limits;
   limits.max_error_rad = o.divergence_rad;
   const sim::RunResult r = ex.run(c, spec, limits);
-  faulted = !r.ok || r.diverged || r.controller_faults != 0;
-  itae_out = 0.0;
-  penalty_out = 0.0;
-  if (!faulted) {
+  RunCost out;
+  out.faulted = !r.ok || r.diverged || r.controller_faults != 0;
+  if (!out.faulted) {
     const auto m = sim::run_metrics(r.rows, ex.options().tick_s);
     for (const auto& j : m) {
-      itae_out += j.itae;
-      penalty_out += o.overshoot_weight * std::max(0.0, j.overshoot_pct - o.overshoot_bound_pct);
+      out.itae += j.itae;
+      out.overshoot += o.overshoot_weight * std::max(0.0, j.overshoot_pct - o.overshoot_bound_pct);
     }
-    if (!std::isfinite(itae_out) || !std::isfinite(penalty_out)) faulted = true;
+    if (o.chatter_weight != 0.0 || o.effort_weight != 0.0) {
+      double chatter = 0.0, effort = 0.0;
+      drive_terms(r.rows, ex.output_limit(c, spec.units.gains), chatter, effort);
+      out.chatter = o.chatter_weight * chatter;
+      out.effort = o.effort_weight * effort;
+    }
+    if (!std::isfinite(out.itae + out.overshoot + out.chatter + out.effort)) out.faulted = true;
   }
-  if (faulted) {
-    itae_out = 0.0;
-    penalty_out = 0.0;
-    return o.fault_cost;
-  }
-  return itae_out + penalty_out;
+  if (out.faulted) return RunCost{0.0, 0.0, 0.0, 0.0, true};
+  return out;
+}
+
+double total(const RunCost& r, const Objective& o) {
+  return r.faulted ? o.fault_cost : r.itae + r.overshoot + r.chatter + r.effort;
 }
 
 // The experiment of each condition (conditions[k] runs on *experiments[k]).
@@ -67,13 +97,8 @@ Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
                  const std::vector<sim::Condition>& conditions, const ControllerSpec& spec,
                  const Objective& o) {
   const std::size_t n = conditions.size();
-  std::vector<double> cost(n), itae(n), penalty(n);
-  std::vector<char> faulted(n);
-  const auto one = [&](std::size_t k) {
-    bool f = false;
-    cost[k] = run_cost(*ex[k], conditions[k], spec, o, itae[k], penalty[k], f);
-    faulted[k] = f ? 1 : 0;
-  };
+  std::vector<RunCost> runs(n);
+  const auto one = [&](std::size_t k) { runs[k] = run_cost(*ex[k], conditions[k], spec, o); };
   if (arena != nullptr && n > 1) {
     arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
   } else {
@@ -81,11 +106,13 @@ Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
       one(k);
   }
   Cost c;
-  for (std::size_t k = 0; k < n; ++k) {  // fixed order: the same sum with any thread count
-    c.total += cost[k];
-    c.itae += itae[k];
-    c.overshoot_penalty += penalty[k];
-    c.faulted_runs += faulted[k] != 0 ? 1 : 0;
+  for (const RunCost& r : runs) {  // fixed order: the same sum with any thread count
+    c.total += total(r, o);
+    c.itae += r.itae;
+    c.overshoot_penalty += r.overshoot;
+    c.chatter_penalty += r.chatter;
+    c.effort_penalty += r.effort;
+    c.faulted_runs += r.faulted ? 1 : 0;
   }
   return c;
 }
@@ -125,6 +152,24 @@ struct Problem {
 };
 
 }  // namespace
+
+double reversal_share(const std::vector<double>& u) noexcept {
+  const std::size_t n = u.size();
+  if (n < 3) return 0.0;
+  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+  const double threshold = 0.01 * (*hi - *lo);
+  if (!(threshold > 0.0)) return 0.0;
+  int last = 0;  // sign of the previous counted change
+  std::size_t reversals = 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    const double d = u[k] - u[k - 1];
+    if (!(std::fabs(d) > threshold)) continue;
+    const int sign = d > 0.0 ? 1 : -1;
+    if (last != 0 && sign != last) ++reversals;
+    last = sign;
+  }
+  return static_cast<double>(reversals) / static_cast<double>(n - 2);
+}
 
 Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Condition>& conditions,
               const ControllerSpec& controller, const Objective& objective, unsigned threads) {
@@ -274,7 +319,9 @@ bool check_options(const Options& options, std::size_t conditions, std::string& 
   const Objective& o = options.objective;
   if (!std::isfinite(o.overshoot_bound_pct) || o.overshoot_bound_pct < 0 ||
       !std::isfinite(o.overshoot_weight) || o.overshoot_weight < 0 ||
-      !std::isfinite(o.fault_cost) || o.fault_cost < 0 || !(o.divergence_rad > 0)) {
+      !std::isfinite(o.fault_cost) || o.fault_cost < 0 || !(o.divergence_rad > 0) ||
+      !(o.chatter_weight >= 0.0 && std::isfinite(o.chatter_weight)) ||
+      !(o.effort_weight >= 0.0 && std::isfinite(o.effort_weight))) {
     error = "objective weights must be finite and >= 0, the divergence bound > 0";
     return false;
   }

@@ -67,6 +67,63 @@ TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
   EXPECT_TRUE(tune::on_bound({2.0, -1.0, 2.0, 2.0}, box).empty());
 }
 
+TEST(ReversalShare, RingingAtTheNyquistRateIsOneASineOnlyItsExtremaAnOffsetNothing) {
+  std::vector<double> ringing(101), sine(101), offset(101);
+  for (std::size_t k = 0; k < ringing.size(); ++k) {
+    ringing[k] = k % 2 == 0 ? 1.0 : -1.0;
+    sine[k] = std::sin(2.0 * 3.14159265358979 * static_cast<double>(k) / 50.0);  // two periods
+    offset[k] = 150.0 + 0.5 * ringing[k];  // gravity's offset with a ringing half as large
+  }
+  EXPECT_DOUBLE_EQ(tune::reversal_share(ringing), 1.0);
+  EXPECT_DOUBLE_EQ(tune::reversal_share(offset), 1.0);
+  // Two periods: the changes reverse at the four extrema (two maxima, two minima).
+  EXPECT_DOUBLE_EQ(tune::reversal_share(sine), 4.0 / 99.0);
+  EXPECT_EQ(tune::reversal_share(std::vector<double>(50, 2.0)), 0.0);
+  EXPECT_EQ(tune::reversal_share({1.0, -1.0}), 0.0);
+  // Changes below 1 % of the range do not count: a ramp with tiny dither never reverses.
+  std::vector<double> ramp(100);
+  for (std::size_t k = 0; k < ramp.size(); ++k)
+    ramp[k] = static_cast<double>(k) + (k % 2 == 0 ? 0.0 : 0.3);
+  EXPECT_EQ(tune::reversal_share(ramp), 0.0);
+}
+
+TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByDefault) {
+  std::string error;
+  const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
+                                                    fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(ex) << error;
+  const std::vector<fuzzypid::sim::Condition> conditions(1);
+  const ctl::ControllerSpec pid = ctl::paper_pid();
+  tune::Objective plain;
+  const tune::Cost base = tune::evaluate(*ex, conditions, pid, plain);
+  EXPECT_EQ(base.chatter_penalty, 0.0);
+  EXPECT_EQ(base.effort_penalty, 0.0);
+  tune::Objective drive = plain;
+  drive.chatter_weight = 2.0;
+  drive.effort_weight = 3.0;
+  const tune::Cost c = tune::evaluate(*ex, conditions, pid, drive);
+  // The same run: the same ITAE; the terms computed here from its rows.
+  EXPECT_EQ(c.itae, base.itae);
+  const auto run = ex->run(conditions[0], pid);
+  const auto limit = ex->output_limit(conditions[0], pid.units.gains);
+  double chatter = 0.0, effort = 0.0;
+  const std::size_t ticks = run.rows.size() / 6;
+  for (std::size_t j = 0; j < 6; ++j) {
+    std::vector<double> u(ticks);
+    double sq = 0.0;
+    for (std::size_t k = 0; k < ticks; ++k) {
+      u[k] = run.rows[k * 6 + j].u;
+      sq += u[k] * u[k];
+    }
+    chatter += tune::reversal_share(u);
+    effort += std::sqrt(sq / static_cast<double>(ticks)) / limit[j];
+  }
+  EXPECT_GT(effort, 0.0);
+  EXPECT_DOUBLE_EQ(c.chatter_penalty, 2.0 * chatter);
+  EXPECT_DOUBLE_EQ(c.effort_penalty, 3.0 * effort);
+  EXPECT_DOUBLE_EQ(c.total, base.total + c.chatter_penalty + c.effort_penalty);
+}
+
 TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
   // Brute force on a 61 x 41 x 61 grid (0.05 decade steps in kp and kd, 0.1 in ki).
   std::vector<double> best_x;

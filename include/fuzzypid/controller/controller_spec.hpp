@@ -217,6 +217,10 @@ struct Objective {
   double overshoot_weight = 0.1;      // cost per percentage point above the bound, per joint
   double fault_cost = 1000.0;         // per run that faults, diverges or gives non-finite ITAE
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
+  // What a drive feels (tune/tune.hpp): cost per unit of each joint's command reversal share
+  // (0..1) and of its RMS command relative to its limit (0..1), summed over the joints.
+  double chatter_weight = 0.0;
+  double effort_weight = 0.0;
 };
 
 // A file a controller was tuned on: the URDF or path of a training condition, by name and a
