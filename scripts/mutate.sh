@@ -62,7 +62,6 @@ mutants=(
   "scenario_drops_the_sets_gravity|src/sim/condition_set.cpp|/    c.gravity = defaults.gravity;/d|bin:test_condition_set"
   "mc_initial_error_from_friction_draw|src/sim/condition_set.cpp|s/(initial.second - initial.first) \* u_initial;/(initial.second - initial.first) * u_friction;/|bin:test_condition_set"
   "smoothness_drops_columns|src/tune/parameters.cpp|/if (j + 1 < kSets) sum += std::pow(std::log10(ratio\[g\]\[i\]\[j + 1\]) - v, 2);/d|bin:test_parameters"
-  "visit_threshold_inclusive|src/tune/parameters.cpp|s/(\*visits)\[cell\[0\]\]\[cell\[1\]\] > options.visit_threshold/(*visits)[cell[0]][cell[1]] >= options.visit_threshold/|bin:test_parameters"
   "stage_validation_cost_not_written|src/controller_file/controller_file.cpp|s/(std::isnan(st.validation_cost)/(true/|bin:test_controller_file"
   "regulariser_writes_smoothness_as_monotone|src/controller_file/controller_file.cpp|s/\"monotone = \" + format_double(g.monotone)/\"monotone = \" + format_double(g.smoothness)/|bin:test_controller_file"
 )

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "engine_disabled_fuzzy.hpp"
 #include "engine_fuzzy.hpp"
 #include "engine_lock_fuzzy.hpp"
 #include "engine_tip_fuzzy.hpp"
@@ -107,6 +108,18 @@ TEST(ExportHeader, AnExportedRuleBaseKeepsLockPrevious) {
                            engine_lock_fuzzy::make_controller<double>(3.0), "/tests/sim/data/"),
       400 * 6 * 9 / 10)
       << "after its first firing each joint's supervisor answers on every tick";
+}
+
+// disabled_input_supervisor.fll: 'e is ZE or ec is ANY' with ec disabled fires only for
+// |Ke e| < 0.1; a header that left ec enabled would fire everywhere.
+TEST(ExportHeader, AnExportedRuleBaseKeepsADisabledInput) {
+  EXPECT_TRUE(engine_disabled_fuzzy::kRuleBase<double>.inputs[0].enabled);
+  EXPECT_FALSE(engine_disabled_fuzzy::kRuleBase<double>.inputs[1].enabled);
+  const int fired =
+      expect_equal_to_file("engine_disabled_fuzzy.toml",
+                           engine_disabled_fuzzy::make_controller<double>(3.0), "/tests/sim/data/");
+  EXPECT_GT(fired, 0);
+  EXPECT_LT(fired, 400 * 6 / 2) << "most ticks lie in the gap";
 }
 
 TEST(ExportHeader, AnExportedRuleBaseIsConstexprDataSizedToTheFile) {
