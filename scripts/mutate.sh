@@ -24,7 +24,7 @@ mutants=(
   "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
   "pid_config_drops_derivative_on|src/controller/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
   "incremental_gain_update_ignored|src/controller/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
-  "tuner_swaps_output_scales|src/tune/tune.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune"
+  "tuner_swaps_output_scales|src/tune/parameters.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune bin:test_parameters"
   "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
   # Our own: the core.
   "triangle_left_edge_slope|include/fuzzypid/fuzzy/membership.hpp|s/h \* (x - a) \/ (b - a);/h * (x - a) \/ (c - a);/|bin:test_membership"
@@ -33,7 +33,7 @@ mutants=(
   "clamping_upper_side_drops_increment_check|include/fuzzypid/pid/pid.hpp|s/if (trial > hi \&\& increment > Scalar(0))/if (trial > hi)/|bin:test_pid"
   "back_calculation_sign|include/fuzzypid/pid/pid.hpp|s/config_.tracking_gain_per_s \* (u - v) \* dt_s/config_.tracking_gain_per_s * (v - u) * dt_s/|bin:test_pid"
   "incremental_uses_pid_gains|include/fuzzypid/control/fuzzy_pid.hpp|s/gain_update_ == GainUpdate::Absolute ? pid_.gains() : gains_/gain_update_ == GainUpdate::Absolute ? gains_ : pid_.gains()/|bin:test_fuzzy_pid"
-  "file_numbers_15_digits|src/controller_file/controller_file.cpp|s/\"%.17g\", v);/\"%.15g\", v);/|bin:test_controller_file"
+  "file_numbers_15_digits|src/controller/controller_spec.cpp|s/\"%.17g\", v);/\"%.15g\", v);/|bin:test_controller_file"
   # Our own: issue 20's output writer, export-header and rt_loop.
   "writer_accepts_special_files|apps/common/output_files.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
   "writer_ignores_inputs|apps/common/output_files.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
@@ -44,6 +44,26 @@ mutants=(
   # Our own: export-rules (the fuzzy controller beside the exported rule file, the surface).
   "fuzzy_from_rule_table_drops_pid_options|src/controller/controller_spec.cpp|s/  s.pid = rules.pid;/  s.pid = {};/|bin:test_controller_file build:fuzzypid_cli build:sim_ab ctest:^cli\.export_rules\."
   "surface_swaps_the_scales|apps/fuzzypid/export_rules.cpp|s/x \/ spec.supervisor.error_scale, y \/ spec.supervisor.error_rate_scale/x \/ spec.supervisor.error_rate_scale, y \/ spec.supervisor.error_scale/|build:fuzzypid_cli build:fuzzylite_surface ctest:^cli\.export_rules\."
+  # Issue 28's survivors, each now killed by a test of its own part.
+  "rule_base_drops_lock_previous|src/codegen/export_rule_base.cpp|/h += v + \".lock_previous = \" + b(out.lock_previous)/d|bin:test_export_header"
+  "rule_check_ignores_antecedent_hedges|src/rulefile/rule_check.cpp|s/key.items.emplace_back(static_cast<int>(t.kind), t.input, t.term, hedges);/key.items.emplace_back(static_cast<int>(t.kind), t.input, t.term, std::vector<int>{});/|bin:test_rule_check"
+  "tsukamoto_takes_integral_defuzzifier|src/rulefile/fis.cpp|s/type_ == \"tsukamoto\") \&\& !weighted/type_ == \"none\") \&\& !weighted/|bin:test_rule_file_constructs bin:test_rule_file"
+  "lost_stderr_ignored|apps/common/cli.hpp|s/return code == kExitOk \&\& std::ferror(stderr) != 0 ? kExitFailure : code;/return code;/|build:fuzzypid_cli build:rt_loop ctest:^(cli\.check_rules\.|rt_loop\.exit_codes)"
+  "validation_experiments_shifted|src/tune/tune.cpp|s/s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n), ex.end());/s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n) - 1, ex.end() - 1);/|bin:test_tune"
+  "monotone_ratio_one_falls|src/tune/parameters.cpp|s/output_scale\[g\] >= 1.0 ? 1.0 : -1.0;/output_scale[g] > 1.0 ? 1.0 : -1.0;/|bin:test_parameters"
+  "hermite_slope_weights_swapped|src/robot/path_file.cpp|s/return (h1 \* s0 + h0 \* s1) \/ (h0 + h1);/return (h0 * s0 + h1 * s1) \/ (h0 + h1);/|bin:robot_tests"
+  "cartesian_rows_from_first_seed|src/robot/path_file.cpp|s/const JointVector\& from = k == 0 ? seed : q\[k - 1\];/const JointVector\& from = seed;/|bin:robot_tests"
+  "gravity_feedforward_at_measured_angles|src/sim/closed_loop.cpp|s/feedforward_model_->gravity_torque(sample.theta_d);/feedforward_model_->gravity_torque(r.theta);/|bin:test_closed_loop"
+  # Our own: issue 28's pass over the newest code (rule checks, the exported rule base, condition
+  # files, the rule-table regulariser, the tuning record).
+  "rule_check_ignores_conclusion_hedges|src/rulefile/rule_check.cpp|s/    return {c.term, hedges};/    return {c.term, {}};/|bin:test_rule_check"
+  "rule_base_drops_rule_weight|src/codegen/export_rule_base.cpp|s/num(rule.block) + \", \" + lit(rule.weight)/num(rule.block) + \", \" + lit(1.0)/|bin:test_export_header"
+  "rule_base_drops_input_enabled|src/codegen/export_rule_base.cpp|/h += v + \".enabled = \" + b(in.enabled)/d|bin:test_export_header"
+  "scenario_drops_the_sets_gravity|src/sim/condition_set.cpp|/    c.gravity = defaults.gravity;/d|bin:test_condition_set"
+  "mc_initial_error_from_friction_draw|src/sim/condition_set.cpp|s/(initial.second - initial.first) \* u_initial;/(initial.second - initial.first) * u_friction;/|bin:test_condition_set"
+  "smoothness_drops_columns|src/tune/parameters.cpp|/if (j + 1 < kSets) sum += std::pow(std::log10(ratio\[g\]\[i\]\[j + 1\]) - v, 2);/d|bin:test_parameters"
+  "stage_validation_cost_not_written|src/controller_file/controller_file.cpp|s/(std::isnan(st.validation_cost)/(true/|bin:test_controller_file"
+  "regulariser_writes_smoothness_as_monotone|src/controller_file/controller_file.cpp|s/\"monotone = \" + format_double(g.monotone)/\"monotone = \" + format_double(g.smoothness)/|bin:test_controller_file"
 )
 
 restore_tests() {

@@ -152,17 +152,19 @@ inline CLI::Validator finite_in(double lo, double hi) {
 }
 
 // Runs a tool's main body, turning an exception that escapes it (an allocation failure, a bug) into
-// a message and kExitFailure instead of std::terminate.
+// a message and kExitFailure instead of std::terminate. A run whose messages on standard error did
+// not all reach it (2>/dev/full: a warning or a report lost unseen) exits kExitFailure too.
 template <class Body>
 int run_main(const char* tool, Body&& body) noexcept {
+  int code = kExitFailure;
   try {
-    return body();
+    code = body();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: %s\n", tool, e.what());
   } catch (...) {
     std::fprintf(stderr, "%s: unknown exception\n", tool);
   }
-  return kExitFailure;
+  return code == kExitOk && std::ferror(stderr) != 0 ? kExitFailure : code;
 }
 
 // Parses the command line. Returns nullopt when the tool should run, else the exit code: 0 after

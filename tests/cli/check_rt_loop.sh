@@ -126,6 +126,8 @@ wait "$pid"
 expect 0 --period-ms 0 --ticks 5 --csv "$work/sig/ticks.csv"
 [ "$(ls -A "$work/sig")" = ticks.csv ] || fail "stale temporary kept: $(ls -A "$work/sig")"
 
-# Output that cannot be written is an error.
+# Output that cannot be written is an error, on standard error too (the run's summary line lost).
 "$rt_loop" --period-ms 0 --ticks 3 >/dev/full 2>"$work/err" && fail "> /dev/full exited 0"
+"$rt_loop" --period-ms 0 --ticks 3 >/dev/null 2>/dev/full
+[ $? -eq 1 ] || fail "2> /dev/full did not exit 1"
 echo ok

@@ -112,6 +112,24 @@ TEST(PathFile, InterpolationPassesThroughRowsAndItsVelocityIsItsDerivative) {
   }
 }
 
+TEST(PathFile, TheSlopeAtARowWeighsTheNearerNeighbourMoreOnUnevenRows) {
+  // q1 = 0.1 t^2 at t = 0, 1, 3: the parabola through the three rows is q1 itself, so the slope
+  // at t = 1 s is its derivative 0.2 rad/s (weights h1 / (h0 + h1) on the left difference 0.1,
+  // h0 / (h0 + h1) on the right one 0.4; swapped they would give 0.3).
+  PathTable table;
+  std::string error;
+  ASSERT_TRUE(parse_path_csv(kJoint + "0,0,-1,1,0,0,0\n1,0.1,-1,1,0,0,0\n3,0.9,-1,1,0,0,0\n",
+                             "uneven.csv", table, error))
+      << error;
+  const InverseKinematics ik(ur5());
+  const JointPathResult p = joint_path_from_table(ik, ur5(), table, 0.5, JointVector{});
+  ASSERT_TRUE(p.ok()) << p.message;
+  ASSERT_EQ(p.time_s.size(), 7u);
+  EXPECT_EQ(p.time_s[2], 1.0);
+  EXPECT_NEAR(p.position_rad[2][0], 0.1, 1e-15);
+  EXPECT_NEAR(p.velocity_rad_s[2][0], 0.2, 1e-12);
+}
+
 TEST(PathFile, TheRunLastsThePathsDurationInWholeTicks) {
   PathTable table;
   std::string error;
@@ -161,6 +179,42 @@ TEST(PathFile, CartesianRowsReproduceTheJointRowsTheyCameFrom) {
     for (std::size_t j = 0; j < kNumJoints; ++j)
       worst = std::fmax(worst, std::fabs(a.position_rad[k][j] - b.position_rad[k][j]));
   EXPECT_LT(worst, 1e-5);
+}
+
+TEST(PathFile, EachCartesianRowIsSolvedFromThePreviousRowsJoints) {
+  // The tool turns about its axis by 1 rad a second, 5 rad in all: joint 6 must follow it to
+  // 5.3 rad (inside its +/-2 pi). Solved from the first row's seed instead, a row more than pi
+  // away from it would come back as the same pose with joint 6 a turn lower.
+  const RobotModel& m = ur5();
+  std::string joints = kJoint, poses = kPose;
+  for (int k = 0; k <= 5; ++k) {
+    const double t = k;
+    const JointVector q = {0.1, -1.3, 1.6, -0.9, -1.2, 0.3 + t};
+    const Pose p = m.forward_kinematics(q);
+    const Eigen::Vector3d rpy = p.rotation.eulerAngles(2, 1, 0);  // yaw, pitch, roll
+    char row[512];
+    std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, q[0], q[1],
+                  q[2], q[3], q[4], q[5]);
+    joints += row;
+    std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t,
+                  p.position_m.x(), p.position_m.y(), p.position_m.z(), rpy[2], rpy[1], rpy[0]);
+    poses += row;
+  }
+  PathTable jt, pt;
+  std::string error;
+  ASSERT_TRUE(parse_path_csv(joints, "j.csv", jt, error)) << error;
+  ASSERT_TRUE(parse_path_csv(poses, "p.csv", pt, error)) << error;
+  const InverseKinematics ik(m);
+  const JointVector seed = {0.1, -1.3, 1.6, -0.9, -1.2, 0.3};
+  const JointPathResult a = joint_path_from_table(ik, m, jt, 0.5, seed);
+  const JointPathResult b = joint_path_from_table(ik, m, pt, 0.5, seed);
+  ASSERT_TRUE(a.ok()) << a.message;
+  ASSERT_TRUE(b.ok()) << b.message;
+  ASSERT_EQ(a.time_s.size(), b.time_s.size());
+  for (std::size_t k = 0; k < a.time_s.size(); ++k)
+    for (std::size_t j = 0; j < kNumJoints; ++j)
+      EXPECT_NEAR(b.position_rad[k][j], a.position_rad[k][j], 1e-6) << k << "," << j;
+  EXPECT_NEAR(b.position_rad.back()[5], 5.3, 1e-6);
 }
 
 TEST(PathFile, AnUnreachablePoseNamesTheRowTheTimeThePoseAndTheSolver) {

@@ -141,6 +141,28 @@ TEST(ConditionSets, MonteCarloPayloadAndFrictionAreIndependentDraws) {
   }
   EXPECT_EQ(coupled_friction, 0u);
   EXPECT_EQ(coupled_initial, 0u);
+  // Friction and the initial error, both drawn on [0, 1], are independent of each other too.
+  std::size_t initial_is_friction = 0;
+  for (const auto& c : f.find("mc")->conditions)
+    if (std::fabs(c.initial_error_rad - c.friction_per_s) < 1e-9) ++initial_is_friction;
+  EXPECT_EQ(initial_is_friction, 0u);
+}
+
+// A condition built on a scenario still runs on its set's robot: the set's robot keys (here
+// coupled dynamics with gravity) are not the scenario's defaults.
+TEST(ConditionSets, AScenarioKeepsTheSetsRobotDynamicsAndGravity) {
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(
+      parse_conditions("[sets.s]\ndynamics = \"coupled\"\ngravity = true\npayload_kg = 3.0\n"
+                       "conditions = [ { name = \"c\", scenario = \"deburring\" } ]\n",
+                       "s.toml", f, e))
+      << e.to_string();
+  const auto& c = f.find("s")->conditions.at(0);
+  EXPECT_EQ(c.contact_rad_s2, 0.5);  // the scenario's
+  EXPECT_EQ(c.dynamics, fuzzypid::robot::PlantCoupling::Coupled);
+  EXPECT_TRUE(c.gravity);
+  EXPECT_EQ(c.payload_kg, 3.0);
 }
 
 TEST(ConditionSets, AUsersUrdfRunsCoupledWithGravityUnlessTheFileSaysOtherwise) {

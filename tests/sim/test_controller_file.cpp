@@ -115,6 +115,63 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
   }
 }
 
+// The record of a staged tuning with a validation split and a rule-table regulariser: every
+// value written reads back (a stage without a validation set has none).
+TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
+  ctl::ControllerSpec spec = tuned_example();
+  ctl::Tuning& t = *spec.tuning;
+  t.validation_conditions = 2;
+  t.validation_cost = 0.0125;
+  ctl::StageRecord first, second;
+  first.family = ctl::Family::Pid;
+  first.budget = 100;
+  first.evaluations = 100;
+  first.training_cost = 0.25;
+  first.validation_cost = 0.0625;
+  second.family = ctl::Family::Fuzzy;
+  second.budget = 300;
+  second.evaluations = 280;
+  second.training_cost = 0.125;
+  t.stages = {first, second};
+  ctl::TableRegulariser g;
+  g.symmetry = "odd";
+  g.partition = true;
+  g.smoothness = 0.25;
+  g.monotone = 0.5;
+  g.unvisited = "free";
+  g.visit_threshold = 0.001;
+  g.frozen_cells = 3;
+  g.cell_log10 = 1.5;
+  t.regulariser = g;
+  const std::string text = cf::to_toml(spec);
+  ctl::ControllerSpec back;
+  fuzzypid::FileError error;
+  ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
+  ASSERT_TRUE(back.tuning);
+  const ctl::Tuning& b = *back.tuning;
+  EXPECT_EQ(b.validation_conditions, 2u);
+  EXPECT_EQ(b.validation_cost, 0.0125);
+  ASSERT_EQ(b.stages.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(b.stages[k].family, t.stages[k].family) << k;
+    EXPECT_EQ(b.stages[k].budget, t.stages[k].budget) << k;
+    EXPECT_EQ(b.stages[k].evaluations, t.stages[k].evaluations) << k;
+    EXPECT_EQ(b.stages[k].training_cost, t.stages[k].training_cost) << k;
+  }
+  EXPECT_EQ(b.stages[0].validation_cost, 0.0625);
+  EXPECT_TRUE(std::isnan(b.stages[1].validation_cost));
+  ASSERT_TRUE(b.regulariser);
+  EXPECT_EQ(b.regulariser->symmetry, "odd");
+  EXPECT_TRUE(b.regulariser->partition);
+  EXPECT_EQ(b.regulariser->smoothness, 0.25);
+  EXPECT_EQ(b.regulariser->monotone, 0.5);
+  EXPECT_EQ(b.regulariser->unvisited, "free");
+  EXPECT_EQ(b.regulariser->visit_threshold, 0.001);
+  EXPECT_EQ(b.regulariser->frozen_cells, 3u);
+  EXPECT_EQ(b.regulariser->cell_log10, 1.5);
+  EXPECT_EQ(cf::to_toml(back), text);
+}
+
 TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
   ctl::ControllerSpec spec = ctl::paper_pid();
   EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);

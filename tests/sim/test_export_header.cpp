@@ -7,7 +7,9 @@
 #include <cstring>
 #include <string>
 
+#include "engine_disabled_fuzzy.hpp"
 #include "engine_fuzzy.hpp"
+#include "engine_lock_fuzzy.hpp"
 #include "engine_tip_fuzzy.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
@@ -93,6 +95,31 @@ TEST(ExportHeader, RuleFileControllersEqualTheFilesBitForBit) {
       expect_equal_to_file("engine_tip_fuzzy.toml", engine_tip_fuzzy::make_controller<double>(3.0),
                            "/tests/sim/data/"),
       400 * 6 / 2);
+}
+
+// lock_previous_supervisor.fll fires only for |Ke e| < 0.1 and keeps each output's last value
+// elsewhere (lock-previous): once a rule has fired, every tick supervises with the last gains on
+// both sides; a header that dropped lock-previous would fall back to K0 (NoRuleFired) there.
+TEST(ExportHeader, AnExportedRuleBaseKeepsLockPrevious) {
+  for (std::size_t o = 0; o < 3; ++o)
+    EXPECT_TRUE(engine_lock_fuzzy::kRuleBase<double>.outputs[o].lock_previous) << "output " << o;
+  EXPECT_GT(
+      expect_equal_to_file("engine_lock_fuzzy.toml",
+                           engine_lock_fuzzy::make_controller<double>(3.0), "/tests/sim/data/"),
+      400 * 6 * 9 / 10)
+      << "after its first firing each joint's supervisor answers on every tick";
+}
+
+// disabled_input_supervisor.fll: 'e is ZE or ec is ANY' with ec disabled fires only for
+// |Ke e| < 0.1; a header that left ec enabled would fire everywhere.
+TEST(ExportHeader, AnExportedRuleBaseKeepsADisabledInput) {
+  EXPECT_TRUE(engine_disabled_fuzzy::kRuleBase<double>.inputs[0].enabled);
+  EXPECT_FALSE(engine_disabled_fuzzy::kRuleBase<double>.inputs[1].enabled);
+  const int fired =
+      expect_equal_to_file("engine_disabled_fuzzy.toml",
+                           engine_disabled_fuzzy::make_controller<double>(3.0), "/tests/sim/data/");
+  EXPECT_GT(fired, 0);
+  EXPECT_LT(fired, 400 * 6 / 2) << "most ticks lie in the gap";
 }
 
 TEST(ExportHeader, AnExportedRuleBaseIsConstexprDataSizedToTheFile) {

@@ -263,4 +263,27 @@ TEST(ParameterSpace, MonotoneCostsOnlyStepsAgainstTheSchedulesDirection) {
   EXPECT_GT(p->penalty(raise), 0.1);
 }
 
+// R = 1 (a gain the schedule leaves at K0) counts as rising: never down outwards.
+TEST(ParameterSpace, MonotoneTakesARatioOfOneAsNeverDown) {
+  tune::TableOptions o;
+  o.symmetry = tune::Symmetry::None;
+  o.unvisited = tune::Unvisited::Free;
+  o.monotone = 1.0;
+  ctl::ControllerSpec flat = schedule();
+  flat.supervisor.output_scale = {1.0, 1.0, 1.0};
+  std::string error;
+  const ctl::ControllerSpec start = converted(flat, ctl::Family::FuzzyRules);
+  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  ASSERT_TRUE(p) << error;
+  EXPECT_EQ(p->penalty(start), 0.0);
+  // Raising Ki's outermost corner keeps it rising outwards: no cost.
+  ctl::ControllerSpec raise = start;
+  raise.supervisor.rule_table.ratio[1][6][6] = 10.0;
+  EXPECT_EQ(p->penalty(raise), 0.0);
+  // Lowering it is a step down from both inner neighbours: (log10 2)^2 twice.
+  ctl::ControllerSpec lower = start;
+  lower.supervisor.rule_table.ratio[1][6][6] = 0.5;
+  EXPECT_NEAR(p->penalty(lower), 2 * std::pow(std::log10(2.0), 2), 1e-12);
+}
+
 }  // namespace

@@ -372,4 +372,33 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
   EXPECT_NE(a, b);
 }
 
+// The held-back conditions run on their own robots too: training on the ER50-C20, validation on
+// the UR5-class arm, the recorded validation cost is the result's cost on the UR5 (a split that
+// paired the validation conditions with the training experiments would score it on the ER50).
+TEST(TuneOnTwoRobots, ValidationConditionsRunOnTheirOwnExperiment) {
+  fuzzypid::sim::Condition er50, ur5;
+  er50.name = "er50";
+  ur5.name = "ur5";
+  ur5.robot.urdf = FUZZYPID_SOURCE_DIR "/urdf/ur5_class.urdf";
+  ur5.robot.path = FUZZYPID_SOURCE_DIR "/paths/ur5_deburring_contour.csv";
+  ur5.robot.armature_kgm2 = fuzzypid::robot::JointVector{0.4, 0.4, 0.4, 0.1, 0.1, 0.1};
+  const std::vector<fuzzypid::sim::Condition> both = {er50, ur5};
+  std::string error;
+  const auto set = fuzzypid::sim::ExperimentSet::create(both, {}, error);
+  ASSERT_TRUE(set) << error;
+  tune::Options o;
+  o.family = ctl::Family::Pid;
+  o.budget = 14;
+  o.population = 7;
+  o.validation = 1;
+  const auto r = tune::tune(*set, both, o, error);
+  ASSERT_TRUE(r) << error;
+  ASSERT_TRUE(r->controller.tuning && r->validation);
+  const double on_ur5 = tune::evaluate(set->of(1), {ur5}, r->controller, o.objective, 1).total;
+  EXPECT_EQ(r->controller.tuning->validation_cost, on_ur5);
+  EXPECT_EQ(r->controller.tuning->validation_conditions, 1u);
+  const double on_er50 = tune::evaluate(set->of(0), {er50}, r->controller, o.objective, 1).total;
+  EXPECT_EQ(r->controller.tuning->training_cost, on_er50 + r->penalty);
+}
+
 }  // namespace

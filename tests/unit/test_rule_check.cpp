@@ -84,6 +84,44 @@ TEST(RuleCheck, RulesWithTheSameAntecedentInAnyOrderRepeatOrContradict) {
       << out;
 }
 
+TEST(RuleCheck, AHedgeMakesAnotherPropositionAndAnotherConclusion) {
+  const auto model = fll(R"(Engine: hedged
+InputVariable: x
+  range: 0 1
+  term: low Triangle 0 0 1
+  term: high Triangle 0 1 1
+OutputVariable: y
+  range: 0 1
+  aggregation: Maximum
+  defuzzifier: Centroid 100
+  default: nan
+  term: small Triangle 0 0 1
+  term: big Triangle 0 1 1
+RuleBlock: rules
+  conjunction: Minimum
+  implication: Minimum
+  activation: General
+  rule: if x is low then y is small
+  rule: if x is very low then y is big
+  rule: if x is high then y is big
+  rule: if x is high then y is very big
+  rule: if x is high then y is big
+)");
+  const auto report = fuzzypid::rulefile::check_rules(*model);
+  // "x is very low" is not "x is low": rules 0 and 1 are no pair. "y is very big" is not "y is
+  // big": rule 3 contradicts rules 2 and 4, which repeat each other.
+  ASSERT_EQ(report.pairs.size(), 3u);
+  EXPECT_EQ(report.pairs[0].first, 2u);
+  EXPECT_EQ(report.pairs[0].second, 3u);
+  EXPECT_TRUE(report.pairs[0].contradiction);
+  EXPECT_EQ(report.pairs[1].first, 2u);
+  EXPECT_EQ(report.pairs[1].second, 4u);
+  EXPECT_FALSE(report.pairs[1].contradiction);
+  EXPECT_EQ(report.pairs[2].first, 3u);
+  EXPECT_EQ(report.pairs[2].second, 4u);
+  EXPECT_TRUE(report.pairs[2].contradiction);
+}
+
 TEST(RuleCheck, MonotonicityIsJudgedAcrossGapsAlongEachInput) {
   const auto model = fll(kTwoInputs);
   const auto report = fuzzypid::rulefile::check_rules(*model);

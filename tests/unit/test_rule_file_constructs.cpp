@@ -490,6 +490,22 @@ TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithFuzzylitesInverse) {
   EXPECT_DOUBLE_EQ(y, (0.2 - 0.6) / 0.8 + 1.2 - 0.2);
 }
 
+// Tsukamoto outputs are weighted averages of the terms' inverses (fuzzylite's Tsukamoto): an
+// integral DefuzzMethod does not fit the Type, as for 'sugeno'.
+TEST(RuleFileFis, ATsukamotoTypeWithAnIntegralDefuzzifierIsRefusedOnItsLine) {
+  std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='tsukamoto'");
+  fis = replace(fis, "Range=[0 0]", "Range=[0 1]");
+  fis = replace(fis, "MF1='c':'constant',[4]", "MF1='c':'concavemf',[0.2 0.6]");
+  ASSERT_TRUE(load("t.fis", fis));
+  fis = replace(fis, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'");
+  fis = replace(fis, "AggMethod=''", "AggMethod='max'");
+  fis = replace(fis, "ImpMethod=''", "ImpMethod='min'");
+  const LoadError e = refusal("t.fis", fis);
+  EXPECT_EQ(e.line, 11) << e.to_string();  // DefuzzMethod='centroid'
+  EXPECT_NE(e.message.find("DefuzzMethod"), std::string::npos) << e.to_string();
+  EXPECT_NE(e.message.find("tsukamoto"), std::string::npos) << e.to_string();
+}
+
 TEST(RuleFileFis, MfLinesAreTheTermsWhateverTheirNumberAndNumMfsSay) {
   // As MATLAB's readfis and fuzzylite: a repeated k and a stale NumMFs do not drop or reorder
   // terms.
