@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -353,7 +354,34 @@ int run_tune(const TuneOptions& t) {
 struct ExportOptions {
   std::string in, out, ns = "fuzzypid_controller";
   bool out_given = false;  // --out '' is refused, not stdout
+  RobotOptions robot;      // the plant whose J^ and torque limits the header records
 };
+
+// J^ and the torque limits of the plant `o.robot` names (the bundled ER50-C20 on the section 6
+// line by default), as sim_ab simulates it.
+std::optional<fuzzypid::codegen::PlantRecord> plant_record(const ExportOptions& o,
+                                                           const ctl::ControllerSpec& spec,
+                                                           std::string& error) {
+  sim::Condition c;
+  o.robot.apply(c);
+  if (!o.robot.tick_given && spec.tuning && spec.tuning->tick_s > 0.0)
+    c.robot.tick_s = spec.tuning->tick_s;
+  if (const std::string bad = c.validate(); !bad.empty()) {
+    error = bad;
+    return std::nullopt;
+  }
+  const auto ex = sim::Experiment::create(c.robot, sim::ExperimentOptions{}, error);
+  if (!ex) return std::nullopt;
+  fuzzypid::codegen::PlantRecord p;
+  p.robot = (c.robot.urdf.empty() ? std::string("the bundled ER50-C20") : c.robot.urdf) +
+            ", path " +
+            (c.robot.path.empty() ? std::string("the section 6 line A -> B") : c.robot.path);
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+    p.nominal_inertia_kgm2[i] = ex->nominal_inertia()[i];
+    p.torque_limit_nm[i] = ex->torque_limit(c)[i];
+  }
+  return p;
+}
 
 int run_export_header(const ExportOptions& o) {
   const std::string& in = o.in;
@@ -375,7 +403,20 @@ int run_export_header(const ExportOptions& o) {
     std::fprintf(stderr, "fuzzypid export-header: %s: %s\n", in.c_str(), bad.c_str());
     return 1;
   }
-  const std::string text = fuzzypid::codegen::export_header(spec, ns, in);
+  if (spec.tuning && o.robot.setup.urdf.empty())
+    for (const auto& f : spec.tuning->trained_on)
+      if (f.kind == "urdf")
+        std::fprintf(stderr,
+                     "fuzzypid export-header: warning: %s was tuned on %s; the header's J^ and "
+                     "torque limits are the bundled ER50-C20's (give --urdf and --path)\n",
+                     in.c_str(), f.file.c_str());
+  std::string plant_error;
+  const auto plant = plant_record(o, spec, plant_error);
+  if (!plant) {
+    std::fprintf(stderr, "fuzzypid export-header: %s\n", plant_error.c_str());
+    return 1;
+  }
+  const std::string text = fuzzypid::codegen::export_header(spec, ns, in, &*plant);
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
     return std::ferror(stdout) ? 1 : 0;
@@ -505,7 +546,10 @@ void add_export_header_command(CLI::App& app, std::function<int()>& run) {
                   "namespace of the generated code: C++ identifiers joined by ::, no keyword or "
                   "reserved name (default fuzzypid_controller)")
       ->check([](const std::string& s) { return fuzzypid::codegen::check_namespace(s); });
+  add_robot_options(*cmd, o->robot, true);
   cmd->callback([&run, o, out] {
+    if (const std::string bad = check_robot_options(o->robot); !bad.empty())
+      throw CLI::ValidationError(bad);
     o->out_given = out->count() > 0;
     run = [o] { return run_export_header(*o); };
   });

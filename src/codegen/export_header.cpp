@@ -159,7 +159,7 @@ std::string check_float_range(const ControllerSpec& spec) {
 }
 
 std::string export_header(const ControllerSpec& spec, const std::string& ns,
-                          const std::string& source) {
+                          const std::string& source, const PlantRecord* plant) {
   const double inf = std::numeric_limits<double>::infinity();
   const pid::Config<double> pc = pid_config(spec, inf);
   std::string h;
@@ -206,6 +206,36 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   h += std::string("inline constexpr bool kGravityFeedforward = ") +
        (spec.feedforward.gravity ? "true" : "false") +
        ";  // add g^(q_desired), N·m, to the torque\n\n";
+  if (plant != nullptr) {
+    const auto six = [](const std::array<double, 6>& v) {
+      std::string t = "{";
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        char b[64];
+        if (std::isinf(v[i]))
+          std::snprintf(b, sizeof b, "std::numeric_limits<double>::infinity()");
+        else
+          std::snprintf(b, sizeof b, "%a", v[i]);
+        t += (i == 0 ? "" : ", ") + std::string(b);
+      }
+      return t + "}";
+    };
+    const bool acceleration = spec.units.gains == GainUnits::Acceleration;
+    std::array<double, 6> output_limit = plant->torque_limit_nm;
+    if (acceleration)
+      for (std::size_t i = 0; i < output_limit.size(); ++i)
+        output_limit[i] = plant->torque_limit_nm[i] / plant->nominal_inertia_kgm2[i];
+    h += "// The plant the command was simulated on: " + plant->robot + ".\n";
+    h += acceleration ? "// Apply tau_i = kNominalInertiaKgm2[i] * u_i and clamp |tau_i| <= "
+                        "kTorqueLimitNm[i] to get\n// the simulated torque.\n"
+                      : "// u_i is the torque; clamp |u_i| <= kTorqueLimitNm[i].\n";
+    h += "inline constexpr double kNominalInertiaKgm2[6] = " + six(plant->nominal_inertia_kgm2) +
+         ";  // J^_i, kg·m²\n";
+    h += "inline constexpr double kTorqueLimitNm[6] = " + six(plant->torque_limit_nm) +
+         ";  // N·m\n";
+    h += std::string("inline constexpr double kOutputLimit[6] = ") + six(output_limit) +
+         (acceleration ? ";  // rad/s^2: the output_limit of joint i\n\n"
+                       : ";  // N·m: the output_limit of joint i\n\n");
+  }
   h += "// The inner PID; |u| <= output_limit.\n";
   h += "template <class Scalar>\nconstexpr fuzzypid::pid::Config<Scalar> pid_config(Scalar "
        "output_limit) noexcept {\n";

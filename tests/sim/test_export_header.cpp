@@ -14,6 +14,7 @@
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
 #include "paper_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
@@ -74,6 +75,23 @@ int expect_equal_to_file(const char* file, const Controller& prototype,
     }
   }
   return fired;
+}
+
+TEST(ExportHeader, TheHeaderCarriesTheSimulatedPlantsNominalInertiaAndTorqueLimits) {
+  // The shipped ER50 controllers are exported with the default robot: the bundled ER50-C20 on
+  // the section 6 line, as sim_ab simulates it.
+  std::string error;
+  const auto ex = sim::Experiment::create(sim::RobotSetup{}, sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(ex) << error;
+  const robot::JointVector limit = ex->torque_limit(sim::Condition{});
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(tuned_pid::kNominalInertiaKgm2[i], ex->nominal_inertia()[i]) << i;
+    EXPECT_EQ(tuned_pid::kTorqueLimitNm[i], limit[i]) << i;
+    // Acceleration gains: the output limit is the torque limit over J^, as the simulation's.
+    EXPECT_EQ(tuned_pid::kOutputLimit[i],
+              ex->output_limit(sim::Condition{}, ctl::GainUnits::Acceleration)[i])
+        << i;
+  }
 }
 
 TEST(ExportHeader, GeneratedControllersEqualTheFilesBitForBit) {

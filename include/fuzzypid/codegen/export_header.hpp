@@ -4,6 +4,7 @@
 // hexadecimal literals: the header's double controller equals the file's bit for bit.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "fuzzypid/controller/controller_spec.hpp"
@@ -26,9 +27,20 @@ namespace fuzzypid::codegen {
 // infinite and are accepted.
 [[nodiscard]] std::string check_float_range(const controller::ControllerSpec& spec);
 
+// The plant a controller's command was simulated on, so that a drive applying the header's
+// command gets the simulated torque: tau_i = J^_i u_i (acceleration gains) clamped to
+// |tau_i| <= torque_limit_nm[i].
+struct PlantRecord {
+  std::string robot;  // what it was: URDF, path and tick, for the comment
+  std::array<double, 6> nominal_inertia_kgm2{};  // J^_i at the path's start (sim::Experiment)
+  std::array<double, 6> torque_limit_nm{};       // the simulation's clamp (+inf: none)
+};
+
 // The header's text. `ns`: the namespace of the generated code (check_namespace() must accept
-// it); `source`: named in the header's comment.
+// it); `source`: named in the header's comment; `plant`, when given, adds kNominalInertiaKgm2,
+// kTorqueLimitNm and kOutputLimit (the limit in the controller's output units).
 [[nodiscard]] std::string export_header(const controller::ControllerSpec& spec,
-                                        const std::string& ns, const std::string& source);
+                                        const std::string& ns, const std::string& source,
+                                        const PlantRecord* plant = nullptr);
 
 }  // namespace fuzzypid::codegen
