@@ -59,7 +59,7 @@ mutants=(
   "rule_check_ignores_conclusion_hedges|src/rulefile/rule_check.cpp|s/    return {c.term, hedges};/    return {c.term, {}};/|bin:test_rule_check"
   "rule_base_drops_rule_weight|src/codegen/export_rule_base.cpp|s/num(rule.block) + \", \" + lit(rule.weight)/num(rule.block) + \", \" + lit(1.0)/|bin:test_export_header"
   "rule_base_drops_input_enabled|src/codegen/export_rule_base.cpp|/h += v + \".enabled = \" + b(in.enabled)/d|bin:test_export_header"
-  "scenario_drops_the_sets_gravity|src/sim/condition_set.cpp|/    c.gravity = defaults.gravity;/d|bin:test_condition_set"
+  "scenario_drops_the_sets_gravity|src/sim/condition_set.cpp|s/^\\( *\\)PlantKeys plant) {$/\\1PlantKeys) { PlantKeys plant{};/|bin:test_condition_set"
   "mc_initial_error_from_friction_draw|src/sim/condition_set.cpp|s/(initial.second - initial.first) \* u_initial;/(initial.second - initial.first) * u_friction;/|bin:test_condition_set"
   "smoothness_drops_columns|src/tune/parameters.cpp|/if (j + 1 < kSets) sum += std::pow(std::log10(ratio\[g\]\[i\]\[j + 1\]) - v, 2);/d|bin:test_parameters"
   "stage_validation_cost_not_written|src/controller_file/controller_file.cpp|s/(std::isnan(st.validation_cost)/(true/|bin:test_controller_file"
