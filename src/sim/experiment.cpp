@@ -290,6 +290,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
   };
+  const robot::JointVector torque_limit_nm = torque_limit(condition);
   FaultMonitor faults(limits.divergence_rad, model_.lower_limits_rad(), model_.upper_limits_rad());
   for (std::size_t k = 0; k < ticks; ++k) {
     const bool advance = k + 1 < ticks;
@@ -325,7 +326,10 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
       row.kd = g.kd;
       row.tau_nm = loop->plant().applied_torque()[i];
       row.omega_rad_s = r.theta_dot[i];
-      row.saturated = loop->plant().saturated()[i];
+      // At a limit: clamped by the plant, or held there by the controller's own output limit
+      // (the plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
+      const double applied = std::fabs(row.tau_nm);
+      row.saturated = loop->plant().saturated()[i] || applied >= (1.0 - 1e-9) * torque_limit_nm[i];
       result.rows.push_back(row);
     }
     if (diverged) {

@@ -83,7 +83,9 @@ struct TrajectoryRow {
   // one before. N·m.
   double tau_nm = 0.0;
   double omega_rad_s = 0.0;  // true joint velocity at the sample
-  bool saturated = false;    // tau_nm was held at the joint's torque limit
+  // tau_nm sat at the joint's torque limit: the plant clamped it, or it lies on the limit
+  // within 1e-9 relative (the controller's output limit, the plant's over J^_i, held it there).
+  bool saturated = false;
 };
 
 struct RunResult {
