@@ -304,6 +304,7 @@ int run(int argc, char** argv) {
     return cli::kExitFailure;
   }
   cli::print_robot_note(kTool, *experiment);
+  std::fprintf(stderr, "%s: plant %s\n", kTool, cli::plant_note(condition).c_str());
   ctl::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
   spec.units.tick_s = paper_tick_s;

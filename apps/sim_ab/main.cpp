@@ -76,6 +76,24 @@ std::string fmt(double v) {
   return buf;
 }
 
+// A CSV field: as it is, or quoted (quotes doubled) when it holds a comma, a quote or a newline.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + "\"";
+}
+
+std::string joined(const robot::JointVector& v, const char* separator) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out += (i == 0 ? "" : separator) + fmt(v[i]);
+  return out;
+}
+
 // Every file sim_ab may write into --out (a run or a sweep).
 const std::vector<std::string> kOutputNames = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
                                                "conditions.csv", "settings.txt", "sweep.csv"};
@@ -212,14 +230,34 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
   }
 }
 
+// What each condition ran on: robot, path, tick, payload, dynamics, gravity and armature, one
+// line per condition (conditions[k] runs on experiments.of(k)).
+void write_condition_settings(std::FILE* f, const std::vector<Run>& runs,
+                              const sim::ExperimentSet& experiments) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const sim::Condition& c = runs[k].condition;
+    const sim::Experiment& ex = experiments.of(k);
+    std::fprintf(f,
+                 "condition.%s=set=%s urdf=%s path=%s tick_s=%s payload_kg=%s dynamics=%s "
+                 "gravity=%d armature_kgm2=%s\n",
+                 c.name.c_str(), runs[k].set.c_str(), ex.urdf_file().c_str(),
+                 ex.setup().path.empty() ? "line" : ex.setup().path.c_str(),
+                 fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
+                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
+                 joined(ex.armature_kgm2(), ",").c_str());
+  }
+}
+
 int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
-              const sim::Condition& base, const std::vector<NamedController>& controllers) {
+              const std::vector<Run>& runs, const std::vector<NamedController>& controllers) {
   const sim::Experiment& ex = experiments.of(0);
+  const sim::Condition& base = runs.front().condition;
   const sim_ab::Sweep& sw = *o.sweep;
   Outputs outs;
   if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
   std::FILE* csv = outs[0].file;
   write_settings(outs[1].file, o, experiments, controllers);
+  write_condition_settings(outs[1].file, runs, experiments);
   std::fprintf(outs[1].file, "sweep=%s=%s:%s:%d\novershoot_bound_pct=%s\nitae_ratio=%s\n",
                sw.parameter.c_str(), fmt(sw.lo).c_str(), fmt(sw.hi).c_str(), sw.count,
                fmt(o.overshoot_bound_pct).c_str(), fmt(o.itae_ratio_bound).c_str());
@@ -417,7 +455,25 @@ int main(int argc, char** argv) {
   }
   for (std::size_t k = 0; k < experiments->size(); ++k) {
     const sim::Experiment& ex = experiments->experiment(k);
-    if (!o.quiet) cli::print_robot_note("sim_ab", ex);
+    if (!o.quiet) {
+      cli::print_robot_note("sim_ab", ex);
+      // The plants of the conditions on this robot, each with how many conditions run on it.
+      std::vector<std::pair<std::string, std::size_t>> plants;
+      for (std::size_t i = 0; i < runs.size(); ++i) {
+        if (&experiments->of(i) != &ex) continue;
+        const std::string note = cli::plant_note(runs[i].condition);
+        auto it = std::find_if(plants.begin(), plants.end(),
+                               [&note](const auto& p) { return p.first == note; });
+        if (it == plants.end()) {
+          plants.emplace_back(note, 1);
+        } else {
+          ++it->second;
+        }
+      }
+      for (const auto& [note, count] : plants)
+        std::fprintf(stderr, "sim_ab: plant %s (%zu condition%s)\n", note.c_str(), count,
+                     count == 1 ? "" : "s");
+    }
     for (const auto& c : controllers)
       if (c.spec.units.form == ctl::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
@@ -426,7 +482,7 @@ int main(int argc, char** argv) {
                      "to continuous gains and run at a %g s tick\n",
                      c.name.c_str(), c.spec.units.tick_s, ex.options().tick_s);
   }
-  if (o.sweep) return run_sweep(o, *experiments, runs.front().condition, controllers);
+  if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
 
   Outputs outs;
   if (!open_outputs(
@@ -439,6 +495,7 @@ int main(int argc, char** argv) {
   std::FILE* tip = outs[2].file;
   std::FILE* conds = outs[3].file;
   write_settings(outs[4].file, o, *experiments, controllers);
+  write_condition_settings(outs[4].file, runs, *experiments);
   std::fprintf(outs[4].file, "divergence_rad=%s\n", fmt(o.divergence_rad).c_str());
   std::fputs(
       "scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd,tau_nm,omega_rad_s\n",
@@ -450,18 +507,26 @@ int main(int argc, char** argv) {
       "tcp_error_max_mm,tcp_error_rms_mm,divergence_ticks,joint_limit_ticks\n",
       metrics);
   std::fputs("scenario,controller,t,x_d,y_d,z_d,x,y,z\n", tip);
+  // The robot and plant columns come last (readers by name keep working); the armature is six
+  // values separated by ';'.
   std::fputs(
       "scenario,set,payload_scale,friction,torque_limit,contact,noise_q,noise_qd,seed,reverse,"
-      "initial_error\n",
+      "initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2\n",
       conds);
-  for (const auto& r : runs) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const Run& r = runs[k];
     const auto& c = r.condition;
-    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s\n", c.name.c_str(), r.set.c_str(),
-                 fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
+    const sim::Experiment& ex = experiments->of(k);
+    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s,%s,%s,%s,%s,%s,%d,%s\n", c.name.c_str(),
+                 r.set.c_str(), fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
                  fmt(c.torque_limit_rad_s2).c_str(), fmt(c.contact_rad_s2).c_str(),
                  fmt(c.noise_position_rad).c_str(), fmt(c.noise_velocity_rad_s).c_str(),
                  static_cast<unsigned long long>(c.seed), c.reverse ? 1 : 0,
-                 fmt(c.initial_error_rad).c_str());
+                 fmt(c.initial_error_rad).c_str(), csv_field(ex.urdf_file()).c_str(),
+                 csv_field(ex.setup().path.empty() ? "line" : ex.setup().path).c_str(),
+                 fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
+                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
+                 joined(ex.armature_kgm2(), ";").c_str());
   }
 
   if (!o.quiet)
