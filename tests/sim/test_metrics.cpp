@@ -87,9 +87,9 @@ TEST(JointMetrics, OvershootOnAClosedContourIsRelativeToTheExcursionOfTheReferen
 }
 
 TEST(DriveMetrics, ACommandAlternatingEveryTickReversesAndChangesSignOnEveryTick) {
-  std::vector<double> u;
-  for (int k = 0; k < 50; ++k)
-    u.push_back(k % 2 == 0 ? 3.0 : -3.0);
+  std::vector<double> u(50);
+  for (std::size_t k = 0; k < u.size(); ++k)
+    u[k] = k % 2 == 0 ? 3.0 : -3.0;
   EXPECT_DOUBLE_EQ(sim::reversals_pct(u), 100.0);
   EXPECT_DOUBLE_EQ(sim::sign_changes_pct(u), 100.0);
 }
@@ -98,10 +98,10 @@ TEST(DriveMetrics, ASineReversesOnlyAtItsExtrema) {
   // Two periods, 50 samples each, offset by a quarter step so that no sample is an extremum or
   // a zero: four extrema (pi/2, 3pi/2, 5pi/2, 7pi/2) over the K - 2 ticks on which a reversal
   // can fall, four zero crossings (pi, 2pi, 3pi, 4pi) over the K - 1 ticks.
-  std::vector<double> u;
   const int n = 101;
+  std::vector<double> u(n);
   for (int k = 0; k < n; ++k)
-    u.push_back(2.0 * std::sin(2.0 * kPi * (k + 0.25) / 50.0));
+    u[static_cast<std::size_t>(k)] = 2.0 * std::sin(2.0 * kPi * (k + 0.25) / 50.0);
   EXPECT_NEAR(sim::reversals_pct(u), 100.0 * 4 / (n - 2), 1e-12);
   EXPECT_NEAR(sim::sign_changes_pct(u), 100.0 * 4 / (n - 1), 1e-12);
 }
