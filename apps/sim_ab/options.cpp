@@ -214,7 +214,9 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
                  "a joint whose |error| exceeds this, rad, faults, as does one that leaves its "
                  "URDF joint limits (default 1, as tune's)")
       ->check(kFinite)
-      ->check(CLI::PositiveNumber);
+      ->check([](const std::string& s) {
+        return std::strtod(s.c_str(), nullptr) > 0.0 ? std::string() : "must be > 0 rad: " + s;
+      });
   app.add_flag("--allow-faults", o.allow_faults,
                "runs with faults (controller faults, |error| > --divergence, a joint outside its "
                "limits) are counted and named but exit 0 (else exit 1)");
