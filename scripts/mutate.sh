@@ -64,6 +64,12 @@ mutants=(
   "smoothness_drops_columns|src/tune/parameters.cpp|/if (j + 1 < kSets) sum += std::pow(std::log10(ratio\[g\]\[i\]\[j + 1\]) - v, 2);/d|bin:test_parameters"
   "stage_validation_cost_not_written|src/controller_file/controller_file.cpp|s/(std::isnan(st.validation_cost)/(true/|bin:test_controller_file"
   "regulariser_writes_smoothness_as_monotone|src/controller_file/controller_file.cpp|s/\"monotone = \" + format_double(g.monotone)/\"monotone = \" + format_double(g.smoothness)/|bin:test_controller_file"
+  # Our own: issue 29's drive metrics and faults.
+  "reversals_forget_the_last_significant_change|src/sim/metrics.cpp|s/    if (!(std::fabs(d) > h)) continue;/    if (!(std::fabs(d) > h)) { last = 0; continue; }/|bin:test_sim_metrics"
+  "overshoot_on_a_contour_relative_to_the_start_error|src/sim/metrics.cpp|s/closed ? std::max(excursion, travel) : travel;/travel;/|bin:test_sim_metrics"
+  "upper_joint_limits_unchecked|src/sim/faults.cpp|s/theta\[i\] > upper_rad_\[i\]/false/|bin:test_sim_metrics bin:test_run_outputs"
+  "saturation_only_when_the_plant_clamps|src/sim/experiment.cpp|s/ applied >= (1.0 - 1e-9) \* torque_limit_nm\[i\];/ false;/|bin:test_run_outputs"
+  "faults_never_fail_a_run|apps/sim_ab/main.cpp|s/  if (faulted == 0) return 0;/  if (faulted >= 0) return 0;/|build:sim_ab build:rt_loop ctest:^sim_ab\.faults_are_counted"
 )
 
 restore_tests() {

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Prints sim_ab results as Markdown tables (docs/reproduction.md, docs/tuning.md).
 
-usage: scripts/summarize_sim.py [DIR] [--per-condition] [--gains]    (DIR defaults to out)
+usage: scripts/summarize_sim.py [DIR] [--per-condition] [--gains] [--drive]   (DIR defaults to out)
 
 1. Per set (conditions.csv; "scenario" when sim_ab ran --scenario) and controller, over the set's
    conditions and the six joints: summed ITAE, its ratio to the first controller... of the tuned
@@ -10,6 +10,9 @@ usage: scripts/summarize_sim.py [DIR] [--per-condition] [--gains]    (DIR defaul
 2. --per-condition: summed ITAE (six joints) per condition and controller.
 3. --gains: the range of each controller's gains over every tick of the set (file units), and
    relative to its nominal gains K0 (settings.txt).
+4. --drive: per set and controller, the worst joint's reversals_pct and sign_changes_pct
+   (maximum over the set's conditions without measurement noise, and over those with it),
+   saturated_pct and tcp_error_max_mm (maximum over all), and the runs with faults.
 Without a set column (scenario runs) it also prints the per-joint metrics of the paper scenario.
 """
 import collections
@@ -96,6 +99,36 @@ def main():
                 for i, n in ((0, "Kp"), (2, "Kd")))
             print(f"| {s} | {c} | {l[0]:.4g} .. {h[0]:.4g} | {l[1]:.4g} .. {h[1]:.4g} |"
                   f" {l[2]:.4g} .. {h[2]:.4g} | {rel} |")
+
+    if "--drive" in sys.argv:
+        noisy = {}
+        try:
+            for r in csv.DictReader(open(f"{d}/conditions.csv", newline="")):
+                noisy[r["scenario"]] = float(r["noise_q"]) > 0 or float(r["noise_qd"]) > 0
+        except FileNotFoundError:
+            pass
+
+        def worst(cs, ctl, key, with_noise=None):
+            values = [max(float(r[key]) for r in by[(c, ctl)]) for c in cs
+                      if with_noise is None or noisy.get(c, False) == with_noise]
+            return f"{max(values):.1f}" if values else "-"
+
+        print()
+        print("| set | controller | reversals % (no noise) | reversals % (noise) |"
+              " sign changes % (no noise) | sign changes % (noise) | saturated % |"
+              " max tool-path error (mm) | runs with faults |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for s in set_names:
+            cs = [c for c in conds if sets.get(c, "scenario") == s]
+            for ctl in controllers:
+                faults = sum(1 for c in cs if int(by[(c, ctl)][0]["faults"]) > 0)
+                print(f"| {s} | {ctl} | {worst(cs, ctl, 'reversals_pct', False)} |"
+                      f" {worst(cs, ctl, 'reversals_pct', True)} |"
+                      f" {worst(cs, ctl, 'sign_changes_pct', False)} |"
+                      f" {worst(cs, ctl, 'sign_changes_pct', True)} |"
+                      f" {worst(cs, ctl, 'saturated_pct')} |"
+                      f" {max(float(by[(c, ctl)][0]['tcp_error_max_mm']) for c in cs):.3g} |"
+                      f" {faults} |")
 
     if not sets or set(sets.values()) == {"scenario"}:
         print()

@@ -168,4 +168,13 @@ inline void print_robot_note(const char* tool, const sim::Experiment& ex) {
       ex.options().tick_s * 1e3, a[0], a[1], a[2], a[3], a[4], a[5]);
 }
 
+// The plant a condition runs on, for the banner: "dynamics coupled, gravity on, payload 2 kg".
+inline std::string plant_note(const sim::Condition& c) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "dynamics %s, gravity %s, payload %g kg",
+                fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? "on" : "off",
+                c.payload_kg);
+  return buf;
+}
+
 }  // namespace fuzzypid::cli

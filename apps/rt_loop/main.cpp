@@ -24,8 +24,9 @@
 // looks valid; SIGINT, SIGTERM and SIGHUP end the run early with the same summary and CSV, and the
 // temporaries of runs killed outright are removed by the next run writing the same CSV.
 //
-// Exit codes: 0 success; 1 a run-time failure -- a controller or plant fault, an allocation in the
-// loop, more overruns than --max-overruns, a real-time setting refused under --require-rt, an
+// Exit codes: 0 success; 1 a run-time failure -- a controller or plant fault, a joint whose |error|
+// passed --divergence or that left its URDF joint limits (unless --allow-faults), an allocation in
+// the loop, more overruns than --max-overruns, a real-time setting refused under --require-rt, an
 // output that cannot be written; 2 bad usage.
 #include <sched.h>
 #include <signal.h>
@@ -57,6 +58,7 @@
 #include "fuzzypid/sim/closed_loop.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/faults.hpp"
 #include "fuzzypid/sim/mismatch.hpp"
 #include "fuzzypid/status.hpp"
 #include "histogram.hpp"
@@ -127,6 +129,7 @@ struct LoopResult {
   long minor_page_faults = 0;
   long major_page_faults = 0;
   double max_abs_error_rad = 0.0;
+  sim::TrackingFaults tracking_faults{};  // joints that diverged or left their limits
   // Per joint: ticks on which the supervisor fired no rule (the gains stayed where they were).
   std::array<std::uint64_t, robot::kNumJoints> no_rule_ticks{};
 };
@@ -136,8 +139,8 @@ cli::Histogram g_latency;
 cli::Histogram g_period_error;
 cli::Histogram g_compute;
 
-LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks,
-                    std::vector<TickRecord>* csv) {
+LoopResult run_loop(sim::ClosedLoop& loop, sim::FaultMonitor& faults, const Options& o,
+                    std::uint64_t ticks, std::vector<TickRecord>* csv) {
   LoopResult r;
   const std::size_t samples = loop.samples();
   const auto period_ns = static_cast<std::int64_t>(std::llround(o.period_ms * 1e6));
@@ -176,6 +179,7 @@ LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks
       const double err = std::fabs(t.theta_d[j] - t.theta[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
+    (void)faults.observe(t.t_s, t.theta_d, t.theta);
     const std::int64_t done = now_ns();
 
     g_compute.record(done - woke);
@@ -197,6 +201,7 @@ LoopResult run_loop(sim::ClosedLoop& loop, const Options& o, std::uint64_t ticks
     }
   }
   r.allocations = fuzzypid::support::allocation_count() - allocations_before;
+  r.tracking_faults = faults.faults();
   rusage usage_after{};
   getrusage(RUSAGE_SELF, &usage_after);
   r.minor_page_faults = usage_after.ru_minflt - usage_before.ru_minflt;
@@ -300,6 +305,7 @@ int run(int argc, char** argv) {
     return cli::kExitFailure;
   }
   cli::print_robot_note(kTool, *experiment);
+  std::fprintf(stderr, "%s: plant %s\n", kTool, cli::plant_note(condition).c_str());
   ctl::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
   spec.units.tick_s = paper_tick_s;
@@ -346,7 +352,9 @@ int run(int argc, char** argv) {
               fifo_state.c_str());
   std::fflush(stdout);
 
-  const LoopResult r = run_loop(*loop, o, ticks, csv_file ? &csv : nullptr);
+  sim::FaultMonitor faults(o.divergence_rad, experiment->model().lower_limits_rad(),
+                           experiment->model().upper_limits_rad());
+  const LoopResult r = run_loop(*loop, faults, o, ticks, csv_file ? &csv : nullptr);
 
   // --- After the loop: summary and CSV.
   if (g_stop != 0) std::printf("interrupted: stopped at the next tick\n");
@@ -364,6 +372,12 @@ int run(int argc, char** argv) {
       "max_abs_error_rad: %.6g rad\n",
       static_cast<unsigned long long>(r.controller_fault_ticks),
       static_cast<unsigned long long>(r.plant_fault_ticks), r.max_abs_error_rad);
+  std::printf("tracking_fault_ticks: %llu ticks (|error| > %g rad or outside the joint limits)\n",
+              static_cast<unsigned long long>(r.tracking_faults.ticks), o.divergence_rad);
+  for (const std::string& line :
+       sim::describe(r.tracking_faults, o.divergence_rad, experiment->model().lower_limits_rad(),
+                     experiment->model().upper_limits_rad()))
+    std::fprintf(stderr, "%s: fault: %s\n", kTool, line.c_str());
   std::printf("page_faults_in_loop: minor %ld, major %ld\n", r.minor_page_faults,
               r.major_page_faults);
   std::printf("allocations_in_loop: %llu\n", static_cast<unsigned long long>(r.allocations));
@@ -404,6 +418,15 @@ int run(int argc, char** argv) {
   if (r.allocations != 0) failure("the loop allocated");
   if (r.controller_fault_ticks != 0) failure("the controller reported faults");
   if (r.plant_fault_ticks != 0) failure("the plant reported faults");
+  if (r.tracking_faults.any()) {
+    if (o.allow_faults) {
+      std::fprintf(stderr, "%s: joints faulted (accepted: --allow-faults)\n", kTool);
+    } else {
+      failure(
+          "joints faulted: |error| > --divergence or outside their limits (--allow-faults "
+          "accepts it)");
+    }
+  }
   if (no_rule != 0 && o.strict_rules) failure("the supervisor fired no rule (--strict-rules)");
   if (o.max_overruns && r.overruns > *o.max_overruns) failure("more overruns than --max-overruns");
   const int written = cli::finish_stdout(kTool);

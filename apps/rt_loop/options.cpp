@@ -20,7 +20,9 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
       "a fixed-period loop, with its "
       "timing measured (docs/performance.md). Ctrl-C (SIGINT), SIGTERM or SIGHUP stops at the "
       "next tick, prints the summary and writes the CSV.\nExit codes: 0 success, 1 a run-time "
-      "failure (controller or plant fault, allocation in the loop, too many overruns, a refused "
+      "failure (controller or plant fault, a joint whose |error| passes --divergence or that "
+      "leaves its limits unless --allow-faults, allocation in the loop, too many overruns, a "
+      "refused "
       "setting under --require-rt, a write error), 2 bad usage (including a --csv that cannot be "
       "written: docs/robustness.md, Outputs).",
       kTool);
@@ -63,6 +65,13 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
                "a refused --fifo, --lock-memory or --cpu is an error (else a warning)");
   app.add_flag("--strict-rules", o.strict_rules,
                "a tick on which the supervisor fires no rule is an error (else a warning)");
+  app.add_option("--divergence", o.divergence_rad,
+                 "a joint whose |error| exceeds this, rad, faults, as does one that leaves its "
+                 "URDF joint limits (default 1, as tune's)")
+      ->check(cli::finite_in(std::numeric_limits<double>::min(), 1e300))
+      ->option_text("RAD");
+  app.add_flag("--allow-faults", o.allow_faults,
+               "joints that diverge or leave their limits are counted and named but exit 0");
   app.add_option("--max-overruns", o.max_overruns,
                  "exit 1 when more than N ticks overran (default: any number)")
       ->check(cli::unsigned_integer())

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "fuzzypid/sim/faults.hpp"
 #include "robot_options.hpp"
 
 namespace fuzzypid::rt_loop {
@@ -33,6 +34,10 @@ struct Options {
   bool loop_path = false;
   bool require_rt = false;
   bool strict_rules = false;  // a tick on which the supervisor fires no rule fails the run
+  // A joint whose |e| exceeds this, rad, or that leaves its URDF joint limits faults
+  // (sim/faults.hpp): exit 1 unless allow_faults.
+  double divergence_rad = sim::kDefaultDivergenceRad;
+  bool allow_faults = false;
   std::optional<std::uint64_t> max_overruns;
   cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
 

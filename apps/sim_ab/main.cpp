@@ -6,7 +6,9 @@
 // conditions.csv and settings.txt (a sweep: sweep.csv and settings.txt). The set replaces --out as
 // a whole only when the whole run has succeeded (cli::OutputSet), so a failed run never leaves a
 // half-written CSV that looks complete. Exit status: 0 success, 1 run-time failure (including
-// a run in which a controller reported a fault), 2 usage error.
+// a run with faults -- a controller fault, a joint whose |error| passed --divergence or that left
+// its URDF joint limits -- unless --allow-faults; the outputs are written either way), 2 usage
+// error.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -75,6 +77,24 @@ std::string fmt(double v) {
   return buf;
 }
 
+// A CSV field: as it is, or quoted (quotes doubled) when it holds a comma, a quote or a newline.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + "\"";
+}
+
+std::string joined(const robot::JointVector& v, const char* separator) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    out += (i == 0 ? "" : separator) + fmt(v[i]);
+  return out;
+}
+
 // Every file sim_ab may write into --out (a run or a sweep).
 const std::vector<std::string> kOutputNames = {"trajectory.csv", "metrics.csv",  "endeffector.csv",
                                                "conditions.csv", "settings.txt", "sweep.csv"};
@@ -90,15 +110,19 @@ struct Run {
   sim::Condition condition;
 };
 
-// Summary of one run over the six joints.
+// Summary of one run over the six joints (the worst joint of each figure).
 struct Summary {
   double itae = 0.0;
   double max_overshoot_pct = 0.0;
   double max_settling_s = 0.0;
   double max_error_after_1s_rad = 0.0;
+  double max_reversals_pct = 0.0;
+  double max_sign_changes_pct = 0.0;
+  double max_saturated_pct = 0.0;
 };
 
-Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m) {
+Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m,
+                  const std::array<sim::DriveMetrics, robot::kNumJoints>& drive = {}) {
   Summary s;
   for (const auto& j : m) {
     s.itae += j.itae;
@@ -106,7 +130,41 @@ Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m) {
     s.max_settling_s = std::max(s.max_settling_s, j.settling_time_s);
     s.max_error_after_1s_rad = std::max(s.max_error_after_1s_rad, j.max_abs_error_after_1s_rad);
   }
+  for (const auto& d : drive) {
+    s.max_reversals_pct = std::max(s.max_reversals_pct, d.reversals_pct);
+    s.max_sign_changes_pct = std::max(s.max_sign_changes_pct, d.sign_changes_pct);
+    s.max_saturated_pct = std::max(s.max_saturated_pct, d.saturated_pct);
+  }
   return s;
+}
+
+// Names each tracking fault of a run on stderr ("sim_ab: fault: CONTROLLER on CONDITION: ...");
+// a sweep names only the first line of each run.
+void report_faults(const sim::RunResult& r, const sim::Experiment& ex, double divergence_rad,
+                   const std::string& controller, const std::string& condition,
+                   bool first_only = false) {
+  const std::vector<std::string> lines =
+      sim::describe(r.tracking_faults, divergence_rad, ex.model().lower_limits_rad(),
+                    ex.model().upper_limits_rad());
+  for (const std::string& line : lines) {
+    std::fprintf(stderr, "sim_ab: fault: %s on %s: %s\n", controller.c_str(), condition.c_str(),
+                 line.c_str());
+    if (first_only) break;
+  }
+}
+
+// The exit status of a run with `faulted` faulting runs: 1 unless --allow-faults.
+int faults_exit(const sim_ab::Options& o, std::size_t faulted) {
+  if (faulted == 0) return 0;
+  if (o.allow_faults) {
+    std::fprintf(stderr, "sim_ab: %zu run(s) with faults (accepted: --allow-faults)\n", faulted);
+    return 0;
+  }
+  std::fprintf(stderr,
+               "sim_ab: %zu run(s) with faults (metrics.csv `faults`; --allow-faults accepts "
+               "them)\n",
+               faulted);
+  return 1;
 }
 
 // What ran: every robot setup (URDF, links, path, tick, armature, nominal inertia) and every
@@ -173,17 +231,39 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
   }
 }
 
+// What each condition ran on: robot, path, tick, payload, dynamics, gravity and armature, one
+// line per condition (conditions[k] runs on experiments.of(k)).
+void write_condition_settings(std::FILE* f, const std::vector<Run>& runs,
+                              const sim::ExperimentSet& experiments) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const sim::Condition& c = runs[k].condition;
+    const sim::Experiment& ex = experiments.of(k);
+    std::fprintf(f,
+                 "condition.%s=set=%s urdf=%s path=%s tick_s=%s payload_kg=%s dynamics=%s "
+                 "gravity=%d armature_kgm2=%s\n",
+                 c.name.c_str(), runs[k].set.c_str(), ex.urdf_file().c_str(),
+                 ex.setup().path.empty() ? "line" : ex.setup().path.c_str(),
+                 fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
+                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
+                 joined(ex.armature_kgm2(), ",").c_str());
+  }
+}
+
 int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
-              const sim::Condition& base, const std::vector<NamedController>& controllers) {
+              const std::vector<Run>& runs, const std::vector<NamedController>& controllers) {
   const sim::Experiment& ex = experiments.of(0);
+  const sim::Condition& base = runs.front().condition;
   const sim_ab::Sweep& sw = *o.sweep;
   Outputs outs;
   if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
   std::FILE* csv = outs[0].file;
   write_settings(outs[1].file, o, experiments, controllers);
+  write_condition_settings(outs[1].file, runs, experiments);
   std::fprintf(outs[1].file, "sweep=%s=%s:%s:%d\novershoot_bound_pct=%s\nitae_ratio=%s\n",
                sw.parameter.c_str(), fmt(sw.lo).c_str(), fmt(sw.hi).c_str(), sw.count,
                fmt(o.overshoot_bound_pct).c_str(), fmt(o.itae_ratio_bound).c_str());
+  std::fprintf(outs[1].file, "divergence_rad=%s\n", fmt(o.divergence_rad).c_str());
+  std::size_t faulted_runs = 0;
   std::fputs("controller,parameter,value,itae,max_overshoot_pct,faults,diverged,usable\n", csv);
   const double tick = ex.options().tick_s;
   if (!o.quiet)
@@ -208,7 +288,9 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
         cond.torque_limit_rad_s2 = v;
       }
       sim::RunLimits limits;
-      limits.max_error_rad = 1.0;  // far outside anything usable; ends diverging runs early
+      // A divergence is far outside anything usable: it ends the run early.
+      limits.max_error_rad = o.divergence_rad;
+      limits.divergence_rad = o.divergence_rad;
       const sim::RunResult r = ex.run(cond, c.spec, limits);
       if (!r.ok) {
         std::fprintf(stderr, "sim_ab: %s at %s=%g: %s\n", c.name.c_str(), sw.parameter.c_str(), v,
@@ -217,13 +299,17 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
         return 1;
       }
       const Summary s = summarize(sim::run_metrics(r.rows, tick));
-      const bool ok = !r.diverged && r.controller_faults == 0 && std::isfinite(s.itae) &&
+      if (r.fault_ticks != 0) {
+        ++faulted_runs;
+        report_faults(r, ex, o.divergence_rad, c.name, sw.parameter + "=" + fmt(v), true);
+      }
+      const bool ok = !r.diverged && r.fault_ticks == 0 && std::isfinite(s.itae) &&
                       s.max_overshoot_pct <= o.overshoot_bound_pct &&
                       s.itae <= o.itae_ratio_bound * nominal_itae;
       usable[static_cast<std::size_t>(k)] = ok;
       std::fprintf(csv, "%s,%s,%s,%s,%s,%zu,%d,%d\n", c.name.c_str(), sw.parameter.c_str(),
                    fmt(v).c_str(), r.diverged ? "inf" : fmt(s.itae).c_str(),
-                   r.diverged ? "inf" : fmt(s.max_overshoot_pct).c_str(), r.controller_faults,
+                   r.diverged ? "inf" : fmt(s.max_overshoot_pct).c_str(), r.fault_ticks,
                    r.diverged ? 1 : 0, ok ? 1 : 0);
     }
     // The longest run of consecutive usable values.
@@ -258,7 +344,7 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
     return 1;
   }
   if (!o.quiet) std::fprintf(stderr, "sim_ab: wrote %s/sweep.csv\n", o.out_dir.c_str());
-  return 0;
+  return faults_exit(o, faulted_runs);
 }
 
 }  // namespace
@@ -370,7 +456,25 @@ int main(int argc, char** argv) {
   }
   for (std::size_t k = 0; k < experiments->size(); ++k) {
     const sim::Experiment& ex = experiments->experiment(k);
-    if (!o.quiet) cli::print_robot_note("sim_ab", ex);
+    if (!o.quiet) {
+      cli::print_robot_note("sim_ab", ex);
+      // The plants of the conditions on this robot, each with how many conditions run on it.
+      std::vector<std::pair<std::string, std::size_t>> plants;
+      for (std::size_t i = 0; i < runs.size(); ++i) {
+        if (&experiments->of(i) != &ex) continue;
+        const std::string note = cli::plant_note(runs[i].condition);
+        auto it = std::find_if(plants.begin(), plants.end(),
+                               [&note](const auto& p) { return p.first == note; });
+        if (it == plants.end()) {
+          plants.emplace_back(note, 1);
+        } else {
+          ++it->second;
+        }
+      }
+      for (const auto& [note, count] : plants)
+        std::fprintf(stderr, "sim_ab: plant %s (%zu condition%s)\n", note.c_str(), count,
+                     count == 1 ? "" : "s");
+    }
     for (const auto& c : controllers)
       if (c.spec.units.form == ctl::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
@@ -397,7 +501,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sim_ab: warning: %s: the same on %zu conditions in all\n",
                    c.name.c_str(), without_gravity);
   }
-  if (o.sweep) return run_sweep(o, *experiments, runs.front().condition, controllers);
+  if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
 
   Outputs outs;
   if (!open_outputs(
@@ -410,29 +514,44 @@ int main(int argc, char** argv) {
   std::FILE* tip = outs[2].file;
   std::FILE* conds = outs[3].file;
   write_settings(outs[4].file, o, *experiments, controllers);
-  std::fputs("scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd\n", traj);
+  write_condition_settings(outs[4].file, runs, *experiments);
+  std::fprintf(outs[4].file, "divergence_rad=%s\n", fmt(o.divergence_rad).c_str());
+  std::fputs(
+      "scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd,tau_nm,omega_rad_s\n",
+      traj);
   std::fputs(
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
-      "iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,clamped_gain_ticks\n",
+      "iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,clamped_gain_ticks,"
+      "reversals_pct,sign_changes_pct,saturated_pct,tau_rms_nm,torque_variation_nm_per_s,"
+      "tcp_error_max_mm,tcp_error_rms_mm,divergence_ticks,joint_limit_ticks\n",
       metrics);
   std::fputs("scenario,controller,t,x_d,y_d,z_d,x,y,z\n", tip);
+  // The robot and plant columns come last (readers by name keep working); the armature is six
+  // values separated by ';'.
   std::fputs(
       "scenario,set,payload_scale,friction,torque_limit,contact,noise_q,noise_qd,seed,reverse,"
-      "initial_error\n",
+      "initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2\n",
       conds);
-  for (const auto& r : runs) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const Run& r = runs[k];
     const auto& c = r.condition;
-    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s\n", c.name.c_str(), r.set.c_str(),
-                 fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
+    const sim::Experiment& ex = experiments->of(k);
+    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s,%s,%s,%s,%s,%s,%d,%s\n", c.name.c_str(),
+                 r.set.c_str(), fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
                  fmt(c.torque_limit_rad_s2).c_str(), fmt(c.contact_rad_s2).c_str(),
                  fmt(c.noise_position_rad).c_str(), fmt(c.noise_velocity_rad_s).c_str(),
                  static_cast<unsigned long long>(c.seed), c.reverse ? 1 : 0,
-                 fmt(c.initial_error_rad).c_str());
+                 fmt(c.initial_error_rad).c_str(), csv_field(ex.urdf_file()).c_str(),
+                 csv_field(ex.setup().path.empty() ? "line" : ex.setup().path).c_str(),
+                 fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
+                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
+                 joined(ex.armature_kgm2(), ";").c_str());
   }
 
   if (!o.quiet)
-    std::printf("%-10s %-26s %-18s %11s %10s %10s %12s\n", "set", "condition", "controller", "ITAE",
-                "overshoot%", "settle_s", "max|e|>1s");
+    std::printf("%-10s %-26s %-18s %11s %10s %10s %12s %7s %7s %7s %9s\n", "set", "condition",
+                "controller", "ITAE", "overshoot%", "settle_s", "max|e|>1s", "rev%", "sign%",
+                "sat%", "tcp_mm");
   std::size_t faulted_runs = 0;
   std::size_t no_rule_runs = 0;
   std::size_t done = 0;
@@ -446,7 +565,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sim_ab: [%zu/%zu] %s\n", done, runs.size(), cond.name.c_str());
     for (const NamedController& ctl : controllers) {
       const char* cname = ctl.name.c_str();
-      const sim::RunResult r = experiment.run(cond, ctl.spec);
+      sim::RunLimits limits;
+      limits.divergence_rad = o.divergence_rad;
+      const sim::RunResult r = experiment.run(cond, ctl.spec, limits);
       if (!r.ok) {
         std::fprintf(stderr, "sim_ab: condition %s, controller %s: %s\n", cond.name.c_str(), cname,
                      r.error.c_str());
@@ -454,41 +575,45 @@ int main(int argc, char** argv) {
         return 1;
       }
       for (const auto& row : r.rows) {
-        std::fprintf(traj, "%s,%s,%s,%d,%s,%s,%s,%s,%s,%s,%s,%s\n", cond.name.c_str(), cname,
+        std::fprintf(traj, "%s,%s,%s,%d,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", cond.name.c_str(), cname,
                      fmt(row.t_s).c_str(), row.joint, fmt(row.theta_d).c_str(),
                      fmt(row.theta).c_str(), fmt(row.error).c_str(), fmt(row.error_rate).c_str(),
                      fmt(row.u).c_str(), fmt(row.kp).c_str(), fmt(row.ki).c_str(),
-                     fmt(row.kd).c_str());
+                     fmt(row.kd).c_str(), fmt(row.tau_nm).c_str(), fmt(row.omega_rad_s).c_str());
       }
       // End-effector path (Fig. 9): FK of the reference and of the joint angles at each tick.
-      const std::size_t ticks = r.rows.size() / robot::kNumJoints;
-      for (std::size_t k = 0; k < ticks; ++k) {
-        robot::JointVector qd{}, q{};
-        for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-          qd[i] = r.rows[k * robot::kNumJoints + i].theta_d;
-          q[i] = r.rows[k * robot::kNumJoints + i].theta;
-        }
-        const Eigen::Vector3d pd = model.forward_kinematics(qd).position_m;
-        const Eigen::Vector3d p = model.forward_kinematics(q).position_m;
+      const sim::TcpTrack track = sim::tcp_track(model, r.rows);
+      for (std::size_t k = 0; k < track.t_s.size(); ++k) {
+        const Eigen::Vector3d& pd = track.desired_m[k];
+        const Eigen::Vector3d& p = track.actual_m[k];
         std::fprintf(tip, "%s,%s,%s,%s,%s,%s,%s,%s,%s\n", cond.name.c_str(), cname,
-                     fmt(r.rows[k * robot::kNumJoints].t_s).c_str(), fmt(pd.x()).c_str(),
-                     fmt(pd.y()).c_str(), fmt(pd.z()).c_str(), fmt(p.x()).c_str(),
-                     fmt(p.y()).c_str(), fmt(p.z()).c_str());
+                     fmt(track.t_s[k]).c_str(), fmt(pd.x()).c_str(), fmt(pd.y()).c_str(),
+                     fmt(pd.z()).c_str(), fmt(p.x()).c_str(), fmt(p.y()).c_str(),
+                     fmt(p.z()).c_str());
       }
+      const sim::TcpErrorMetrics tcp = sim::tcp_error_metrics(track);
       const auto m = sim::run_metrics(r.rows, experiment.options().tick_s);
+      const auto d = sim::run_drive_metrics(r.rows);
+      const sim::TrackingFaults& tf = r.tracking_faults;
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-        std::fprintf(metrics, "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n", cond.name.c_str(),
-                     cname, i + 1, fmt(m[i].settling_time_s).c_str(),
+        std::fprintf(metrics,
+                     "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu\n",
+                     cond.name.c_str(), cname, i + 1, fmt(m[i].settling_time_s).c_str(),
                      fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
                      fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
-                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.controller_faults,
-                     r.no_rule_ticks[i], r.clamped_gain_ticks[i]);
+                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.fault_ticks,
+                     r.no_rule_ticks[i], r.clamped_gain_ticks[i], fmt(d[i].reversals_pct).c_str(),
+                     fmt(d[i].sign_changes_pct).c_str(), fmt(d[i].saturated_pct).c_str(),
+                     fmt(d[i].tau_rms_nm).c_str(), fmt(d[i].torque_variation_nm_per_s).c_str(),
+                     fmt(tcp.max_mm).c_str(), fmt(tcp.rms_mm).c_str(), tf.divergence[i].ticks,
+                     tf.joint_limit[i].ticks);
       }
-      const Summary s = summarize(m);
+      const Summary s = summarize(m, d);
       if (!o.quiet)
-        std::printf("%-10s %-26s %-18s %11.4e %10.3g %10.3g %12.3e\n", run.set.c_str(),
-                    cond.name.c_str(), cname, s.itae, s.max_overshoot_pct, s.max_settling_s,
-                    s.max_error_after_1s_rad);
+        std::printf("%-10s %-26s %-18s %11.4e %10.3g %10.3g %12.3e %7.1f %7.1f %7.1f %9.3g\n",
+                    run.set.c_str(), cond.name.c_str(), cname, s.itae, s.max_overshoot_pct,
+                    s.max_settling_s, s.max_error_after_1s_rad, s.max_reversals_pct,
+                    s.max_sign_changes_pct, s.max_saturated_pct, tcp.max_mm);
       std::size_t no_rule = 0;
       for (std::size_t n : r.no_rule_ticks)
         no_rule += n;
@@ -499,11 +624,11 @@ int main(int argc, char** argv) {
                      "gains stayed where they were (metrics.csv no_rule_ticks)\n",
                      o.strict_rules ? "error" : "warning", cond.name.c_str(), cname, no_rule);
       }
-      if (r.controller_faults != 0) {
-        ++faulted_runs;
-        std::fprintf(stderr, "sim_ab: error: %zu controller faults in %s/%s\n", r.controller_faults,
-                     cond.name.c_str(), cname);
-      }
+      if (r.controller_faults != 0)
+        std::fprintf(stderr, "sim_ab: fault: %s on %s: %zu controller faults\n", cname,
+                     cond.name.c_str(), r.controller_faults);
+      report_faults(r, experiment, o.divergence_rad, ctl.name, cond.name);
+      if (r.fault_ticks != 0) ++faulted_runs;
     }
   }
   if (!commit(outs, error)) {
@@ -514,10 +639,7 @@ int main(int argc, char** argv) {
   if (!o.quiet)
     std::fprintf(stderr, "sim_ab: wrote %s/{trajectory,metrics,endeffector,conditions}.csv\n",
                  o.out_dir.c_str());
-  if (faulted_runs != 0) {
-    std::fprintf(stderr, "sim_ab: %zu run(s) with controller faults\n", faulted_runs);
-    return 1;
-  }
+  if (faults_exit(o, faulted_runs) != 0) return 1;
   if (no_rule_runs != 0 && o.strict_rules) {
     std::fprintf(stderr,
                  "sim_ab: %zu run(s) in which a supervisor fired no rule (--strict-rules)\n",

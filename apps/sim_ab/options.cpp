@@ -210,6 +210,16 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   app.add_flag("--strict-rules", o.strict_rules,
                "a tick on which a supervisor fires no rule is an error (exit 1; else a warning "
                "and the count in metrics.csv)");
+  app.add_option("--divergence", o.divergence_rad,
+                 "a joint whose |error| exceeds this, rad, faults, as does one that leaves its "
+                 "URDF joint limits (default 1, as tune's)")
+      ->check(kFinite)
+      ->check([](const std::string& s) {
+        return std::strtod(s.c_str(), nullptr) > 0.0 ? std::string() : "must be > 0 rad: " + s;
+      });
+  app.add_flag("--allow-faults", o.allow_faults,
+               "runs with faults (controller faults, |error| > --divergence, a joint outside its "
+               "limits) are counted and named but exit 0 (else exit 1)");
   app.add_flag("--quiet", o.quiet, "no table, no progress");
 
   try {

@@ -44,6 +44,10 @@ struct Options {
   std::optional<std::uint64_t> seed;
   bool reverse = false;
   bool strict_rules = false;  // a tick on which a supervisor fires no rule fails the run
+  // A joint whose |e| exceeds this, rad, faults (sim/faults.hpp); so does one that leaves its
+  // URDF joint limits. A run with faults exits 1 unless allow_faults.
+  double divergence_rad = sim::kDefaultDivergenceRad;
+  bool allow_faults = false;
   bool list = false;
   bool quiet = false;
 };

@@ -1,5 +1,6 @@
 #include "fuzzypid/sim/experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -289,10 +290,14 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
   };
+  const robot::JointVector torque_limit_nm = torque_limit(condition);
+  FaultMonitor faults(limits.divergence_rad, model_.lower_limits_rad(), model_.upper_limits_rad());
   for (std::size_t k = 0; k < ticks; ++k) {
     const bool advance = k + 1 < ticks;
     const TickResult r = loop->tick(k, advance);
-    if (is_fault(r.command.status)) ++result.controller_faults;
+    const bool controller_fault = is_fault(r.command.status);
+    if (controller_fault) ++result.controller_faults;
+    if (faults.observe(r.t_s, r.theta_d, r.theta) || controller_fault) ++result.fault_ticks;
     for (std::size_t i = 0; supervised && i < kJoints; ++i) {
       if (r.command.joint_status[i] == Status::NoRuleFired) ++result.no_rule_ticks[i];
       const pid::Gains<double> g = loop->controller().gains(i);
@@ -319,9 +324,16 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
       row.kp = g.kp;
       row.ki = g.ki;
       row.kd = g.kd;
+      row.tau_nm = loop->plant().applied_torque()[i];
+      row.omega_rad_s = r.theta_dot[i];
+      // At a limit: clamped by the plant, or held there by the controller's own output limit
+      // (the plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
+      const double applied = std::fabs(row.tau_nm);
+      row.saturated = loop->plant().saturated()[i] || applied >= (1.0 - 1e-9) * torque_limit_nm[i];
       result.rows.push_back(row);
     }
     if (diverged) {
+      result.tracking_faults = faults.faults();
       result.diverged = true;
       result.ok = true;
       return result;
@@ -329,11 +341,13 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
     if (r.plant == robot::PlantStatus::Saturated) ++result.saturated_ticks;
     if (r.plant == robot::PlantStatus::InvalidInput ||
         r.plant == robot::PlantStatus::NumericalError) {
+      result.tracking_faults = faults.faults();
       result.error = std::string("plant step failed at t = ") + std::to_string(r.t_s) +
                      " s: " + robot::to_string(r.plant);
       return result;
     }
   }
+  result.tracking_faults = faults.faults();
   result.ok = true;
   return result;
 }
@@ -361,6 +375,57 @@ std::array<JointMetrics, kJoints> run_metrics(const std::vector<TrajectoryRow>& 
     out[i] = joint_metrics(t, theta_d, theta, err, tick_s);
   }
   return out;
+}
+
+std::array<DriveMetrics, kJoints> run_drive_metrics(const std::vector<TrajectoryRow>& rows) {
+  std::array<DriveMetrics, kJoints> out{};
+  const std::size_t ticks = rows.size() / kJoints;
+  std::vector<double> t(ticks), u(ticks), tau(ticks);
+  std::vector<char> saturated(ticks);
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    for (std::size_t k = 0; k < ticks; ++k) {
+      const TrajectoryRow& row = rows[k * kJoints + i];
+      t[k] = row.t_s;
+      u[k] = row.u;
+      tau[k] = row.tau_nm;
+      saturated[k] = row.saturated ? 1 : 0;
+    }
+    out[i] = drive_metrics(t, u, tau, saturated);
+  }
+  return out;
+}
+
+TcpTrack tcp_track(const robot::RobotModel& model, const std::vector<TrajectoryRow>& rows) {
+  TcpTrack track;
+  const std::size_t ticks = rows.size() / kJoints;
+  track.t_s.reserve(ticks);
+  track.desired_m.reserve(ticks);
+  track.actual_m.reserve(ticks);
+  for (std::size_t k = 0; k < ticks; ++k) {
+    robot::JointVector qd{}, q{};
+    for (std::size_t i = 0; i < kJoints; ++i) {
+      qd[i] = rows[k * kJoints + i].theta_d;
+      q[i] = rows[k * kJoints + i].theta;
+    }
+    track.t_s.push_back(rows[k * kJoints].t_s);
+    track.desired_m.push_back(model.forward_kinematics(qd).position_m);
+    track.actual_m.push_back(model.forward_kinematics(q).position_m);
+  }
+  return track;
+}
+
+TcpErrorMetrics tcp_error_metrics(const TcpTrack& track) {
+  TcpErrorMetrics m;
+  const std::size_t n = std::min(track.desired_m.size(), track.actual_m.size());
+  if (n == 0) return m;
+  double sum_sq = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double d_mm = (track.actual_m[k] - track.desired_m[k]).norm() * 1e3;
+    m.max_mm = std::max(m.max_mm, d_mm);
+    sum_sq += d_mm * d_mm;
+  }
+  m.rms_mm = std::sqrt(sum_sq / static_cast<double>(n));
+  return m;
 }
 
 }  // namespace fuzzypid::sim

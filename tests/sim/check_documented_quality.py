@@ -6,8 +6,11 @@ file and checks each row (set, controller): the summed ITAE within 0.5 % (the ta
 significant digits) and the worst overshoot within 0.1 percentage points. A controller that tracks
 worse, or a table that no longer says what the shipped files do, fails.
 
-usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR [DOC HEADING CONDITIONS ROWS]
-  (default: docs/tuning.md, "### The six-way table", tuning/robust.toml, 21 rows)
+usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR [DOC HEADING CONDITIONS ROWS
+                                   [allow-faults]]
+  (default: docs/tuning.md, "### The six-way table", tuning/robust.toml, 21 rows; no controller
+  may fault -- sim_ab exits 1 -- unless allow-faults: a table that documents controllers which
+  diverge or leave the joint limits)
 """
 import collections
 import csv
@@ -44,6 +47,8 @@ def main():
     names = sorted({c for _, c in rows})
     out = os.path.join(work, "quality-" + os.path.basename(conditions).split(".")[0])
     cmd = [sim_ab, "--quiet", "--conditions", os.path.join(src, conditions), "--out", out]
+    if len(sys.argv) > 8 and sys.argv[8] == "allow-faults":
+        cmd.append("--allow-faults")
     for n in names:
         cmd += ["--controller", os.path.join(src, "controllers", n + ".toml")]
     run = subprocess.run(cmd, capture_output=True, text=True)

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/paper.hpp"
@@ -35,6 +37,7 @@
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/robot/types.hpp"
 #include "fuzzypid/sim/condition.hpp"
+#include "fuzzypid/sim/faults.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 
 namespace fuzzypid::sim {
@@ -75,6 +78,14 @@ struct TrajectoryRow {
   double error_rate = 0.0;              // theta_d dot - theta dot, rad/s
   double u = 0.0;                       // controller output (rad/s² or N·m, see gain units)
   double kp = 0.0, ki = 0.0, kd = 0.0;  // gains of this tick, in the controller file's units
+  // The torque the plant received over the step that starts at this sample, after its limits
+  // (robot::JointPlant::applied_torque()); the last sample, which starts no step, repeats the
+  // one before. N·m.
+  double tau_nm = 0.0;
+  double omega_rad_s = 0.0;  // true joint velocity at the sample
+  // tau_nm sat at the joint's torque limit: the plant clamped it, or it lies on the limit
+  // within 1e-9 relative (the controller's output limit, the plant's over J^_i, held it there).
+  bool saturated = false;
 };
 
 struct RunResult {
@@ -90,11 +101,18 @@ struct RunResult {
   std::array<std::size_t, robot::kNumJoints> no_rule_ticks{};
   std::array<std::size_t, robot::kNumJoints> clamped_gain_ticks{};
   bool diverged = false;  // stopped early: |e| exceeded RunLimits::max_error_rad
+  // Joints that diverged (|e| > RunLimits::divergence_rad) or left the URDF's joint limits, tick
+  // by tick over the ticks run (faults.hpp); the run goes on through them.
+  TrackingFaults tracking_faults{};
+  // Ticks on which the controller faulted or a joint did (tracking_faults): metrics.csv `faults`.
+  std::size_t fault_ticks = 0;
 };
 
 struct RunLimits {
   // Stop the run (diverged) once any joint's |e| exceeds this; +inf never stops.
   double max_error_rad = std::numeric_limits<double>::infinity();
+  // A joint whose |e| exceeds this is counted in RunResult::tracking_faults (the run goes on).
+  double divergence_rad = kDefaultDivergenceRad;
   bool record = true;  // fill RunResult::rows (metrics need them)
 };
 
@@ -202,5 +220,23 @@ class ExperimentSet {
 // The metrics of each joint of a run (rows of one run, tick-major).
 [[nodiscard]] std::array<JointMetrics, robot::kNumJoints> run_metrics(
     const std::vector<TrajectoryRow>& rows, double tick_s);
+// The drive metrics (metrics.hpp) of each joint of a run.
+[[nodiscard]] std::array<DriveMetrics, robot::kNumJoints> run_drive_metrics(
+    const std::vector<TrajectoryRow>& rows);
+
+// The tool's path: at each tick of a run, the forward kinematics of the reference joints
+// (desired) and of the true joints (actual), m, in the chain's root frame.
+struct TcpTrack {
+  std::vector<double> t_s;
+  std::vector<Eigen::Vector3d> desired_m, actual_m;
+};
+[[nodiscard]] TcpTrack tcp_track(const robot::RobotModel& model,
+                                 const std::vector<TrajectoryRow>& rows);
+// The tool's path error |p_actual - p_desired| over the ticks: its maximum and RMS, mm.
+struct TcpErrorMetrics {
+  double max_mm = 0.0;
+  double rms_mm = 0.0;
+};
+[[nodiscard]] TcpErrorMetrics tcp_error_metrics(const TcpTrack& track);
 
 }  // namespace fuzzypid::sim

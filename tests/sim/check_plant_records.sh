@@ -1,0 +1,33 @@
+#!/bin/sh
+# What ran is on record: conditions.csv and settings.txt name, per condition, the robot (URDF),
+# the path, the tick, the payload in kg, the dynamics, gravity and the armature, and the banner
+# prints the plant; so two runs that differ only by --dynamics coupled --gravity --payload-kg 2
+# write different files (they once wrote identical ones).
+# Usage: check_plant_records.sh <sim_ab> <source dir>
+set -u
+sim_ab=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+"$sim_ab" --quiet --out "$work/paper" || fail "the paper's plant"
+# The paper's PID cannot hold the ER50's shoulder against gravity with a 2 kg tool: faults
+# (joint 2 |error| > 1 rad), accepted here.
+"$sim_ab" --dynamics coupled --gravity --payload-kg 2 --allow-faults --out "$work/coupled" \
+  >/dev/null 2>"$work/err" || fail "coupled: $(cat "$work/err")"
+cmp -s "$work/paper/conditions.csv" "$work/coupled/conditions.csv" &&
+  fail "conditions.csv identical for two plants"
+head -1 "$work/paper/conditions.csv" |
+  grep -q ",initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2$" ||
+  fail "conditions.csv header: $(head -1 "$work/paper/conditions.csv")"
+grep -q "^paper,scenario,.*/er50_c20.urdf,line,0.050000000000000003,0,decoupled,0,8.5;16;" \
+  "$work/paper/conditions.csv" || fail "paper row: $(tail -1 "$work/paper/conditions.csv")"
+grep -q "^paper,scenario,.*/er50_c20.urdf,line,0.050000000000000003,2,coupled,1,8.5;16;" \
+  "$work/coupled/conditions.csv" || fail "coupled row: $(tail -1 "$work/coupled/conditions.csv")"
+grep -q "^condition.paper=set=scenario urdf=.*/er50_c20.urdf path=line tick_s=0.050000000000000003 payload_kg=2 dynamics=coupled gravity=1 armature_kgm2=8.5,16," \
+  "$work/coupled/settings.txt" || fail "settings.txt: $(grep '^condition' "$work/coupled/settings.txt")"
+grep -q "^sim_ab: plant dynamics coupled, gravity on, payload 2 kg (1 condition)$" "$work/err" ||
+  fail "banner: $(cat "$work/err")"
+echo "plant records: conditions.csv, settings.txt and the banner name the plant"
