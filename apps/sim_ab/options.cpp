@@ -212,6 +212,7 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
                "and the count in metrics.csv)");
   app.add_flag("--quiet", o.quiet, "no table, no progress");
 
+  cli::refuse_empty_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

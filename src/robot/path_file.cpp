@@ -160,7 +160,10 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
 
 bool load_path_csv(const std::string& path, PathTable& table, std::string& error) {
   std::string text;
-  if (!support::read_file_bounded(path, kMaxPathFileBytes, text, error)) return false;
+  if (!support::read_file_bounded(path, kMaxPathFileBytes, text, error)) {
+    error = "path: " + error;  // as the URDF's "URDF: ": which input the file is
+    return false;
+  }
   return parse_path_csv(text, path, table, error);
 }
 
