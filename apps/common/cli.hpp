@@ -97,14 +97,15 @@ inline std::optional<std::uint64_t> parse_unsigned(const std::string& text) {
   return static_cast<std::uint64_t>(v);
 }
 
-// Parses a whole string as a finite real number (surrounding blanks allowed).
+// Parses a whole string as a finite real number (surrounding blanks allowed). An overflow (1e999)
+// is not finite; an underflow (1e-320, a subnormal) is, and is kept as strtod reads it (the
+// option's range then decides).
 inline std::optional<double> parse_finite(const std::string& text) {
   const std::string t = detail::trimmed(text);
   if (t.empty()) return std::nullopt;
-  errno = 0;
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
-  if (errno == ERANGE || end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
+  if (end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 

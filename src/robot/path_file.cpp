@@ -11,6 +11,7 @@
 
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
+#include "fuzzypid_support/printable.hpp"
 
 namespace fuzzypid::robot {
 
@@ -97,8 +98,9 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
       } else if (compact == kPoseHeader) {
         out.kind = PathKind::Cartesian;
       } else {
-        error = where(source, line_no) + "unknown header '" + line.substr(0, 120) +
-                "': expected '" + kJointHeader + "' or '" + kPoseHeader + "'";
+        error = where(source, line_no) + "unknown header '" +
+                support::printable(line.substr(0, 120)) + "': expected '" + kJointHeader +
+                "' or '" + kPoseHeader + "'";
         return false;
       }
       header = true;
@@ -121,7 +123,7 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
       const double v = std::strtod(field.c_str(), &stop);
       if (field.empty() || stop == field.c_str() || *stop != '\0') {
         error = where(source, line_no) + "field " + std::to_string(count + 1) +
-                " is not a number: '" + field.substr(0, 40) + "'";
+                " is not a number: '" + support::printable(field.substr(0, 40)) + "'";
         return false;
       }
       if (!std::isfinite(v)) {

@@ -1,6 +1,7 @@
 // File access, format dispatch and the shared model check of the rule-file readers.
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
+#include "fuzzypid_support/printable.hpp"
 
 #include "check.hpp"
 #include "text.hpp"
@@ -8,7 +9,9 @@
 namespace fuzzypid::rulefile {
 
 std::string LoadError::to_string() const {
-  return line > 0 ? file + ":" + std::to_string(line) + ": " + message : file + ": " + message;
+  // The message quotes the file's text, which may be any bytes (a binary file): never raw.
+  const std::string text = support::printable(message);
+  return line > 0 ? file + ":" + std::to_string(line) + ": " + text : file + ": " + text;
 }
 
 bool check_model(const Builder& model, const SourceLines& lines, LoadError& error) {
