@@ -198,6 +198,19 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
     return fail(PathStatus::InvalidSpec, table.source + ": more than 1e7 ticks (" + num(duration) +
                                              " s at " + num(tick_s) + " s a tick)");
 
+  // The seed of the first inverse kinematics is the user's (--ik-seed, ik_seed): one outside a
+  // joint's limits is blamed on itself, not on the first row the solver then cannot reach.
+  if (table.kind == PathKind::Cartesian)
+    for (std::size_t j = 0; j < kNumJoints; ++j) {
+      const double lo = model.lower_limits_rad()[j];
+      const double hi = model.upper_limits_rad()[j];
+      if (!is_continuous(model, j) && !(seed[j] >= lo - 1e-9 && seed[j] <= hi + 1e-9))
+        return fail(PathStatus::InvalidSpec,
+                    "the IK seed (--ik-seed, ik_seed): joint " + std::to_string(j + 1) + " ('" +
+                        model.joint_names()[j] + "') at " + num(seed[j]) +
+                        " rad is outside its URDF limits [" + num(lo) + ", " + num(hi) + "]");
+    }
+
   // "file:line: row at t = T s: ", for the message of a failing row (built only then).
   const auto row_at = [&table](std::size_t k) {
     return where(table.source, table.line[k]) + "row at t = " + num(table.time_s[k]) + " s: ";
