@@ -61,8 +61,8 @@ bool check_export(const Model& model, std::string& error) {
 
 namespace {
 
-// A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger, or a
-// device that never ends (/dev/zero), is refused before it can exhaust memory.
+// A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger is
+// refused before it can exhaust memory (a device or a FIFO is refused by its kind, unread).
 constexpr std::size_t kMaxRuleFileBytes = std::size_t{16} << 20;
 
 bool read_file(const std::string& path, std::string& text, LoadError& error) {

@@ -96,8 +96,8 @@ inline toml::table parse_toml(std::string_view text, const std::string& source) 
 }
 
 inline std::string read_text(const std::string& path) {
-  // Controller and condition files are a few kB; a larger file, or a device that never ends
-  // (/dev/zero), is refused before it can exhaust memory.
+  // Controller and condition files are a few kB; a larger file is refused before it can exhaust
+  // memory (a device or a FIFO is refused by its kind, unread).
   constexpr std::size_t kMaxBytes = std::size_t{1} << 20;
   std::string text;
   std::string reason;
