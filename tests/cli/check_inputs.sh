@@ -101,6 +101,24 @@ case $case_name in
     grep -q '^family = "pid"' r.toml || fail "tune result: $(cat r.toml)"
     leftovers=$(ls -A | grep '^\.r\.toml')
     [ -z "$leftovers" ] || fail "left behind: $leftovers"
+    # Two tune runs: the second is refused while the first spends its budget; the first, stopped
+    # by SIGTERM (a background job of sh ignores SIGINT), leaves its lock and temporary behind
+    # neither, and the previous r.toml untouched.
+    cp r.toml r.before
+    $fuzzypid tune --family pid --budget 100000000 --population 20 --threads 1 --quiet \
+      --conditions cond.toml --out r.toml >/dev/null 2>&1 &
+    first=$!
+    n=0
+    while [ ! -e .r.toml.lock ] && [ "$n" -lt 100 ]; do sleep 0.05; n=$((n + 1)); done
+    expect 1 "the output file 'r.toml' is being written by another process" \
+      $tune --conditions cond.toml --out r.toml
+    kill -s TERM "$first"
+    wait "$first"
+    code=$?
+    [ "$code" -eq 143 ] || fail "the first tune: exit $code, expected death by SIGTERM (143)"
+    leftovers=$(ls -A | grep '^\.r\.toml')
+    [ -z "$leftovers" ] || fail "left behind by the stopped run: $leftovers"
+    cmp -s r.toml r.before || fail "the stopped run changed r.toml"
     ;;
   empty_values_are_refused)
     for opt in --urdf --base-link --tip-link --path; do
