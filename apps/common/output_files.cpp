@@ -572,16 +572,15 @@ std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::strin
       (fs::path(dir) / ("." + name + "." + tool + "." + std::to_string(::getpid()) + ".tmp"))
           .string();
   ::unlink(temp.c_str());  // ours by name: a leftover of an earlier open in this process
-  out->temp_path_ = temp;
-  out->signal_slots_.push_back(remove_on_signal_add(temp, Removal::Unlink));
   // The new file gets the mode of the file it replaces, else the usual 0666 & ~umask.
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
                         exists ? (st.st_mode & 07777) : 0666);
   if (fd < 0) {
     error = "cannot write " + path + ": " + errno_text(errno);
-    out->temp_path_.clear();  // not ours: O_EXCL found it
     return nullptr;
   }
+  out->temp_path_ = temp;
+  out->signal_slots_.push_back(remove_on_signal_add(temp, Removal::Unlink));
   if (exists) ::fchmod(fd, st.st_mode & 07777);  // not masked by the umask
   out->file_ = ::fdopen(fd, "w");
   if (out->file_ == nullptr) {
