@@ -58,15 +58,19 @@ bool parse_box(const std::string& text, ctl::SearchBox& box) {
 // the name leads where a reader of `out` follows it.
 std::string path_from_folder_of(const std::string& out, const std::string& file) {
   namespace fs = std::filesystem;
-  std::error_code ec;
+  // The folder of `p`, absolute with its links resolved; false when it cannot be resolved.
+  const auto folder_of = [](const fs::path& p, fs::path& folder) {
+    std::error_code ec;
+    folder = fs::absolute(p.has_parent_path() ? p.parent_path() : fs::path("."), ec);
+    if (!ec) folder = fs::weakly_canonical(folder, ec);
+    return !ec;
+  };
   const fs::path f(file);
-  const fs::path target =
-      fs::weakly_canonical(fs::absolute(f.has_parent_path() ? f.parent_path() : ".", ec), ec) /
-      f.filename();
-  const fs::path o(out);
-  const fs::path folder =
-      fs::weakly_canonical(fs::absolute(o.has_parent_path() ? o.parent_path() : ".", ec), ec);
-  if (ec) return fs::absolute(f).lexically_normal().generic_string();
+  fs::path from, folder;
+  std::error_code ec;
+  if (!folder_of(f, from) || !folder_of(fs::path(out), folder))
+    return fs::absolute(f, ec).lexically_normal().generic_string();
+  const fs::path target = from / f.filename();
   const fs::path relative = target.lexically_relative(folder);
   return relative.empty() ? target.generic_string() : relative.generic_string();
 }
