@@ -269,6 +269,14 @@ INSTANTIATE_TEST_SUITE_P(
 
 // Only a regular file is read: a device that never ends (or a FIFO that would block) is refused by
 // its kind before it is opened, and so is a directory.
+// Names quoted in a message are escaped: a control character would act on the user's terminal.
+TEST(RobotModel, MessagesQuoteNonPrintableBytesEscaped) {
+  const LoadResult r = RobotModel::load(default_urdf_path(), "", "tip\x1b[31m\a");
+  EXPECT_FALSE(r.model.has_value());
+  EXPECT_NE(r.error.find("tip link 'tip\\x1b[31m\\x07' is not in the URDF"), std::string::npos)
+      << r.error;
+}
+
 TEST(RobotModel, LoadReadsOnlyRegularFiles) {
   const LoadResult zero = RobotModel::load("/dev/zero");
   EXPECT_FALSE(zero.model.has_value());
