@@ -629,7 +629,7 @@ TEST(RuleFile, MessagesQuoteNonPrintableBytesEscaped) {
   const std::string binary = std::string(
       "ww\x8f\a\x1b[31m\x00"
       "caf\xc3\xa9\n",
-      17);
+      16);
   for (const Parse parse :
        {Parse{fuzzypid::rulefile::parse_fll}, Parse{fuzzypid::rulefile::parse_fis},
         Parse{fuzzypid::rulefile::parse_fcl}}) {
