@@ -1,7 +1,7 @@
 // libFuzzer target for the command-line tools' strict CSV reader (apps/common/csv.hpp). The first
 // byte picks the column constraint; the rest is the input. Every accepted row must hold only finite
 // numbers within the constraint, line numbers must increase, and a stop with an empty error()
-// must be the end of the input.
+// must be the end of the input; an error message holds no control character.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,5 +29,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
   }
   if (reader.error().empty() && !in.eof()) std::abort();
+  // Messages quote the input escaped: no control character reaches the terminal.
+  for (const char c : reader.error())
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) std::abort();
   return 0;
 }

@@ -4,6 +4,7 @@
 //   - numbers are checked before conversion: an unsigned option takes digits only ("-1" is an
 //     error, not 2^64 - 1; a value beyond the type's range is an error, not a saturated one), and a
 //     real option takes a finite number unless it says otherwise;
+//   - an empty value is refused for every option ("omit the option for its default");
 //   - an enumerated option is parsed from the table kept next to its enum (the same table gives
 //     its to_string), and --help lists the accepted names;
 //   - standard output is checked: a write that fails (a full disk, `> /dev/full`) is an error.
@@ -96,14 +97,15 @@ inline std::optional<std::uint64_t> parse_unsigned(const std::string& text) {
   return static_cast<std::uint64_t>(v);
 }
 
-// Parses a whole string as a finite real number (surrounding blanks allowed).
+// Parses a whole string as a finite real number (surrounding blanks allowed). An overflow (1e999)
+// is not finite; an underflow (1e-320, a subnormal) is, and is kept as strtod reads it (the
+// option's range then decides).
 inline std::optional<double> parse_finite(const std::string& text) {
   const std::string t = detail::trimmed(text);
   if (t.empty()) return std::nullopt;
-  errno = 0;
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
-  if (errno == ERANGE || end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
+  if (end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 
@@ -151,6 +153,25 @@ inline CLI::Validator finite_in(double lo, double hi) {
       "in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]");
 }
 
+// An empty value never stands for the default: `--urdf ''` (a variable that expanded to nothing)
+// is refused, naming the option, instead of silently running the bundled robot.
+inline CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        return s.empty() ? "empty value (omit the option for its default)" : std::string();
+      },
+      "");
+}
+
+// Adds non_empty() to every option of `app` and of its subcommands that takes a value (flags take
+// none), after the option's own checks. Called by the parsers before they parse.
+inline void refuse_empty_values(CLI::App& app) {
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size() != 0 && option->get_expected_max() != 0) option->check(non_empty());
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    refuse_empty_values(*sub);
+}
+
 // Runs a tool's main body, turning an exception that escapes it (an allocation failure, a bug) into
 // a message and kExitFailure instead of std::terminate. A run whose messages on standard error did
 // not all reach it (2>/dev/full: a warning or a report lost unseen) exits kExitFailure too.
@@ -170,6 +191,7 @@ int run_main(const char* tool, Body&& body) noexcept {
 // Parses the command line. Returns nullopt when the tool should run, else the exit code: 0 after
 // --help (printed to stdout), kExitUsage after a usage error (message on stderr).
 inline std::optional<int> parse(CLI::App& app, int argc, const char* const* argv) {
+  refuse_empty_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

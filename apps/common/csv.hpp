@@ -3,7 +3,9 @@
 // Rows are comma-separated numbers. Blank lines and lines starting with '#' are skipped. The first
 // non-blank line may be a header: it is skipped when every one of its fields is text, i.e. not a
 // number as strtod reads one (so "nan", "inf" and "1e999" are numbers -- not finite, hence errors
-// -- and never pass for a header). Every other malformed row is an error whose message names the
+// -- and never pass for a header), nor a number in double quotes ("0.5", as spreadsheets export
+// it: an error naming the quotes, never a header that silently drops the first row). A number
+// that underflows (1e-320, a subnormal) is finite and kept as strtod reads it. Every other malformed row is an error whose message names the
 // line, so a user piping a file through a tool learns exactly where it is wrong. Lines are read
 // with a bound (kMaxLineBytes): a longer line is an error, not an unbounded allocation.
 #pragma once
@@ -17,6 +19,8 @@
 #include <streambuf>
 #include <string>
 #include <vector>
+
+#include "fuzzypid_support/printable.hpp"
 
 namespace fuzzypid::cli {
 
@@ -58,7 +62,9 @@ class CsvReader {
         const Field kind = parse_field(fields[k], v);
         if (kind != Field::Text) all_text = false;
         if (kind != Field::Finite && first_bad.empty())
-          first_bad = "column " + std::to_string(k + 1) + " ('" + shown(fields[k]) + "')";
+          first_bad = "column " + std::to_string(k + 1) + " ('" + shown(fields[k]) + "')" +
+                      (kind == Field::Quoted ? " is a number in quotes: write it without them"
+                                             : " is not a finite number");
         row.values.push_back(v);
       }
       if (!seen_data_ && all_text) {  // header line
@@ -67,7 +73,7 @@ class CsvReader {
       }
       seen_data_ = true;
       if (!first_bad.empty()) {
-        error_ = "line " + std::to_string(line_) + ": " + first_bad + " is not a finite number";
+        error_ = "line " + std::to_string(line_) + ": " + first_bad;
         return false;
       }
       if (expected_columns_min_ != 0 && (row.values.size() < expected_columns_min_ ||
@@ -90,8 +96,9 @@ class CsvReader {
 
  private:
   enum class LineRead { Line, TooLong, End };
-  // A field is a finite number, another number (NaN, inf, out of range), or text (a header).
-  enum class Field { Finite, NotFinite, Text };
+  // A field is a finite number, another number (NaN, inf, out of range), a number in double quotes,
+  // or text (a header).
+  enum class Field { Finite, NotFinite, Quoted, Text };
 
   // Reads up to the next '\n' (not stored). At the end of the input sets the stream's eofbit.
   LineRead read_line(std::string& text) {
@@ -122,10 +129,10 @@ class CsvReader {
     const auto e = s.find_last_not_of(" \t");
     return s.substr(b, e - b + 1);
   }
-  // The field as quoted in a message: trimmed, at most 40 characters.
+  // The field as quoted in a message: trimmed, at most 40 bytes, non-printable bytes escaped.
   static std::string shown(const std::string& field) {
     const std::string t = trim(field);
-    return t.size() <= 40 ? t : t.substr(0, 40) + "...";
+    return support::printable(t.size() <= 40 ? t : t.substr(0, 40) + "...");
   }
   static std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> out;
@@ -140,17 +147,20 @@ class CsvReader {
     return out;
   }
   // A number is a field strtod reads completely (surrounding blanks allowed); it is Finite when
-  // its value is finite and within the range of double (no overflow or underflow). Text is any
-  // other non-empty field; an empty field is neither a number nor a header name.
+  // its value is finite: an overflow (1e999) is not, an underflow (1e-320) is the subnormal or zero
+  // strtod gives. Quoted is such a number in double quotes. Text is any other non-empty field; an
+  // empty field is neither a number nor a header name.
   static Field parse_field(const std::string& field, double& value) {
     const std::string t = trim(field);
     if (t.empty()) return Field::NotFinite;
+    if (t.size() > 2 && t.front() == '"' && t.back() == '"') {
+      double inner = 0.0;
+      if (parse_field(t.substr(1, t.size() - 2), inner) != Field::Text) return Field::Quoted;
+    }
     const char* begin = t.c_str();
     char* end = nullptr;
-    errno = 0;
     value = std::strtod(begin, &end);
     if (end != begin + t.size()) return Field::Text;
-    if (errno == ERANGE) return Field::NotFinite;  // beyond the range of double
     return std::isfinite(value) ? Field::Finite : Field::NotFinite;
   }
   std::string columns_text() const {

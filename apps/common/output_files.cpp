@@ -27,61 +27,83 @@ std::string errno_text(int err) {
   return std::strerror(err);
 }
 
-// ---------------------------------------------------------------------------------------------
-// Clean-up on SIGINT/SIGTERM/SIGHUP of the one set being written. The handler only uses
-// async-signal-safe calls (unlink, rmdir, signal, raise) on paths prepared before.
+std::string in_quotes(const std::string& path) {
+  return "'" + path + "'";
+}
 
-constexpr std::size_t kMaxSignalFiles = 16;
-char g_signal_files[kMaxSignalFiles][PATH_MAX];
-std::size_t g_signal_file_count = 0;
-char g_signal_dir[PATH_MAX];
-char g_signal_lock[PATH_MAX];
-volatile std::sig_atomic_t g_signal_armed = 0;
-struct sigaction g_old_int {};
-struct sigaction g_old_term {};
-struct sigaction g_old_hup {};
+// ---------------------------------------------------------------------------------------------
+// Clean-up on SIGINT/SIGTERM/SIGHUP of the outputs being written: a fixed table of paths (the open
+// sets' files, temporary directories and lock files, the open files' temporaries and lock files),
+// filled before the handler can need them. The handler only uses async-signal-safe calls (unlink,
+// rmdir, signal, raise) on those prepared paths: files first, then the emptied directories.
+
+enum class Removal : int { None = 0, Unlink = 1, Rmdir = 2 };
+constexpr std::size_t kMaxSignalPaths = 64;
+char g_signal_paths[kMaxSignalPaths][PATH_MAX];
+volatile std::sig_atomic_t g_signal_kind[kMaxSignalPaths];  // a Removal; None for a free slot
+std::size_t g_signal_users = 0;                             // slots in use
+constexpr std::array<int, 3> kCleanedSignals = {SIGINT, SIGTERM, SIGHUP};
+std::array<bool, 3> g_installed{};  // whether our handler replaced the default one
+std::array<struct sigaction, 3> g_previous{};
 
 extern "C" void remove_on_signal(int sig) {
-  if (g_signal_armed != 0) {
-    for (std::size_t k = 0; k < g_signal_file_count; ++k)
-      ::unlink(g_signal_files[k]);
-    ::rmdir(g_signal_dir);
-    ::unlink(g_signal_lock);
-  }
+  for (const Removal pass : {Removal::Unlink, Removal::Rmdir})
+    for (std::size_t k = 0; k < kMaxSignalPaths; ++k)
+      if (g_signal_kind[k] == static_cast<int>(pass))
+        (void)(pass == Removal::Unlink ? ::unlink(g_signal_paths[k]) : ::rmdir(g_signal_paths[k]));
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
 
-bool copy_path(char (&to)[PATH_MAX], const std::string& from) {
-  if (from.size() >= PATH_MAX) return false;
-  std::memcpy(to, from.c_str(), from.size() + 1);
-  return true;
+// Installs the handler for each signal whose disposition is the default (death). A tool that
+// handles a signal itself (rt_loop stops its loop and commits) keeps its handler, and finishes or
+// discards its outputs on its own.
+void install_signal_cleanup() noexcept {
+  for (std::size_t i = 0; i < kCleanedSignals.size(); ++i) {
+    g_installed[i] = false;
+    if (sigaction(kCleanedSignals[i], nullptr, &g_previous[i]) != 0) continue;
+    if ((g_previous[i].sa_flags & SA_SIGINFO) != 0 || g_previous[i].sa_handler != SIG_DFL) continue;
+    struct sigaction sa {};
+    sa.sa_handler = remove_on_signal;
+    sigemptyset(&sa.sa_mask);
+    g_installed[i] = sigaction(kCleanedSignals[i], &sa, nullptr) == 0;
+  }
 }
 
-void arm_signal_cleanup(const std::string& dir, const std::vector<std::string>& names,
-                        const std::string& lock) {
-  g_signal_armed = 0;
-  if (names.size() > kMaxSignalFiles || !copy_path(g_signal_dir, dir) ||
-      !copy_path(g_signal_lock, lock))
-    return;  // left to the next run's clean-up
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (!copy_path(g_signal_files[k], dir + "/" + names[k])) return;
-  g_signal_file_count = names.size();
-  struct sigaction sa {};
-  sa.sa_handler = remove_on_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, &g_old_int);
-  sigaction(SIGTERM, &sa, &g_old_term);
-  sigaction(SIGHUP, &sa, &g_old_hup);
-  g_signal_armed = 1;
+// Puts the default back where ours still is (not over a handler the tool set meanwhile).
+void restore_signal_cleanup() noexcept {
+  for (std::size_t i = 0; i < kCleanedSignals.size(); ++i) {
+    if (!g_installed[i]) continue;
+    struct sigaction current {};
+    if (sigaction(kCleanedSignals[i], nullptr, &current) == 0 &&
+        (current.sa_flags & SA_SIGINFO) == 0 && current.sa_handler == remove_on_signal)
+      sigaction(kCleanedSignals[i], &g_previous[i], nullptr);
+    g_installed[i] = false;
+  }
 }
 
-void disarm_signal_cleanup() {
-  if (g_signal_armed == 0) return;
-  g_signal_armed = 0;
-  sigaction(SIGINT, &g_old_int, nullptr);
-  sigaction(SIGTERM, &g_old_term, nullptr);
-  sigaction(SIGHUP, &g_old_hup, nullptr);
+// Adds `path` to the table; the handlers are installed with the first path. Returns the slot, or
+// -1 when the table is full or the path too long (left to the next run's clean-up).
+int remove_on_signal_add(const std::string& path, Removal kind) {
+  if (path.size() >= PATH_MAX) return -1;
+  for (std::size_t k = 0; k < kMaxSignalPaths; ++k) {
+    if (g_signal_kind[k] != static_cast<int>(Removal::None)) continue;
+    std::memcpy(g_signal_paths[k], path.c_str(), path.size() + 1);
+    if (g_signal_users++ == 0) install_signal_cleanup();
+    g_signal_kind[k] = static_cast<int>(kind);  // last: the slot is complete before it is seen
+    return static_cast<int>(k);
+  }
+  return -1;
+}
+
+// Frees the slots; the previous handlers are restored with the last one.
+void remove_on_signal_drop(std::vector<int>& slots) noexcept {
+  for (const int k : slots) {
+    if (k < 0 || g_signal_kind[k] == static_cast<int>(Removal::None)) continue;
+    g_signal_kind[k] = static_cast<int>(Removal::None);
+    if (--g_signal_users == 0) restore_signal_cleanup();
+  }
+  slots.clear();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -220,7 +242,11 @@ std::unique_ptr<OutputSet> OutputSet::open(const std::string& dir,
     ::umask(mask);
     ::chmod(set->temp_dir_.c_str(), 0777 & ~mask);
   }
-  arm_signal_cleanup(set->temp_dir_, names, set->lock_path_);
+  set->signal_slots_.push_back(remove_on_signal_add(set->lock_path_, Removal::Unlink));
+  set->signal_slots_.push_back(remove_on_signal_add(set->temp_dir_, Removal::Rmdir));
+  for (const std::string& file_name : names)
+    set->signal_slots_.push_back(
+        remove_on_signal_add(set->temp_dir_ + "/" + file_name, Removal::Unlink));
   for (const std::string& file_name : names) {
     const std::string path = set->temp_dir_ + "/" + file_name;
     std::FILE* f = std::fopen(path.c_str(), "w");
@@ -245,7 +271,7 @@ void OutputSet::close_files() noexcept {
 }
 
 void OutputSet::release() noexcept {
-  disarm_signal_cleanup();
+  remove_on_signal_drop(signal_slots_);
   if (lock_fd_ >= 0) {
     ::unlink(lock_path_.c_str());  // while still held: no one can take a lock on this file
     ::close(lock_fd_);
@@ -359,10 +385,6 @@ const char* kind_of(mode_t mode) {
   if (S_ISFIFO(mode)) return "a FIFO";
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
-}
-
-std::string in_quotes(const std::string& path) {
-  return "'" + path + "'";
 }
 
 // The folder `dir` must exist, be a folder and be writable by this process; a folder whose mode
@@ -537,6 +559,14 @@ std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::strin
   }
   const std::string dir = folder_of(out->target_);
   const std::string name = fs::path(out->target_).filename().string();
+  out->path_ = path;
+  out->lock_path_ = (fs::path(dir) / ("." + name + ".lock")).string();
+  out->lock_fd_ = lock_file(out->lock_path_, "the output file " + in_quotes(path), error);
+  if (out->lock_fd_ < 0) {
+    out->done_ = true;  // nothing of ours to remove
+    return nullptr;
+  }
+  out->signal_slots_.push_back(remove_on_signal_add(out->lock_path_, Removal::Unlink));
   remove_stale_temporaries(dir, name, tool);
   const std::string temp =
       (fs::path(dir) / ("." + name + "." + tool + "." + std::to_string(::getpid()) + ".tmp"))
@@ -549,9 +579,9 @@ std::unique_ptr<OutputFile> OutputFile::open(const std::string& path, std::strin
     error = "cannot write " + path + ": " + errno_text(errno);
     return nullptr;
   }
-  if (exists) ::fchmod(fd, st.st_mode & 07777);  // not masked by the umask
-  out->path_ = path;
   out->temp_path_ = temp;
+  out->signal_slots_.push_back(remove_on_signal_add(temp, Removal::Unlink));
+  if (exists) ::fchmod(fd, st.st_mode & 07777);  // not masked by the umask
   out->file_ = ::fdopen(fd, "w");
   if (out->file_ == nullptr) {
     error = "cannot write " + path + ": " + errno_text(errno);
@@ -565,12 +595,22 @@ OutputFile::~OutputFile() {
   if (!done_) discard();
 }
 
+void OutputFile::release() noexcept {
+  remove_on_signal_drop(signal_slots_);
+  if (lock_fd_ >= 0) {
+    ::unlink(lock_path_.c_str());  // while still held: no one can take a lock on this file
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+  }
+  done_ = true;
+}
+
 void OutputFile::discard() noexcept {
   if (done_) return;
   if (file_ != nullptr) std::fclose(file_);
   file_ = nullptr;
   if (!temp_path_.empty()) ::unlink(temp_path_.c_str());
-  done_ = true;
+  release();
 }
 
 bool OutputFile::commit(std::string& error) {
@@ -609,7 +649,7 @@ bool OutputFile::commit(std::string& error) {
     return false;
   }
   sync_folder(folder_of(target_));
-  done_ = true;
+  release();
   return true;
 }
 

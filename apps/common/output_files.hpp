@@ -20,8 +20,12 @@
 // (write_output_file for a text made at once): the text goes to `.<name>.<tool>.<pid>.tmp` in the
 // target's folder, is flushed and fsync'ed, and is renamed over the target only when complete; on
 // any failure the temporary is removed, the previous file is left as it was and the error names
-// the reason (strerror). Temporaries of the same tool whose process is gone (a run killed outright)
-// are removed when the next run opens the same target.
+// the reason (strerror). From open to commit or discard the target is locked like a set's
+// (`.<name>.lock` beside it, the same lock file as a set of that name), so a second writer of the
+// same file -- another run of any tool -- is refused at open instead of both reporting success
+// while one result is lost; SIGINT, SIGTERM and SIGHUP remove the temporary and the lock file.
+// Temporaries of the same tool whose process is gone (a run killed outright) are removed when the
+// next run opens the same target.
 //
 // The contract of an output path (docs/robustness.md, "Outputs"), checked by check_output_path()
 // when the arguments are parsed, before any work, and again when the file is opened:
@@ -92,14 +96,15 @@ class OutputSet {
   int lock_fd_ = -1;
   std::vector<std::string> names_;
   std::vector<std::FILE*> files_;
+  std::vector<int> signal_slots_;  // the paths a signal removes
   bool done_ = false;
 };
 
 class OutputFile {
  public:
-  // Checks `path` (check_output_path without inputs), removes the stale temporaries of `tool` for
-  // it, and creates the temporary file `.<name>.<tool>.<pid>.tmp` in the target's folder. Null
-  // and `error` on failure.
+  // Checks `path` (check_output_path without inputs), locks it (refused, naming the file, while
+  // another run writes it), removes the stale temporaries of `tool` for it, and creates the
+  // temporary file `.<name>.<tool>.<pid>.tmp` in the target's folder. Null and `error` on failure.
   static std::unique_ptr<OutputFile> open(const std::string& path, std::string& error,
                                           const std::string& tool = "fuzzypid");
 
@@ -117,10 +122,14 @@ class OutputFile {
 
  private:
   OutputFile() = default;
-  std::string path_;    // as given, for messages
-  std::string target_;  // the file replaced: `path_` with a symbolic link resolved
+  void release() noexcept;  // removes the lock file and releases the lock
+  std::string path_;        // as given, for messages
+  std::string target_;      // the file replaced: `path_` with a symbolic link resolved
   std::string temp_path_;
+  std::string lock_path_;  // .<name>.lock beside the target
+  int lock_fd_ = -1;
   std::FILE* file_ = nullptr;
+  std::vector<int> signal_slots_;  // the paths a signal removes
   bool done_ = false;
 };
 

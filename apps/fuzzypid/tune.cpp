@@ -1,9 +1,11 @@
 // `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
 // `fuzzypid export-header`: a controller file as a self-contained C++ header.
 #include <algorithm>
+#include <cerrno>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -53,6 +55,28 @@ bool parse_box(const std::string& text, ctl::SearchBox& box) {
          std::fabs(box.log10_max) <= kMaxLog10;
 }
 
+// `file` (relative to the current folder, or absolute) as named from the folder of the file `out`:
+// relative when both are on one tree, else absolute. Symbolic links in the folders are resolved, so
+// the name leads where a reader of `out` follows it.
+std::string path_from_folder_of(const std::string& out, const std::string& file) {
+  namespace fs = std::filesystem;
+  // The folder of `p`, absolute with its links resolved; false when it cannot be resolved.
+  const auto folder_of = [](const fs::path& p, fs::path& folder) {
+    std::error_code ec;
+    folder = fs::absolute(p.has_parent_path() ? p.parent_path() : fs::path("."), ec);
+    if (!ec) folder = fs::weakly_canonical(folder, ec);
+    return !ec;
+  };
+  const fs::path f(file);
+  fs::path from, folder;
+  std::error_code ec;
+  if (!folder_of(f, from) || !folder_of(fs::path(out), folder))
+    return fs::absolute(f, ec).lexically_normal().generic_string();
+  const fs::path target = from / f.filename();
+  const fs::path relative = target.lexically_relative(folder);
+  return relative.empty() ? target.generic_string() : relative.generic_string();
+}
+
 struct TuneOptions {
   std::string family_name, conditions, set = "training", out, base_file, init_file, stages;
   std::uint64_t budget = 16000, seed = 1, population = 0, validation = 0;
@@ -97,6 +121,14 @@ int run_tune(const TuneOptions& t) {
       !bad.empty()) {
     std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
     return kExitUsage;
+  }
+  // Held (locked) from here to the commit: a second run writing the same file is refused now, not
+  // after both have spent their budgets and one result has replaced the other.
+  std::string open_error;
+  const std::unique_ptr<OutputFile> out_file = OutputFile::open(t.out, open_error, "tune");
+  if (!out_file) {
+    std::fprintf(stderr, "fuzzypid tune: --out: %s\n", open_error.c_str());
+    return kExitFailure;
   }
   std::vector<tune::Stage> stages;
   if (!t.stages.empty()) {
@@ -276,24 +308,23 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 2;
   }
+  // Every file name written into the result is relative to the result's folder, as a reader
+  // resolves it: the rule file (named relative to the folder of the file it came from, the base or
+  // else the start) and the tuning record's conditions, robots, paths and start.
   if (!result->controller.supervisor.rule_file.empty()) {
-    // The base's rule file, named relative to the folder of the file written.
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path target = fs::absolute(fs::path(t.base_file), ec).parent_path() /
-                            result->controller.supervisor.rule_file;
-    const fs::path relative =
-        fs::relative(target, fs::absolute(fs::path(t.out), ec).parent_path(), ec);
+    const std::filesystem::path from =
+        std::filesystem::path(t.base_file.empty() ? t.init_file : t.base_file).parent_path();
     result->controller.supervisor.rule_file =
-        ec || relative.empty() ? target.generic_string() : relative.generic_string();
+        path_from_folder_of(t.out, (from / result->controller.supervisor.rule_file).string());
   }
-  result->controller.tuning->conditions = t.conditions;
+  result->controller.tuning->conditions = path_from_folder_of(t.out, t.conditions);
   for (std::size_t k = 0; k < experiments->size(); ++k) {
     const sim::RobotSetup& setup = experiments->experiment(k).setup();
     const auto add = [&](const char* kind, const std::string& file) {
+      const std::string written = path_from_folder_of(t.out, file);
       for (const auto& f : result->controller.tuning->trained_on)
-        if (f.kind == kind && f.file == file) return;
-      result->controller.tuning->trained_on.push_back({kind, file, cf::file_hash(file)});
+        if (f.kind == kind && f.file == written) return;
+      result->controller.tuning->trained_on.push_back({kind, written, cf::file_hash(file)});
     };
     if (!setup.urdf.empty()) add("urdf", setup.urdf);
     if (!setup.path.empty()) add("path", setup.path);
@@ -305,12 +336,18 @@ int run_tune(const TuneOptions& t) {
     result->controller.tuning->tick_s = tick;
   }
   result->controller.tuning->set = t.set;
-  result->controller.tuning->init = t.init_file;
+  if (!t.init_file.empty())
+    result->controller.tuning->init = path_from_folder_of(t.out, t.init_file);
   result->controller.description =
       "tuned " + std::string(ctl::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
-  if (const std::string bad = write_output_file(t.out, cf::to_toml(result->controller), "tune");
-      !bad.empty()) {
-    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+  const std::string text = cf::to_toml(result->controller);
+  if (std::fwrite(text.data(), 1, text.size(), out_file->file()) != text.size()) {
+    std::fprintf(stderr, "fuzzypid tune: cannot write %s: %s\n", t.out.c_str(),
+                 std::strerror(errno != 0 ? errno : EIO));
+    return 1;
+  }
+  if (!out_file->commit(error)) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
   }
   for (const ctl::BoundHit& h : result->controller.tuning->on_bound) {

@@ -222,6 +222,7 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
                "limits) are counted and named but exit 0 (else exit 1)");
   app.add_flag("--quiet", o.quiet, "no table, no progress");
 
+  cli::refuse_empty_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -327,8 +327,15 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
 }  // namespace
 
 std::string file_hash(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return {};
+  // Through the inputs' checked opener: a FIFO or a device is never opened (it could block).
+  std::string refused;
+  const int fd = support::open_regular_file(path, refused);
+  if (fd < 0) return {};
+  std::FILE* f = ::fdopen(fd, "rb");
+  if (f == nullptr) {
+    ::close(fd);
+    return {};
+  }
   std::uint64_t h = 14695981039346656037ull;
   unsigned char buf[65536];
   std::size_t n = 0;
@@ -442,7 +449,7 @@ std::string to_toml(const ControllerSpec& s) {
   }
   if (s.tuning) {
     const Tuning& t = *s.tuning;
-    o += "\n[tuning]\n";
+    o += "\n[tuning]  # file names relative to this file's folder\n";
     o += "conditions = " + quoted(t.conditions) + "\n";
     o += "set = " + quoted(t.set) + "\n";
     o += "algorithm = " + quoted(t.algorithm) + "\n";

@@ -11,6 +11,7 @@
 
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
+#include "fuzzypid_support/printable.hpp"
 
 namespace fuzzypid::robot {
 
@@ -97,8 +98,9 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
       } else if (compact == kPoseHeader) {
         out.kind = PathKind::Cartesian;
       } else {
-        error = where(source, line_no) + "unknown header '" + line.substr(0, 120) +
-                "': expected '" + kJointHeader + "' or '" + kPoseHeader + "'";
+        error = where(source, line_no) + "unknown header '" +
+                support::printable(line.substr(0, 120)) + "': expected '" + kJointHeader +
+                "' or '" + kPoseHeader + "'";
         return false;
       }
       header = true;
@@ -121,7 +123,7 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
       const double v = std::strtod(field.c_str(), &stop);
       if (field.empty() || stop == field.c_str() || *stop != '\0') {
         error = where(source, line_no) + "field " + std::to_string(count + 1) +
-                " is not a number: '" + field.substr(0, 40) + "'";
+                " is not a number: '" + support::printable(field.substr(0, 40)) + "'";
         return false;
       }
       if (!std::isfinite(v)) {
@@ -160,7 +162,10 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
 
 bool load_path_csv(const std::string& path, PathTable& table, std::string& error) {
   std::string text;
-  if (!support::read_file_bounded(path, kMaxPathFileBytes, text, error)) return false;
+  if (!support::read_file_bounded(path, kMaxPathFileBytes, text, error)) {
+    error = "path: " + error;  // as the URDF's "URDF: ": which input the file is
+    return false;
+  }
   return parse_path_csv(text, path, table, error);
 }
 
@@ -192,6 +197,19 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
   if (duration / tick_s > 1e7)
     return fail(PathStatus::InvalidSpec, table.source + ": more than 1e7 ticks (" + num(duration) +
                                              " s at " + num(tick_s) + " s a tick)");
+
+  // The seed of the first inverse kinematics is the user's (--ik-seed, ik_seed): one outside a
+  // joint's limits is blamed on itself, not on the first row the solver then cannot reach.
+  if (table.kind == PathKind::Cartesian)
+    for (std::size_t j = 0; j < kNumJoints; ++j) {
+      const double lo = model.lower_limits_rad()[j];
+      const double hi = model.upper_limits_rad()[j];
+      if (!is_continuous(model, j) && !(seed[j] >= lo - 1e-9 && seed[j] <= hi + 1e-9))
+        return fail(PathStatus::InvalidSpec,
+                    "the IK seed (--ik-seed, ik_seed): joint " + std::to_string(j + 1) + " ('" +
+                        model.joint_names()[j] + "') at " + num(seed[j]) +
+                        " rad is outside its URDF limits [" + num(lo) + ", " + num(hi) + "]");
+    }
 
   // "file:line: row at t = T s: ", for the message of a failing row (built only then).
   const auto row_at = [&table](std::size_t k) {

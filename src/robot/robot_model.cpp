@@ -19,6 +19,7 @@
 #include <kdl/tree.hpp>
 
 #include "fuzzypid_support/bounded_read.hpp"
+#include "fuzzypid_support/printable.hpp"
 
 #ifndef FUZZYPID_URDF_SOURCE_DIR
 #define FUZZYPID_URDF_SOURCE_DIR ""
@@ -220,9 +221,11 @@ std::string check_model(const urdf::ModelInterface& model) {
   return {};
 }
 
-LoadResult fail(std::string message) {
+// The message quotes names and text from the URDF (or the caller): bytes a terminal would act on
+// are escaped (\xHH), never printed raw.
+LoadResult fail(const std::string& message) {
   LoadResult r;
-  r.error = std::move(message);
+  r.error = support::printable(message);
   return r;
 }
 

@@ -490,6 +490,12 @@ class FisParser {
           term.kind = fuzzy::OutputTermKind::Membership;
           why = terms::make_membership(terms::Format::Fis, mf.type, mf.params, model_,
                                        term.membership);
+          // Under Type='sugeno' only a monotonic term means something (Tsukamoto's, as fuzzylite
+          // reads it); any other is a Sugeno output written with a Mamdani term.
+          if (why.empty() && type_ == "sugeno" && weighted && !fuzzy::is_monotonic(term.membership))
+            why = "Type='sugeno' outputs take 'constant' or 'linear' terms, not '" + mf.type +
+                  "' (of membership terms, a weighted DefuzzMethod takes only Tsukamoto's "
+                  "monotonic ones: rampmf, sigmf, smf, zmf, concavemf)";
           if (why.empty() && options_.exact_centroid && defuzzifier_ == Defuzzifier::Centroid &&
               !fuzzy::is_piecewise_linear(term.membership))
             why = "'" + mf.type + "' is not piecewise linear (exact centroid requested)";

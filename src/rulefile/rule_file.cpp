@@ -1,6 +1,7 @@
 // File access, format dispatch and the shared model check of the rule-file readers.
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
+#include "fuzzypid_support/printable.hpp"
 
 #include "check.hpp"
 #include "text.hpp"
@@ -8,7 +9,9 @@
 namespace fuzzypid::rulefile {
 
 std::string LoadError::to_string() const {
-  return line > 0 ? file + ":" + std::to_string(line) + ": " + message : file + ": " + message;
+  // The message quotes the file's text, which may be any bytes (a binary file): never raw.
+  const std::string text = support::printable(message);
+  return line > 0 ? file + ":" + std::to_string(line) + ": " + text : file + ": " + text;
 }
 
 bool check_model(const Builder& model, const SourceLines& lines, LoadError& error) {
@@ -58,8 +61,8 @@ bool check_export(const Model& model, std::string& error) {
 
 namespace {
 
-// A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger, or a
-// device that never ends (/dev/zero), is refused before it can exhaust memory.
+// A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger is
+// refused before it can exhaust memory (a device or a FIFO is refused by its kind, unread).
 constexpr std::size_t kMaxRuleFileBytes = std::size_t{16} << 20;
 
 bool read_file(const std::string& path, std::string& text, LoadError& error) {

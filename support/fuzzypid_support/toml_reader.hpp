@@ -32,7 +32,7 @@ class TableReader {
 
   bool has(std::string_view key) const { return table_.contains(key); }
 
-  // Required when `fallback` is empty.
+  // Required when `fallback` is empty. text() refuses the empty string.
   double number(std::string_view key, std::optional<double> fallback = std::nullopt,
                 bool allow_infinite = false);
   std::uint64_t count(std::string_view key, std::optional<std::uint64_t> fallback = std::nullopt);
@@ -96,8 +96,8 @@ inline toml::table parse_toml(std::string_view text, const std::string& source) 
 }
 
 inline std::string read_text(const std::string& path) {
-  // Controller and condition files are a few kB; a larger file, or a device that never ends
-  // (/dev/zero), is refused before it can exhaust memory.
+  // Controller and condition files are a few kB; a larger file is refused before it can exhaust
+  // memory (a device or a FIFO is refused by its kind, unread).
   constexpr std::size_t kMaxBytes = std::size_t{1} << 20;
   std::string text;
   std::string reason;
@@ -159,6 +159,10 @@ inline std::string TableReader::text(std::string_view key, std::optional<std::st
   if (node == nullptr) return *fallback;
   const auto* s = node->as_string();
   if (s == nullptr) fail(*node, "'" + std::string(key) + "' must be a string");
+  // "" never stands for the default (`urdf = ""` would silently load the bundled robot).
+  if (s->get().empty())
+    fail(*node, "'" + std::string(key) + "' is empty" +
+                    (fallback ? " (omit the key for its default)" : ": it must name something"));
   return s->get();
 }
 

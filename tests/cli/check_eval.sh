@@ -189,7 +189,8 @@ ROWS
     run '0,0
 ' --fis /dev/zero
     [ "$code" -eq 1 ] || fail "--fis /dev/zero: exit code $code, expected 1"
-    grep -q "is larger than" "$work/err" || fail "no size message: $(cat "$work/err")"
+    grep -q "'/dev/zero' is a character device, not a regular file" "$work/err" ||
+      fail "no kind message: $(cat "$work/err")"
     ;;
   *)
     fail "unknown case"

@@ -51,7 +51,7 @@ refused "same file as the input" $tune --conditions cond.toml --out cond.toml
 refused "same file as the input" $tune --conditions cond_link.toml --out ./cond.toml
 refused "same file as the input" $tune --conditions cond.toml --base c.toml --out link.toml
 refused "is a folder" $fuzzypid export-header c.toml --out folder
-refused "not a file name" $fuzzypid export-header c.toml --out ''
+refused "--out: empty value" $fuzzypid export-header c.toml --out ''
 refused "No such file or directory" $fuzzypid export-header c.toml --out missing/x.hpp
 refused "read-only|Permission denied" $fuzzypid export-header c.toml --out ro/x.hpp
 refused "same file as the input" $fuzzypid export-header c.toml --out c.toml
@@ -63,7 +63,7 @@ refused "same file as the input" $fuzzypid export-rules c.toml --format fll --ou
 refused "same file as the input" $fuzzypid export-rules c.toml --out x.fll --controller-out c.toml
 refused "read-only|Permission denied" $fuzzypid export-rules c.toml --out x.fll --controller-out ro/x.toml
 refused "FIFO" $fuzzypid export-rules c.toml --surface fifo
-refused "not a file name" "$rt_loop" --period-ms 0 --ticks 3 --csv ''
+refused "--csv: empty value" "$rt_loop" --period-ms 0 --ticks 3 --csv ''
 refused "same file as the input" "$rt_loop" --period-ms 0 --ticks 3 --controller c.toml --csv c.toml
 refused "same file as the input" "$rt_loop" --period-ms 0 --ticks 3 --controller link.toml --csv c.toml
 refused "FIFO" "$rt_loop" --period-ms 0 --ticks 3 --csv fifo

@@ -26,6 +26,15 @@ TEST(ParseFinite, RefusesNaNInfinityAndOverflow) {
     EXPECT_FALSE(parse_finite(bad)) << bad;
 }
 
+// 1e-320 is finite (a subnormal): it is a number, not "not a finite number"; the range decides.
+TEST(ParseFinite, AcceptsSubnormalsAsRead) {
+  EXPECT_EQ(parse_finite("1e-320"), 1e-320);
+  EXPECT_EQ(parse_finite("-4.9e-324"), -4.9e-324);
+  EXPECT_EQ(parse_finite("1e-400"), 0.0);  // below every subnormal: rounds to zero
+  EXPECT_EQ(finite_in(0.0, 1.0)("1e-320"), "");
+  EXPECT_NE(finite_in(1.0, 2.0)("1e-320").find("outside"), std::string::npos);
+}
+
 enum class Color { Red, Green };
 constexpr NameTable<Color, 2> kColorNames = {{{"red", Color::Red}, {"green", Color::Green}}};
 
@@ -92,6 +101,24 @@ TEST(CsvReader, AHeaderIsALineOfText) {
 TEST(CsvReader, AFirstRowOfNonFiniteNumbersIsAnErrorNotAHeader) {
   for (const char* first : {"nan,nan", "inf,-inf", "1e999,1e999", "nan,x", "x,1"})
     EXPECT_EQ(read_all(std::string(first) + "\n1,2\n").rfind("line 1: column", 0), 0u) << first;
+}
+
+// Spreadsheets quote numbers: a first row of quoted numbers is an error naming the quotes, not a
+// header that silently drops the row; quoted names still make a header.
+TEST(CsvReader, QuotedNumbersAreAnErrorNotAHeader) {
+  EXPECT_EQ(read_all("\"0.5\",\"0.2\"\n1,2\n"),
+            "line 1: column 1 ('\"0.5\"') is a number in quotes: write it without them");
+  EXPECT_EQ(read_all("1,2\n3, \"4\"\n"),
+            "line 2: column 2 ('\"4\"') is a number in quotes: write it without them");
+  std::vector<std::vector<double>> rows;
+  EXPECT_EQ(read_all("\"e\",\"ec\"\n1,2\n", &rows), "");
+  EXPECT_EQ(rows, (std::vector<std::vector<double>>{{1.0, 2.0}}));
+}
+
+TEST(CsvReader, SubnormalNumbersAreFinite) {
+  std::vector<std::vector<double>> rows;
+  EXPECT_EQ(read_all("1e-320,0\n", &rows), "");
+  EXPECT_EQ(rows, (std::vector<std::vector<double>>{{1e-320, 0.0}}));
 }
 
 TEST(CsvReader, ALineBeyondTheBoundIsAnError) {

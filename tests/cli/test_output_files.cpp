@@ -183,6 +183,54 @@ TEST_F(OutputFilesTest, OutputFileAppearsOnlyOnCommit) {
   EXPECT_EQ(entries(root_), (std::set<std::string>{"ticks.csv"}));
 }
 
+// Two runs writing one file would both report success while one result is lost: the second is
+// refused at open, naming the file; the lock file goes with the commit or the discard.
+TEST_F(OutputFilesTest, ASecondWriterOfTheSameFileIsRefusedUntilTheFirstIsDone) {
+  const fs::path target = root_ / "tuned.toml";
+  std::string error;
+  auto first = OutputFile::open(target.string(), error, "tune");
+  ASSERT_TRUE(first) << error;
+  EXPECT_TRUE(fs::exists(root_ / ".tuned.toml.lock"));
+  auto second = OutputFile::open(target.string(), error, "tune");
+  EXPECT_FALSE(second);
+  EXPECT_NE(error.find("'" + target.string() + "' is being written by another process"),
+            std::string::npos)
+      << error;
+  // A set of the same name is the same output: refused too; another file is independent.
+  EXPECT_FALSE(OutputSet::open(target.string(), names_, error));
+  EXPECT_TRUE(OutputFile::open((root_ / "other.toml").string(), error, "tune")) << error;
+  std::fputs("first\n", first->file());
+  ASSERT_TRUE(first->commit(error)) << error;
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"tuned.toml"}));
+
+  auto third = OutputFile::open(target.string(), error, "tune");
+  ASSERT_TRUE(third) << error;
+  third->discard();
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"tuned.toml"}));
+  EXPECT_EQ(read(target), "first\n");
+}
+
+TEST_F(OutputFilesTest, AnInterruptedFileWriteLeavesNothingBehind) {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      std::string error;
+      auto file = OutputFile::open((root_ / "ticks.csv").string(), error, "rt_loop");
+      if (!file) ::_exit(3);
+      std::fputs("partial", file->file());
+      std::fflush(file->file());
+      std::raise(sig);
+      ::_exit(4);  // not reached: the signal ends the process after the clean-up
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_TRUE(entries(root_).empty()) << "signal " << sig;
+  }
+}
+
 TEST_F(OutputFilesTest, OutputFileInAMissingDirectoryFailsAtOpen) {
   std::string error;
   EXPECT_FALSE(OutputFile::open((root_ / "missing" / "x.csv").string(), error));

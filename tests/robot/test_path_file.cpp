@@ -232,6 +232,27 @@ TEST(PathFile, AnUnreachablePoseNamesTheRowTheTimeThePoseAndTheSolver) {
       << p.message;
 }
 
+// A seed outside a joint's limits used to fail as the first row's pose "refused" by the solver: the
+// seed is named, with the joint and its limits.
+TEST(PathFile, AnIkSeedOutsideTheJointLimitsIsBlamedOnTheSeed) {
+  PathTable t;
+  std::string error;
+  ASSERT_TRUE(parse_path_csv(kPose + "0,0.4,0.1,0.3,3.1,0,0\n0.5,0.4,0.1,0.31,3.1,0,0\n", "p.csv",
+                             t, error));
+  const InverseKinematics ik(ur5());
+  JointVector seed = default_ik_seed(ur5());
+  ASSERT_TRUE(joint_path_from_table(ik, ur5(), t, 0.05, seed).ok());
+  seed[2] = 4.0;  // joint 3 is limited to +-pi
+  const JointPathResult p = joint_path_from_table(ik, ur5(), t, 0.05, seed);
+  ASSERT_FALSE(p.ok());
+  EXPECT_EQ(p.message.rfind("the IK seed (--ik-seed, ik_seed): joint 3 ('" +
+                                ur5().joint_names()[2] + "') at 4 rad is outside its URDF limits [",
+                            0),
+            0u)
+      << p.message;
+  EXPECT_EQ(p.message.find("row at"), std::string::npos) << p.message;
+}
+
 TEST(PathFile, RefusesJointsOutsideTheirLimitsAndRowsFasterThanTheVelocityLimits) {
   PathTable t;
   std::string error;

@@ -267,12 +267,22 @@ INSTANTIATE_TEST_SUITE_P(
                            "joint 'joint1': <mimic> (joint 'joint2') is not supported"}),
     [](const ::testing::TestParamInfo<InvalidElementCase>& info) { return info.param.name; });
 
-// A device that never ends or a huge file is refused after a bounded read, not read until the
-// allocation fails; a directory is refused by name.
-TEST(RobotModel, LoadReadsAtMostABoundedSize) {
+// Only a regular file is read: a device that never ends (or a FIFO that would block) is refused by
+// its kind before it is opened, and so is a directory.
+// Names quoted in a message are escaped: a control character would act on the user's terminal.
+TEST(RobotModel, MessagesQuoteNonPrintableBytesEscaped) {
+  const LoadResult r = RobotModel::load(default_urdf_path(), "", "tip\x1b[31m\a");
+  EXPECT_FALSE(r.model.has_value());
+  EXPECT_NE(r.error.find("tip link 'tip\\x1b[31m\\x07' is not in the URDF"), std::string::npos)
+      << r.error;
+}
+
+TEST(RobotModel, LoadReadsOnlyRegularFiles) {
   const LoadResult zero = RobotModel::load("/dev/zero");
   EXPECT_FALSE(zero.model.has_value());
-  EXPECT_NE(zero.error.find("is larger than"), std::string::npos) << zero.error;
+  EXPECT_NE(zero.error.find("'/dev/zero' is a character device, not a regular file"),
+            std::string::npos)
+      << zero.error;
   const LoadResult dir = RobotModel::load(::testing::TempDir());
   EXPECT_FALSE(dir.model.has_value());
   EXPECT_NE(dir.error.find("is a directory"), std::string::npos) << dir.error;

@@ -123,6 +123,28 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
   }
 }
 
+// "" never stands for the default: `urdf = ""` would run the bundled robot, `tip_link = ""` the
+// end of the unique chain, as if the key were absent. Every string key refuses it, by name.
+TEST(ConditionSets, AnEmptyStringIsRefusedNamingTheKey) {
+  const Bad cases[] = {
+      {"[sets.s]\nurdf = \"\"\nconditions = [ { name = \"c\" } ]\n", 2, 8, "'urdf' is empty"},
+      {"[sets.s]\ntip_link = \"\"\nconditions = [ { name = \"c\" } ]\n", 2, 12,
+       "'tip_link' is empty"},
+      {"[sets.s]\nconditions = [ { name = \"c\", base_link = \"\" } ]\n", 2, 42,
+       "'base_link' is empty"},
+      {"[sets.s]\nconditions = [ { name = \"c\", path = \"\" } ]\n", 2, 37, "'path' is empty"},
+      {"[sets.s]\nconditions = [ { name = \"\" } ]\n", 2, 25, "'name' is empty"},
+  };
+  for (const Bad& b : cases) {
+    ConditionFile f;
+    fuzzypid::FileError e;
+    EXPECT_FALSE(parse_conditions(b.text, "bad.toml", f, e)) << b.text;
+    EXPECT_EQ(e.line, b.line) << b.text << e.to_string();
+    EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
+    EXPECT_NE(e.message.find(b.message), std::string::npos) << e.to_string();
+  }
+}
+
 // Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and
 // friction in [0, 1] (uniform), friction = log2(payload) on every draw would mean one number
 // drives both.

@@ -356,14 +356,24 @@ TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
   EXPECT_NE(error.to_string().find("/nonexistent/controller.toml"), std::string::npos);
 }
 
-// A device that never ends is refused after a bounded read (1 MiB), never read until memory runs
-// out; so is a directory.
+// A file over 1 MiB is refused after a bounded read, never read until memory runs out; a device
+// that never ends and a directory are refused by their kind, before they are opened.
 TEST(ControllerFile, AFileIsReadWithABoundedSize) {
   ctl::ControllerSpec spec;
   fuzzypid::FileError error;
   EXPECT_FALSE(cf::load("/dev/zero", spec, error));
+  EXPECT_NE(error.message.find("is a character device, not a regular file"), std::string::npos)
+      << error.to_string();
+  const std::string big = ::testing::TempDir() + "fuzzypid_oversized.toml";
+  std::FILE* f = std::fopen(big.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  ASSERT_EQ(std::fseek(f, 1L << 20, SEEK_SET), 0);  // 1 MiB of zeros, then one more byte
+  ASSERT_EQ(std::fputc('x', f), 'x');
+  ASSERT_EQ(std::fclose(f), 0);
+  EXPECT_FALSE(cf::load(big, spec, error));
   EXPECT_NE(error.message.find("is larger than 1048576 bytes"), std::string::npos)
       << error.to_string();
+  std::remove(big.c_str());
   EXPECT_FALSE(cf::load("/", spec, error));
   EXPECT_NE(error.message.find("is a directory"), std::string::npos) << error.to_string();
 }

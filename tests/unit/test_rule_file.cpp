@@ -621,6 +621,28 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
   }
 }
 
+// A binary file's bytes are quoted escaped (\xHH), never raw: a control character would act on the
+// user's terminal. Valid UTF-8 is kept as written.
+TEST(RuleFile, MessagesQuoteNonPrintableBytesEscaped) {
+  using Parse = bool (*)(std::string_view, const std::string&, Model&, LoadError&,
+                         const fuzzypid::rulefile::LoadOptions&);
+  const std::string binary = std::string(
+      "ww\x8f\a\x1b[31m\x00"
+      "caf\xc3\xa9\n",
+      16);
+  for (const Parse parse :
+       {Parse{fuzzypid::rulefile::parse_fll}, Parse{fuzzypid::rulefile::parse_fis},
+        Parse{fuzzypid::rulefile::parse_fcl}}) {
+    auto model = std::make_unique<Model>();
+    LoadError error;
+    ASSERT_FALSE(parse(binary, "b", *model, error, {}));
+    const std::string shown = error.to_string();
+    for (const char c : shown)
+      EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << shown;
+    EXPECT_NE(shown.find("ww\\x8f\\x07\\x1b[31m"), std::string::npos) << shown;
+  }
+}
+
 TEST(RuleFile, LoadRuleFileReportsMissingFilesAndUnknownExtensions) {
   Model* model = new Model;
   LoadError error;
@@ -635,13 +657,13 @@ TEST(RuleFile, LoadRuleFileReportsMissingFilesAndUnknownExtensions) {
   delete model;
 }
 
-// A device that never ends or an oversized file is refused after a bounded read (16 MiB), never
-// read until memory runs out; a directory is refused by name.
+// An oversized file is refused after a bounded read (16 MiB), never read until memory runs out; a
+// device that never ends and a directory are refused by their kind, before they are opened.
 TEST(RuleFile, LoadReadsAtMostABoundedSize) {
   Model* model = new Model;
   LoadError error;
   EXPECT_FALSE(fuzzypid::rulefile::load_fis("/dev/zero", *model, error));
-  EXPECT_NE(error.message.find("is larger than 16777216 bytes"), std::string::npos)
+  EXPECT_NE(error.message.find("is a character device, not a regular file"), std::string::npos)
       << error.to_string();
   EXPECT_FALSE(fuzzypid::rulefile::load_fll("/", *model, error));
   EXPECT_NE(error.message.find("is a directory"), std::string::npos) << error.to_string();

@@ -330,6 +330,21 @@ TEST(RuleFileFis, AnEmptyMethodARuleNeedsIsRefusedOnThatRulesLine) {
   EXPECT_NE(e.message.find("no conjunction"), std::string::npos) << e.to_string();
 }
 
+// A Sugeno output with a 'trimf' term: the cause is the term under Type='sugeno', named on its
+// line, not the Tsukamoto terms the engine would take it for. Monotonic terms stay Tsukamoto's.
+TEST(RuleFileFis, ANonMonotonicTermOfASugenoOutputIsBlamedOnTheTypeAndTheTerm) {
+  const std::string fis = replace(replace(kSugenoFis, "Range=[0 0]", "Range=[0 1]"),
+                                  "MF1='c':'constant',[4]", "MF1='c':'trimf',[0 0.5 1]");
+  const LoadError e = refusal("s.fis", fis);
+  EXPECT_EQ(e.line, 31) << e.to_string();
+  EXPECT_NE(e.message.find("MF1 'c': Type='sugeno' outputs take 'constant' or 'linear' terms, "
+                           "not 'trimf'"),
+            std::string::npos)
+      << e.to_string();
+  EXPECT_EQ(e.message.find("Tsukamoto terms must be"), std::string::npos) << e.to_string();
+  EXPECT_TRUE(load("ramp.fis", replace(fis, "'trimf',[0 0.5 1]", "'rampmf',[0 1]")));
+}
+
 TEST(RuleFileFis, AZeroWidthRangeIsRefusedWhereItIsUsed) {
   const LoadError e = refusal("s.fis", replace(kSugenoFis, "LockRange=0", "LockRange=1"));
   EXPECT_NE(e.message.find("output range"), std::string::npos) << e.to_string();
