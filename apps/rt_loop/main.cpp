@@ -299,6 +299,8 @@ int run(int argc, char** argv) {
     return cli::kExitFailure;
   }
   cli::print_robot_note(kTool, *experiment);
+  cli::print_model_notes(kTool, *experiment);
+  cli::warn_about_payload(kTool, *experiment, condition);
   ctl::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
   spec.units.tick_s = paper_tick_s;
@@ -308,6 +310,7 @@ int run(int argc, char** argv) {
       std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
       return cli::kExitFailure;
     }
+    cli::warn_about_training(kTool, o.controller, spec, *experiment);
   }
   auto loop = sim::ClosedLoop::create(*experiment, condition, spec, error);
   if (!loop) {
@@ -316,6 +319,13 @@ int run(int argc, char** argv) {
   }
 
   const std::uint64_t ticks = o.ticks.value_or(loop->samples());
+  if (o.loop_path && ticks <= loop->samples()) {
+    std::fprintf(stderr,
+                 "%s: --loop applies only to --ticks beyond one pass; --ticks %llu is within the "
+                 "path's %zu samples\n",
+                 kTool, static_cast<unsigned long long>(ticks), loop->samples());
+    return cli::kExitUsage;
+  }
   std::unique_ptr<cli::OutputFile> csv_file;
   std::vector<TickRecord> csv;
   if (!o.csv.empty()) {

@@ -370,6 +370,9 @@ int main(int argc, char** argv) {
   for (std::size_t k = 0; k < experiments->size(); ++k) {
     const sim::Experiment& ex = experiments->experiment(k);
     if (!o.quiet) cli::print_robot_note("sim_ab", ex);
+    cli::print_model_notes("sim_ab", ex);
+    for (const auto& c : controllers)
+      if (c.source != "built-in") cli::warn_about_training("sim_ab", c.source, c.spec, ex);
     for (const auto& c : controllers)
       if (c.spec.units.form == ctl::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
@@ -378,6 +381,8 @@ int main(int argc, char** argv) {
                      "to continuous gains and run at a %g s tick\n",
                      c.name.c_str(), c.spec.units.tick_s, ex.options().tick_s);
   }
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    cli::warn_about_payload("sim_ab", experiments->of(k), runs[k].condition);
   if (o.sweep) return run_sweep(o, *experiments, runs.front().condition, controllers);
 
   Outputs outs;
