@@ -311,6 +311,13 @@ int run(int argc, char** argv) {
       return cli::kExitFailure;
     }
     cli::warn_about_training(kTool, o.controller, spec, *experiment);
+    if (const std::string bad = o.given.refuse_unused(
+            {"--strict-rules"}, spec.family != ctl::Family::Pid, "a controller with a supervisor",
+            o.controller + " is a pid controller, which has none");
+        !bad.empty()) {
+      std::fprintf(stderr, "%s: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
   }
   auto loop = sim::ClosedLoop::create(*experiment, condition, spec, error);
   if (!loop) {

@@ -35,6 +35,7 @@ struct Options {
   bool strict_rules = false;  // a tick on which the supervisor fires no rule fails the run
   std::optional<std::uint64_t> max_overruns;
   cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
+  cli::GivenOptions given;  // for the checks that need the controller file (main)
 
   double controller_dt_s() const {
     if (dt_s) return *dt_s;

@@ -339,6 +339,21 @@ int main(int argc, char** argv) {
     for (const auto& c : sim_ab::scenario_conditions(o))
       runs.push_back({"scenario", c});
   }
+  // --strict-rules and --seed shape supervisors and measurement noise: refused where none is run.
+  bool supervised = false, noisy = false;
+  for (const auto& c : controllers)
+    supervised = supervised || c.spec.family != ctl::Family::Pid;
+  for (const auto& r : runs)
+    noisy = noisy || r.condition.noise_position_rad > 0.0 || r.condition.noise_velocity_rad_s > 0.0;
+  for (const std::string& bad :
+       {o.given.refuse_unused({"--strict-rules"}, supervised, "a controller with a supervisor",
+                              "every --controller is a pid controller, which has none"),
+        o.given.refuse_unused({"--seed"}, noisy, "a run with measurement noise",
+                              "no selected condition has any (--noise, or --scenario noise)")})
+    if (!bad.empty()) {
+      std::fprintf(stderr, "sim_ab: %s\n", bad.c_str());
+      return 2;
+    }
   for (const auto& r : runs) {
     if (const std::string bad = r.condition.validate(); !bad.empty()) {
       std::fprintf(stderr, "sim_ab: condition %s: %s\n", r.condition.name.c_str(), bad.c_str());

@@ -221,7 +221,8 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
     std::fprintf(stderr, "sim_ab: %s (see --help)\n", err.what());
     return ParseResult::UsageError;
   }
-  const cli::GivenOptions given(app);
+  o.given = cli::GivenOptions(app);
+  const cli::GivenOptions& given = o.given;
   if (o.list && given.names().size() > 1) {
     for (const std::string& name : given.names())
       if (name != "--list") {

@@ -46,6 +46,7 @@ struct Options {
   bool strict_rules = false;  // a tick on which a supervisor fires no rule fails the run
   bool list = false;
   bool quiet = false;
+  cli::GivenOptions given;  // for the checks that need the controllers and conditions (main)
 };
 
 enum class ParseResult { Run, Exit, UsageError };

@@ -69,6 +69,14 @@ expect 2 "--loop applies only to --ticks beyond one pass; --ticks 50 is within t
   rt --loop --ticks 50
 expect 2 "--max-overruns applies only to a timed loop; --period-ms 0 runs free" -- \
   rt --ticks 2 --max-overruns 3
+expect 2 "--seed applies only to a run with measurement noise; no selected condition has any" -- \
+  sim --seed 7
+expect 2 "--strict-rules applies only to a controller with a supervisor; every --controller is a pid" -- \
+  sim --strict-rules --controller "$src/controllers/tuned_pid.toml"
+expect 2 "--strict-rules applies only to a controller with a supervisor; --controller pid has none" -- \
+  rt --ticks 2 --strict-rules --controller pid
+expect 2 "--strict-rules applies only to a controller with a supervisor; .*tuned_pid.toml is a pid" -- \
+  rt --ticks 2 --strict-rules --controller "$src/controllers/tuned_pid.toml"
 for option in "--symmetry odd" "--partition fixed" "--smoothness 1" "--monotone 1" \
   "--unvisited free" "--visit-threshold 0.01" "--cell-log10 2"; do
   # shellcheck disable=SC2086
