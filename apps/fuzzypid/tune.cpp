@@ -157,6 +157,13 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
     return kExitUsage;
   }
+  if (const std::string bad =
+          t.given.refuse_unused({"--visit-threshold"}, t.unvisited == "seed", "--unvisited seed",
+                                "--unvisited free searches every cell, visited or not");
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+    return kExitUsage;
+  }
   tune::Options opt;
   opt.table = t.table;
   opt.table.symmetry = *fuzzypid::parse_enum(tune::kSymmetryNames, t.symmetry);

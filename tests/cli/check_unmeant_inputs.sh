@@ -85,6 +85,8 @@ for option in "--symmetry odd" "--partition fixed" "--smoothness 1" "--monotone 
 done
 expect 2 "--symmetry applies only to a fuzzy-rules search.*; the stages are pid, scheduled" -- \
   tune --stages pid:20,scheduled:20 --symmetry none
+expect 2 "--visit-threshold applies only to --unvisited seed; --unvisited free searches every cell" -- \
+  tune --family fuzzy-rules --unvisited free --visit-threshold 0.01
 rules="$src/tests/cli/data/fuzzy_rules.toml"
 expect 2 "--surface-points applies only to --surface; no --surface CSV is written" -- \
   "$fuzzypid" export-rules "$rules" --out "$work/out.fll" --surface-points 9
