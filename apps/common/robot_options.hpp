@@ -199,10 +199,8 @@ inline void warn_about_training(const char* tool, const std::string& controller_
   for (const std::string& d : controller_file::trained_on_differences(
            spec, controller_path, ex.urdf_file(), ex.setup().path, robot::default_urdf_path()))
     say_once(tool, "warning",
-             "controller " + controller_path +
-                 " runs on another robot or path than it was tuned "
-                 "on: " +
-                 d);
+             "controller " + controller_path + " runs on another robot or path than it was " +
+                 "tuned on: " + d);
 }
 
 }  // namespace fuzzypid::cli
