@@ -20,11 +20,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -171,6 +173,37 @@ inline void refuse_empty_values(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     refuse_empty_values(*sub);
 }
+
+// The options a command line gave (their long names, "--out"), kept after parsing so that checks
+// of combinations can run later, and the one refusal of an option that would do nothing: every
+// tool refuses an option that its other options make meaningless instead of ignoring it.
+class GivenOptions {
+ public:
+  GivenOptions() = default;
+  explicit GivenOptions(const CLI::App& app) {
+    for (const CLI::Option* o : app.get_options())
+      if (o->count() > 0) names_.push_back(o->get_name());
+  }
+  [[nodiscard]] bool has(std::string_view name) const {
+    for (const std::string& n : names_)
+      if (n == name) return true;
+    return false;
+  }
+  // "NAME applies only to SCOPE; REASON" for the first of `names` given, else "" (also when
+  // `applies`: the combination is meaningful).
+  [[nodiscard]] std::string refuse_unused(std::initializer_list<std::string_view> names,
+                                          bool applies, const std::string& scope,
+                                          const std::string& reason) const {
+    if (applies) return {};
+    for (const std::string_view name : names)
+      if (has(name)) return std::string(name) + " applies only to " + scope + "; " + reason;
+    return {};
+  }
+  [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
+
+ private:
+  std::vector<std::string> names_;
+};
 
 // Runs a tool's main body, turning an exception that escapes it (an allocation failure, a bug) into
 // a message and kExitFailure instead of std::terminate. A run whose messages on standard error did

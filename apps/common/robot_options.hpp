@@ -2,19 +2,21 @@
 // sim/condition.hpp (the condition files use the same ones):
 //   --urdf FILE --base-link NAME --tip-link NAME --path FILE --tick-ms T --armature A1,...,A6
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
-// Header-only: included by the tools that link fuzzypid::sim.
+// Header-only: included by the tools that link fuzzypid::sim and fuzzypid::controller_file.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/plant.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/condition.hpp"
@@ -155,6 +157,10 @@ inline std::string check_robot_options(const RobotOptions& o) {
     return o.dynamics ? "--gravity needs --dynamics coupled"
                       : "--gravity needs --dynamics coupled (the bundled ER50-C20 runs the paper's "
                         "decoupled plant by default)";
+  // The built-in line has its own start joints; only a Cartesian path file's first row is seeded.
+  if (o.setup.ik_seed_rad && o.setup.path.empty())
+    return "--ik-seed applies only to a Cartesian path file; without --path the built-in line "
+           "A -> B runs from its own start joints";
   return {};
 }
 
@@ -175,6 +181,44 @@ inline std::string plant_note(const sim::Condition& c) {
                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? "on" : "off",
                 c.payload_kg);
   return buf;
+}
+
+// Says `text` on stderr as "TOOL: KIND: text" once per process (a tool meets the same robot in
+// many conditions): for inputs that are legal but probably not what the user meant.
+inline void say_once(const char* tool, const char* kind, const std::string& text) {
+  static std::set<std::string> said;
+  if (said.insert(text).second) std::fprintf(stderr, "%s: %s: %s\n", tool, kind, text.c_str());
+}
+
+// What the URDF leaves open (a limit of 0 means none), once per joint and URDF.
+inline void print_model_notes(const char* tool, const sim::Experiment& ex) {
+  for (const std::string& note : ex.model().notes())
+    say_once(tool, "note", ex.urdf_file() + ": " + note);
+}
+
+// A payload heavier than the arm's own moving links is legal but rarely meant (grams read as kg,
+// or the whole robot's mass from a data sheet).
+inline void warn_about_payload(const char* tool, const sim::Experiment& ex,
+                               const sim::Condition& c) {
+  const double arm_kg = ex.model().moving_mass_kg();
+  if (!(c.payload_kg > arm_kg)) return;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "condition %s: payload %g kg is above the arm's own moving mass %g kg (the links "
+                "of %s below its first joint): is it meant?",
+                c.name.c_str(), c.payload_kg, arm_kg, ex.urdf_file().c_str());
+  say_once(tool, "warning", buf);
+}
+
+// A controller file run on another robot or path than its tuning record names (tuning.trained_on):
+// the gains were fitted to other inertias, so its quality is not the recorded one.
+inline void warn_about_training(const char* tool, const std::string& controller_path,
+                                const controller::ControllerSpec& spec, const sim::Experiment& ex) {
+  for (const std::string& d : controller_file::trained_on_differences(
+           spec, controller_path, ex.urdf_file(), ex.setup().path, robot::default_urdf_path()))
+    say_once(tool, "warning",
+             "controller " + controller_path + " runs on another robot or path than it was " +
+                 "tuned on: " + d);
 }
 
 }  // namespace fuzzypid::cli

@@ -34,6 +34,7 @@ struct ExportRulesOptions {
   std::string in, out, format, controller_out, surface;
   unsigned surface_points = 41;
   bool out_given = false, controller_out_given = false, surface_given = false;
+  GivenOptions given;
 };
 
 // The format named by a path's extension (any case), or "".
@@ -90,6 +91,14 @@ int run_export_rules(const ExportRulesOptions& o) {
     return usage("--controller-out: needs --out, the rule file the controller names");
   if (!o.out_given && !o.surface_given)
     return usage("nothing to write: give --out (a rule file), --surface (a CSV) or both");
+  if (const std::string bad = o.given.refuse_unused({"--surface-points"}, o.surface_given,
+                                                    "--surface", "no --surface CSV is written");
+      !bad.empty())
+    return usage(bad);
+  if (const std::string bad = o.given.refuse_unused({"--format"}, o.out_given, "--out",
+                                                    "no rule file is written without --out");
+      !bad.empty())
+    return usage(bad);
   std::string format = o.format;
   if (o.out_given) {
     const std::string by_name = format_of(o.out);
@@ -226,7 +235,8 @@ void add_export_rules_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--surface-points", o->surface_points,
                   "grid points per axis of --surface (default 41)")
       ->check(unsigned_in(3, 1001));
-  cmd->callback([&run, o, out, controller_out, surface] {
+  cmd->callback([&run, o, out, controller_out, surface, cmd] {
+    o->given = GivenOptions(*cmd);
     o->out_given = out->count() > 0;
     o->controller_out_given = controller_out->count() > 0;
     o->surface_given = surface->count() > 0;

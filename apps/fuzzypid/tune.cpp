@@ -87,7 +87,11 @@ struct TuneOptions {
   ctl::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
+  GivenOptions given;
 };
+
+// The largest total budget: --budget's own upper bound, which the stages' sum may not pass either.
+constexpr std::uint64_t kMaxBudget = 100000000;
 
 // "pid:8000,scheduled:24000,fuzzy-rules:32000" -> stages; false on any malformed entry.
 bool parse_stages(const std::string& text, std::vector<tune::Stage>& stages, std::string& error) {
@@ -152,6 +156,13 @@ int run_tune(const TuneOptions& t) {
     total_budget = 0;
     for (const tune::Stage& st : stages)
       total_budget += st.budget;
+    if (total_budget > kMaxBudget) {
+      std::fprintf(stderr,
+                   "fuzzypid tune: --stages: the budgets sum to %" PRIu64
+                   " evaluations, above the limit %" PRIu64 " of --budget\n",
+                   total_budget, kMaxBudget);
+      return kExitUsage;
+    }
     if (stages.back().family != family) {
       std::fprintf(stderr, "fuzzypid tune: --family %s is not the last stage's (%s)\n",
                    t.family_name.c_str(), ctl::to_string(stages.back().family));
@@ -163,6 +174,29 @@ int run_tune(const TuneOptions& t) {
                    t.budget, total_budget);
       return kExitUsage;
     }
+  }
+  // The rule-table options shape a fuzzy-rules search only.
+  bool rule_table_stage = family == ctl::Family::FuzzyRules;
+  std::string families = ctl::to_string(family);
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    rule_table_stage = rule_table_stage || stages[k].family == ctl::Family::FuzzyRules;
+    families = (k == 0 ? "" : families + ", ") + ctl::to_string(stages[k].family);
+  }
+  if (const std::string bad = t.given.refuse_unused(
+          {"--symmetry", "--partition", "--smoothness", "--monotone", "--unvisited",
+           "--visit-threshold", "--cell-log10"},
+          rule_table_stage, "a fuzzy-rules search (--family or a --stages stage)",
+          (stages.empty() ? "--family is " : "the stages are ") + families);
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+    return kExitUsage;
+  }
+  if (const std::string bad =
+          t.given.refuse_unused({"--visit-threshold"}, t.unvisited == "seed", "--unvisited seed",
+                                "--unvisited free searches every cell, visited or not");
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+    return kExitUsage;
   }
   tune::Options opt;
   opt.table = t.table;
@@ -267,9 +301,12 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
   }
-  if (!t.quiet)
-    for (std::size_t k = 0; k < experiments->size(); ++k)
-      print_robot_note("fuzzypid tune", experiments->experiment(k));
+  for (std::size_t k = 0; k < experiments->size(); ++k) {
+    if (!t.quiet) print_robot_note("fuzzypid tune", experiments->experiment(k));
+    print_model_notes("fuzzypid tune", experiments->experiment(k));
+  }
+  for (std::size_t k = 0; k < training->conditions.size(); ++k)
+    warn_about_payload("fuzzypid tune", experiments->of(k), training->conditions[k]);
 
   if (!t.quiet) {
     std::fprintf(stderr,
@@ -529,7 +566,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--set", t->set, "the training set's name (default training)");
   CLI::Option* budget = cmd->add_option("--budget", t->budget,
                                         "objective evaluations, never exceeded (default 16000)")
-                            ->check(unsigned_in(14, 100000000));
+                            ->check(unsigned_in(14, kMaxBudget));
   cmd->add_option("--seed", t->seed, "random seed (default 1)")->check(unsigned_in(0, 4294967295u));
   cmd->add_option("--threads", t->threads,
                   "threads evaluating the conditions (default: all cores; the result does not "
@@ -565,8 +602,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
                   "docs/tuning.md)");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
-  cmd->callback([&run, t, budget] {
+  cmd->callback([&run, t, budget, cmd] {
     t->budget_given = budget->count() > 0;
+    t->given = GivenOptions(*cmd);
     run = [t] { return run_tune(*t); };
   });
 }

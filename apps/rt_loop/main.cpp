@@ -306,6 +306,8 @@ int run(int argc, char** argv) {
   }
   cli::print_robot_note(kTool, *experiment);
   std::fprintf(stderr, "%s: plant %s\n", kTool, cli::plant_note(condition).c_str());
+  cli::print_model_notes(kTool, *experiment);
+  cli::warn_about_payload(kTool, *experiment, condition);
   ctl::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
   spec.units.tick_s = paper_tick_s;
@@ -314,6 +316,14 @@ int run(int argc, char** argv) {
     if (!cf::load(o.controller, spec, file_error)) {
       std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
       return cli::kExitFailure;
+    }
+    cli::warn_about_training(kTool, o.controller, spec, *experiment);
+    if (const std::string bad = o.given.refuse_unused(
+            {"--strict-rules"}, spec.family != ctl::Family::Pid, "a controller with a supervisor",
+            o.controller + " is a pid controller, which has none");
+        !bad.empty()) {
+      std::fprintf(stderr, "%s: %s\n", kTool, bad.c_str());
+      return cli::kExitUsage;
     }
   }
   for (const std::string& why :
@@ -327,6 +337,13 @@ int run(int argc, char** argv) {
   }
 
   const std::uint64_t ticks = o.ticks.value_or(loop->samples());
+  if (o.loop_path && ticks <= loop->samples()) {
+    std::fprintf(stderr,
+                 "%s: --loop applies only to --ticks beyond one pass; --ticks %llu is within the "
+                 "path's %zu samples\n",
+                 kTool, static_cast<unsigned long long>(ticks), loop->samples());
+    return cli::kExitUsage;
+  }
   std::unique_ptr<cli::OutputFile> csv_file;
   std::vector<TickRecord> csv;
   if (!o.csv.empty()) {

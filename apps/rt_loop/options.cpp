@@ -91,6 +91,21 @@ std::optional<int> parse(int argc, const char* const* argv, Options& o) {
     o.dt_s = o.robot.setup.tick_s;
     if (app.count("--period-ms") == 0) o.period_ms = o.robot.setup.tick_s * 1000.0;
   }
+  o.given = cli::GivenOptions(app);
+  const cli::GivenOptions& given = o.given;
+  for (const std::string& bad :
+       {given.refuse_unused({"--strict-rules"}, o.controller != "pid",
+                            "a controller with a supervisor", "--controller pid has none"),
+        given.refuse_unused({"--require-rt"}, o.fifo_priority || o.lock_memory || o.cpu,
+                            "--fifo, --lock-memory or --cpu", "none of them is given"),
+        given.refuse_unused({"--loop"}, o.ticks.has_value(), "--ticks beyond one pass",
+                            "without --ticks the run is one pass of the path"),
+        given.refuse_unused({"--max-overruns"}, o.period_ms > 0.0, "a timed loop",
+                            "--period-ms 0 runs free, without deadlines to overrun")})
+    if (!bad.empty()) {
+      std::fprintf(stderr, "%s: %s (see --help)\n", kTool, bad.c_str());
+      return cli::kExitUsage;
+    }
   // Without --dt the controller period is the tick period: it must lie in --dt's range too.
   if (!o.dt_s && o.period_ms > 0.0 &&
       (o.period_ms / 1000.0 < kMinDtS || o.period_ms / 1000.0 > kMaxDtS)) {

@@ -40,6 +40,7 @@ struct Options {
   bool allow_faults = false;
   std::optional<std::uint64_t> max_overruns;
   cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
+  cli::GivenOptions given;  // for the checks that need the controller file (main)
 
   double controller_dt_s() const {
     if (dt_s) return *dt_s;

@@ -426,6 +426,21 @@ int main(int argc, char** argv) {
     for (const auto& c : sim_ab::scenario_conditions(o))
       runs.push_back({"scenario", c});
   }
+  // --strict-rules and --seed shape supervisors and measurement noise: refused where none is run.
+  bool supervised = false, noisy = false;
+  for (const auto& c : controllers)
+    supervised = supervised || c.spec.family != ctl::Family::Pid;
+  for (const auto& r : runs)
+    noisy = noisy || r.condition.noise_position_rad > 0.0 || r.condition.noise_velocity_rad_s > 0.0;
+  for (const std::string& bad :
+       {o.given.refuse_unused({"--strict-rules"}, supervised, "a controller with a supervisor",
+                              "every --controller is a pid controller, which has none"),
+        o.given.refuse_unused({"--seed"}, noisy, "a run with measurement noise",
+                              "no selected condition has any (--noise, or --scenario noise)")})
+    if (!bad.empty()) {
+      std::fprintf(stderr, "sim_ab: %s\n", bad.c_str());
+      return 2;
+    }
   for (const auto& r : runs) {
     if (const std::string bad = r.condition.validate(); !bad.empty()) {
       std::fprintf(stderr, "sim_ab: condition %s: %s\n", r.condition.name.c_str(), bad.c_str());
@@ -475,6 +490,9 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "sim_ab: plant %s (%zu condition%s)\n", note.c_str(), count,
                      count == 1 ? "" : "s");
     }
+    cli::print_model_notes("sim_ab", ex);
+    for (const auto& c : controllers)
+      if (c.source != "built-in") cli::warn_about_training("sim_ab", c.source, c.spec, ex);
     for (const auto& c : controllers)
       if (c.spec.units.form == ctl::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
@@ -501,6 +519,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sim_ab: warning: %s: the same on %zu conditions in all\n",
                    c.name.c_str(), without_gravity);
   }
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    cli::warn_about_payload("sim_ab", experiments->of(k), runs[k].condition);
   if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
 
   Outputs outs;

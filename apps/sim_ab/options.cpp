@@ -232,6 +232,18 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
     std::fprintf(stderr, "sim_ab: %s (see --help)\n", err.what());
     return ParseResult::UsageError;
   }
+  o.given = cli::GivenOptions(app);
+  const cli::GivenOptions& given = o.given;
+  if (o.list && given.names().size() > 1) {
+    for (const std::string& name : given.names())
+      if (name != "--list") {
+        std::fprintf(stderr,
+                     "sim_ab: %s does nothing with --list, which prints the scenarios "
+                     "and exits\n",
+                     name.c_str());
+        return ParseResult::UsageError;
+      }
+  }
   if (o.list) {
     for (const auto& s : sim::scenarios())
       std::printf("%-14s %s\n", s.name.c_str(), s.description.c_str());
@@ -282,6 +294,13 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
       }
   if (o.sweep && !o.conditions_file.empty()) {
     std::fprintf(stderr, "sim_ab: --sweep varies the --scenario condition, not a file's sets\n");
+    return ParseResult::UsageError;
+  }
+  if (const std::string bad =
+          given.refuse_unused({"--overshoot-bound", "--itae-ratio"}, o.sweep.has_value(), "--sweep",
+                              "without it there is no usable range to bound");
+      !bad.empty()) {
+    std::fprintf(stderr, "sim_ab: %s (see --help)\n", bad.c_str());
     return ParseResult::UsageError;
   }
   if (o.sweep && o.scenario == "all") {

@@ -50,6 +50,7 @@ struct Options {
   bool allow_faults = false;
   bool list = false;
   bool quiet = false;
+  cli::GivenOptions given;  // for the checks that need the controllers and conditions (main)
 };
 
 enum class ParseResult { Run, Exit, UsageError };

@@ -142,6 +142,34 @@ std::string check_float_range(const ControllerSpec& spec) {
                                  {"gain_max ki", fc.gain_max.ki},
                                  {"gain_max kd", fc.gain_max.kd}});
   }
+  if (spec.family == Family::FuzzyRules) {
+    // The table's cells and centres are written as float literals too: 1e300 would not compile.
+    static constexpr const char* kGain[3] = {"kp", "ki", "kd"};
+    static constexpr const char* kSet[7] = {"NB", "NM", "NS", "ZO", "PS", "PM", "PB"};
+    const RuleTableSpec& t = spec.supervisor.rule_table;
+    for (std::size_t g = 0; g < 3; ++g)
+      for (std::size_t i = 0; i < RuleTableSpec::kSets; ++i)
+        for (std::size_t j = 0; j < RuleTableSpec::kSets; ++j)
+          if (std::fabs(t.ratio[g][i][j]) > static_cast<double>(FLT_MAX)) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf,
+                          "rule_table %s[%zu][%zu] (e %s, ec %s) is %.17g, which is not finite as "
+                          "a float (|x| <= %g): the header would not compile",
+                          kGain[g], i, j, kSet[i], kSet[j], t.ratio[g][i][j],
+                          static_cast<double>(FLT_MAX));
+            return buf;
+          }
+    for (const auto* centres : {&t.error_centres, &t.error_rate_centres})
+      for (const double c : *centres)
+        if (std::fabs(c) > static_cast<double>(FLT_MAX)) {
+          char buf[160];
+          std::snprintf(buf, sizeof buf,
+                        "rule_table %s centre %.17g is not finite as a float (|x| <= %g)",
+                        centres == &t.error_centres ? "error" : "error_rate", c,
+                        static_cast<double>(FLT_MAX));
+          return buf;
+        }
+  }
   if (spec.supervisor.rule_model != nullptr)
     if (std::string bad = check_rule_base_float_range(*spec.supervisor.rule_model); !bad.empty())
       return bad;

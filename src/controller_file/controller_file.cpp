@@ -22,6 +22,14 @@ using support::TableReader;
 
 namespace {
 
+// The form file_hash writes: exactly 16 lower-case hex digits.
+bool is_fnv1a64(const std::string& text) {
+  if (text.size() != 16) return false;
+  for (const char c : text)
+    if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'))) return false;
+  return true;
+}
+
 std::string triple_text(double a, double b, double c) {
   return "[" + format_double(a) + ", " + format_double(b) + ", " + format_double(c) + "]";
 }
@@ -274,6 +282,10 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
           fr.fail(*ft->get("kind"), "trained_on kind must be \"urdf\" or \"path\"");
         f.file = fr.text("file");
         f.fnv1a64 = fr.text("fnv1a64");
+        if (!is_fnv1a64(f.fnv1a64))
+          fr.fail(*ft->get("fnv1a64"), "trained_on fnv1a64 \"" + f.fnv1a64.substr(0, 40) +
+                                           "\" is not a 64-bit FNV-1a hash: expected 16 "
+                                           "lower-case hex digits, e.g. \"a7e492482337c9be\"");
         fr.finish();
         tu.trained_on.push_back(f);
       }
@@ -524,6 +536,53 @@ std::string to_toml(const ControllerSpec& s) {
       o += "effort_weight = " + format_double(t.objective.effort_weight) + "\n";
   }
   return o;
+}
+
+std::vector<std::string> trained_on_differences(const ControllerSpec& spec,
+                                                const std::string& controller_path,
+                                                const std::string& urdf, const std::string& path,
+                                                const std::string& bundled_urdf) {
+  std::vector<std::string> out;
+  if (!spec.tuning) return out;
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(controller_path).parent_path();
+  // One kind: the run's file (empty: the built-in line) against the recorded ones of that kind.
+  const auto compare = [&](const char* kind, const std::string& used, const std::string& absent,
+                           const std::string& absent_file) {
+    std::vector<const controller::TrainedOn*> recorded;
+    for (const controller::TrainedOn& f : spec.tuning->trained_on)
+      if (f.kind == kind) recorded.push_back(&f);
+    const std::string used_hash = used.empty() ? std::string() : file_hash(used);
+    if (recorded.empty()) {
+      // Trained on the default: the bundled file (compared by content) or the built-in line.
+      if (used.empty()) return;
+      if (!absent_file.empty() && used_hash == file_hash(absent_file)) return;
+      out.push_back(std::string(kind) + ": trained on " + absent + ", run on " + used +
+                    " (fnv1a64 " + used_hash + ")");
+      return;
+    }
+    for (const controller::TrainedOn* f : recorded)
+      if (!used.empty() && f->fnv1a64 == used_hash) return;
+    std::string line = std::string(kind) + ": trained on ";
+    bool changed = false;
+    for (std::size_t k = 0; k < recorded.size(); ++k) {
+      const controller::TrainedOn& f = *recorded[k];
+      const fs::path file = fs::path(f.file).is_absolute() ? fs::path(f.file) : folder / f.file;
+      std::error_code ec;
+      if (!used.empty() && fs::equivalent(file, used, ec) && !ec) changed = true;
+      line += (k == 0 ? "" : ", ") + f.file + " (fnv1a64 " + f.fnv1a64 + ")";
+    }
+    if (used.empty()) {
+      line += ", run on " + absent;
+    } else {
+      line += ", run on " + used + " (fnv1a64 " + used_hash + ")";
+      if (changed) line += ": the file has changed since the controller was tuned";
+    }
+    out.push_back(line);
+  };
+  compare("urdf", urdf, "the bundled ER50-C20", bundled_urdf);
+  compare("path", path, "the built-in line A -> B", std::string());
+  return out;
 }
 
 }  // namespace fuzzypid::controller_file

@@ -143,6 +143,17 @@ bool parse_path_csv(std::string_view text, const std::string& source, PathTable&
               " s does not increase (previous row: " + num(out.time_s.back()) + " s)";
       return false;
     }
+    // Roll, pitch and yaw are radians: beyond one turn they were almost surely written in degrees
+    // (180,0,0 read as radians puts the tool 53 degrees from where 180 degrees would).
+    if (out.kind == PathKind::Cartesian)
+      for (std::size_t f = 4; f < 7; ++f)
+        if (std::fabs(fields[f]) > 2.0 * kPi) {
+          static constexpr const char* kAngle[3] = {"roll_rad", "pitch_rad", "yaw_rad"};
+          error = where(source, line_no) + kAngle[f - 4] + " " + num(fields[f]) +
+                  " is beyond one turn (+-2 pi = +-6.28318531): the angles are radians, not "
+                  "degrees";
+          return false;
+        }
     out.time_s.push_back(fields[0]);
     out.values.push_back({fields[1], fields[2], fields[3], fields[4], fields[5], fields[6]});
     out.line.push_back(line_no);
@@ -194,6 +205,11 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
   if (n < 2 || table.values.size() != n || table.line.size() != n)
     return fail(PathStatus::InvalidSpec, table.source + ": a path needs at least two rows");
   const double duration = table.time_s.back() - table.time_s.front();
+  // One tick or less is a one-sample run (its ITAE 0 says nothing), not a path.
+  if (duration < tick_s * (1.0 - 1e-9))
+    return fail(PathStatus::InvalidSpec, table.source + ": the path lasts " + num(duration) +
+                                             " s, less than one tick (" + num(tick_s) +
+                                             " s): a run needs at least two samples");
   if (duration / tick_s > 1e7)
     return fail(PathStatus::InvalidSpec, table.source + ": more than 1e7 ticks (" + num(duration) +
                                              " s at " + num(tick_s) + " s a tick)");

@@ -7,6 +7,7 @@
 
 #include <sys/stat.h>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <limits>
@@ -35,6 +36,15 @@ constexpr const char* kDefaultUrdfName = "er50_c20.urdf";
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Largest URDF read (the bundled one is 9 kB; meshes are separate files).
 constexpr std::size_t kMaxUrdfBytes = 16u << 20;
+// The largest |lower| or |upper| of a revolute joint, rad: two turns (a joint limit of 180 written
+// in degrees is refused instead of loading and failing later as an unrelated IK error).
+constexpr double kMaxRevoluteLimitRad = 4.0 * 3.14159265358979323846;
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
 
 bool file_exists(const std::string& path) {
   struct stat st {};
@@ -328,9 +338,15 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
                   std::to_string(kNumJoints));
     }
 
+    // Per moving joint: the limits, and whether any mass or inertia lies below it (the links of
+    // its segment and of every later one). A joint that moves nothing has zero inertia, and the
+    // plant's J theta'' = tau would divide by it at the first tick.
+    std::array<std::size_t, kNumJoints> first_segment{};
     std::size_t j = 0;
-    for (const KDL::Segment& segment : desc.chain.segments) {
+    for (std::size_t k = 0; k < desc.chain.segments.size(); ++k) {
+      const KDL::Segment& segment = desc.chain.segments[k];
       if (segment.getJoint().getType() == KDL::Joint::None) continue;
+      first_segment[j] = k;
       const std::string& name = segment.getJoint().getName();
       const urdf::JointConstSharedPtr joint = urdf_model->getJoint(name);
       desc.joint_names[j] = name;
@@ -346,12 +362,48 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
           if (!(desc.lower[j] <= desc.upper[j])) {
             return fail("joint '" + name + "' has lower limit above upper limit");
           }
+          // Limits are radians; a bound beyond two turns is almost surely written in degrees.
+          for (const auto& [which, v] : {std::pair<const char*, double>{"lower", desc.lower[j]},
+                                         std::pair<const char*, double>{"upper", desc.upper[j]}})
+            if (std::fabs(v) > kMaxRevoluteLimitRad)
+              return fail("'" + urdf_path + "': joint '" + name + "': <limit> " + which + "=\"" +
+                          number(v) + "\" rad is beyond two turns (+-" +
+                          number(kMaxRevoluteLimitRad) +
+                          " rad): URDF limits are radians, not degrees");
         }
-        // URDF uses 0 for "not given" in velocity and effort.
-        if (joint->limits->velocity > 0.0) desc.velocity[j] = joint->limits->velocity;
-        if (joint->limits->effort > 0.0) desc.effort[j] = joint->limits->effort;
+        // URDF uses 0 for "not given" in velocity and effort: no limit, said once at load.
+        if (joint->limits->velocity > 0.0) {
+          desc.velocity[j] = joint->limits->velocity;
+        } else {
+          desc.notes.push_back("joint '" + name +
+                               "': <limit> velocity=\"0\" means no limit: the path's speed is "
+                               "not checked against it");
+        }
+        if (joint->limits->effort > 0.0) {
+          desc.effort[j] = joint->limits->effort;
+        } else {
+          desc.notes.push_back("joint '" + name +
+                               "': <limit> effort=\"0\" means no limit: its torque is never "
+                               "clamped (torque_limit = 0 conditions run unclamped)");
+        }
       }
       ++j;
+    }
+    for (std::size_t k = first_segment[0]; k < desc.chain.segments.size(); ++k)
+      desc.moving_mass_kg += desc.chain.segments[k].getInertia().getMass();
+    for (std::size_t m = 0; m < kNumJoints; ++m) {
+      bool moves_inertia = false;
+      for (std::size_t k = first_segment[m]; k < desc.chain.segments.size(); ++k) {
+        const KDL::RigidBodyInertia in = desc.chain.segments[k].getInertia();
+        const KDL::RotationalInertia rotational = in.getRotationalInertia();
+        const Eigen::Map<const Eigen::Matrix3d> tensor(rotational.data);
+        if (in.getMass() > 0.0 || !tensor.isZero(0.0)) moves_inertia = true;
+      }
+      if (!moves_inertia)
+        return fail("'" + urdf_path + "': no inertia moves with joint " + std::to_string(m + 1) +
+                    " ('" + desc.joint_names[m] + "'): link '" +
+                    desc.chain.segments[first_segment[m]].getName() +
+                    "' and the links below it have no <inertial> (or zero mass and inertia)");
     }
     return LoadResult{RobotModel(std::make_unique<Impl>(std::move(desc))), {}};
   } catch (const std::exception& e) {
@@ -398,6 +450,12 @@ const JointVector& RobotModel::velocity_limits_rad_s() const noexcept {
 }
 const JointVector& RobotModel::effort_limits_nm() const noexcept {
   return impl_->desc.effort;
+}
+double RobotModel::moving_mass_kg() const noexcept {
+  return impl_->desc.moving_mass_kg;
+}
+const std::vector<std::string>& RobotModel::notes() const noexcept {
+  return impl_->desc.notes;
 }
 
 bool RobotModel::within_limits(const JointVector& q, double tolerance_rad) const noexcept {

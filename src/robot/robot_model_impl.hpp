@@ -4,6 +4,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <kdl/chain.hpp>
 #include <kdl/chaindynparam.hpp>
@@ -29,6 +30,8 @@ struct ChainDescription {
   JointVector velocity{};
   JointVector effort{};
   std::array<bool, kNumJoints> continuous{};  // URDF continuous joints (no position limits)
+  double moving_mass_kg = 0.0;                // the links below the first joint, payload aside
+  std::vector<std::string> notes;             // RobotModel::notes()
 };
 
 // Owns the chain and solvers bound to it. KDL solvers keep a reference to the chain, so an Impl is

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -51,8 +53,10 @@ OutputTerms output_terms(const Table& t, std::size_t g) {
   return o;
 }
 
+// "ramp" or "ramp_x<s>", with s spelled as ratio_term_name spells a number (2^60 has an exponent:
+// ramp_x1_152921504606846976e18, an identifier every reader takes).
 std::string ramp_term_name(double scale) {
-  return scale == 1.0 ? "ramp" : "ramp_x" + number(scale);
+  return scale == 1.0 ? "ramp" : "ramp_" + ratio_term_name(scale);
 }
 
 // The header comment: what the inputs, outputs and term names mean.
@@ -202,11 +206,36 @@ Mirror table_mirror(const Table& t) {
 }
 
 bool check(const Table& t, std::string& error) {
-  if (t.valid()) return true;
-  error =
-      "the rule table is not valid (centres must be finite, ascending and symmetric about 0; "
-      "ratios R and T finite and > 0)";
-  return false;
+  if (!t.valid()) {
+    error =
+        "the rule table is not valid (centres must be finite, ascending and symmetric about 0; "
+        "ratios R and T finite and > 0)";
+    return false;
+  }
+  // The readers evaluate in float too (fuzzypid's fixed-capacity engine, fuzzylite's scalar): a
+  // cell beyond FLT_MAX, or a ramp term (R - 1) s beyond it, would be infinite there.
+  for (std::size_t g = 0; g < 3; ++g)
+    for (std::size_t i = 0; i < kSets; ++i)
+      for (std::size_t j = 0; j < kSets; ++j)
+        if (t.table[g][i][j] > static_cast<double>(FLT_MAX)) {
+          error = std::string("rule table ") + kGainNames[g] + " cell [" + std::to_string(i) +
+                  "][" + std::to_string(j) + "] (e " + kSetNames[i] + ", ec " + kSetNames[j] +
+                  ") is " + number(t.table[g][i][j]) + ", beyond the float range (" +
+                  number(static_cast<double>(FLT_MAX)) + ") of the engines that read the file";
+          return false;
+        }
+  for (std::size_t g = 0; g < 3; ++g) {
+    const OutputTerms o = output_terms(t, g);
+    const double ramp = (t.schedule_ratio[g] - 1.0) * o.scale;
+    if (o.ramp && !(std::fabs(ramp) <= static_cast<double>(FLT_MAX))) {
+      error = std::string("rule table ") + kGainNames[g] +
+              ": the ramp term (R - 1) s = " + number(ramp) +
+              " (R = " + number(t.schedule_ratio[g]) + ") is beyond the float range (" +
+              number(static_cast<double>(FLT_MAX)) + ") of the engines that read the file";
+      return false;
+    }
+  }
+  return true;
 }
 
 std::array<OutputTerms, 3> all_terms(const Table& t) {

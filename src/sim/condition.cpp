@@ -72,6 +72,9 @@ std::string RobotSetup::validate() const {
   if (ik_seed_rad)
     for (double v : *ik_seed_rad)
       if (!std::isfinite(v) || std::fabs(v) > 100.0) return "IK seed must be finite, rad";
+  if (ik_seed_rad && path.empty())
+    return "ik_seed (--ik-seed) applies only to a Cartesian path file (path, --path); the "
+           "built-in line A -> B runs from its own start joints";
   return {};
 }
 

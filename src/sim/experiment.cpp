@@ -137,6 +137,11 @@ std::optional<Experiment> Experiment::create(const RobotSetup& setup,
   } else {
     robot::PathTable table;
     if (!robot::load_path_csv(setup.path, table, error)) return std::nullopt;
+    if (setup.ik_seed_rad && table.kind == robot::PathKind::Joint) {
+      error = "--ik-seed (condition key ik_seed) applies only to a Cartesian path file; " +
+              setup.path + " is a joint path (t_s,q1_rad,...,q6_rad): its rows are the joints";
+      return std::nullopt;
+    }
     const robot::InverseKinematics ik(model);
     robot::JointPathResult planned = robot::joint_path_from_table(
         ik, model, table, setup.tick_s, setup.ik_seed_rad.value_or(robot::default_ik_seed(model)));

@@ -1,5 +1,6 @@
 // The command-line conventions (apps/common/cli.hpp) and the CSV reader's rules
 // (apps/common/csv.hpp), tested on the functions the tools call.
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -70,6 +71,31 @@ TEST(Parse, UsageErrorsExitTwoAndValidValuesRun) {
     EXPECT_EQ(parse_args(bad, seed, gain, color), kExitUsage) << bad[0];
     EXPECT_EQ(seed, 1u);
   }
+}
+
+// The one refusal of an option that would do nothing: the first given of the named options, with
+// its scope and the reason; nothing when the combination applies or none of them is given.
+TEST(GivenOptions, RefusesTheFirstGivenOptionThatWouldDoNothing) {
+  CLI::App app("t");
+  std::string path, seed, format;
+  bool flag = false;
+  app.add_option("--path", path);
+  app.add_option("--ik-seed", seed);
+  app.add_option("--format", format);
+  app.add_flag("--flag", flag);
+  const char* argv[] = {"t", "--ik-seed", "1", "--flag"};
+  ASSERT_EQ(parse(app, 4, argv), std::nullopt);
+  const GivenOptions given(app);
+  EXPECT_TRUE(given.has("--ik-seed"));
+  EXPECT_TRUE(given.has("--flag"));
+  EXPECT_FALSE(given.has("--path"));
+  EXPECT_EQ(given.names().size(), 2u);
+  EXPECT_EQ(given.refuse_unused({"--format", "--ik-seed", "--flag"}, false, "a Cartesian path file",
+                                "no --path is given"),
+            "--ik-seed applies only to a Cartesian path file; no --path is given");
+  EXPECT_EQ(given.refuse_unused({"--ik-seed"}, true, "a Cartesian path file", "x"), "");
+  EXPECT_EQ(given.refuse_unused({"--format", "--path"}, false, "--out", "x"), "");
+  EXPECT_EQ(GivenOptions().refuse_unused({"--ik-seed"}, false, "s", "r"), "");
 }
 
 TEST(Parse, HelpExitsZero) {

@@ -143,6 +143,45 @@ TEST(PathFile, TheRunLastsThePathsDurationInWholeTicks) {
   EXPECT_NEAR(p.time_s.back(), 1.2, 1e-12);
 }
 
+// A path of less than one tick would be a one-sample run (ITAE 0): refused, with both durations.
+// Exactly one tick is two samples and runs.
+TEST(PathFile, RefusesAPathShorterThanOneTick) {
+  PathTable table;
+  std::string error;
+  ASSERT_TRUE(
+      parse_path_csv(kJoint + "0,0,-1,1,0,0,0\n0.01,0,-1,1.001,0,0,0\n", "p.csv", table, error));
+  const InverseKinematics ik(ur5());
+  const JointPathResult p = joint_path_from_table(ik, ur5(), table, 0.05, JointVector{});
+  EXPECT_EQ(p.status, PathStatus::InvalidSpec);
+  EXPECT_NE(p.message.find("p.csv: the path lasts 0.01 s, less than one tick (0.05 s)"),
+            std::string::npos)
+      << p.message;
+  ASSERT_TRUE(
+      parse_path_csv(kJoint + "0,0,-1,1,0,0,0\n0.05,0,-1,1.001,0,0,0\n", "p.csv", table, error));
+  const JointPathResult one = joint_path_from_table(ik, ur5(), table, 0.05, JointVector{});
+  ASSERT_TRUE(one.ok()) << one.message;
+  EXPECT_EQ(one.time_s.size(), 2u);
+}
+
+// Roll, pitch and yaw are radians: a pose row with an angle beyond +-2 pi (written in degrees) is
+// refused with its line and value; 2 pi itself and joint rows beyond it are not refused.
+TEST(PathFile, RefusesPoseAnglesBeyondOneTurnAsDegrees) {
+  const std::string roll = parse_error(kPose + "0,0.4,0.1,0.3,0,0,0\n1,0.4,0.1,0.3,180,0,0\n");
+  EXPECT_NE(roll.find("p.csv:3: roll_rad 180 is beyond one turn"), std::string::npos) << roll;
+  EXPECT_NE(roll.find("radians"), std::string::npos) << roll;
+  const std::string pitch = parse_error(kPose + "0,0.4,0.1,0.3,0,-90,0\n1,0.4,0.1,0.3,0,0,0\n");
+  EXPECT_NE(pitch.find("p.csv:2: pitch_rad -90 is beyond one turn"), std::string::npos) << pitch;
+  const std::string yaw = parse_error(kPose + "0,0.4,0.1,0.3,0,0,6.3\n1,0.4,0.1,0.3,0,0,0\n");
+  EXPECT_NE(yaw.find("p.csv:2: yaw_rad 6.3 is beyond one turn"), std::string::npos) << yaw;
+  PathTable t;
+  std::string error;
+  EXPECT_TRUE(parse_path_csv(
+      kPose + "0,0.4,0.1,0.3,6.283185307179586,-6.2831853,0\n1,0,0,0,0,0,0\n", "p.csv", t, error))
+      << error;
+  EXPECT_TRUE(parse_path_csv(kJoint + "0,0,0,0,0,0,9\n1,0,0,0,0,0,9\n", "p.csv", t, error))
+      << error;
+}
+
 TEST(PathFile, CartesianRowsReproduceTheJointRowsTheyCameFrom) {
   // Joint rows on one branch, their poses by forward kinematics as a Cartesian file; inverse
   // kinematics (KDL on this arm) seeded near the first row must give the joint rows back.

@@ -264,8 +264,117 @@ INSTANTIATE_TEST_SUITE_P(
                            "joint 'joint1': <limit> velocity must be non-negative"},
         InvalidElementCase{"mimic", R"(<axis xyz="0 0 1"/>)",
                            R"(<axis xyz="0 0 1"/><mimic joint="joint2" multiplier="1"/>)",
-                           "joint 'joint1': <mimic> (joint 'joint2') is not supported"}),
+                           "joint 'joint1': <mimic> (joint 'joint2') is not supported"},
+        // Limits written in degrees: refused at load, naming the joint and the value, instead of
+        // loading and failing later as an IK error.
+        InvalidElementCase{"limits_in_degrees",
+                           R"(lower="-3.141592653589793" upper="3.141592653589793")",
+                           R"(lower="-180" upper="180")",
+                           "joint 'joint1': <limit> lower=\"-180\" rad is beyond two turns"},
+        InvalidElementCase{"upper_limit_in_degrees",
+                           R"(lower="-3.141592653589793" upper="3.141592653589793")",
+                           R"(lower="-3.141592653589793" upper="12.6")",
+                           "joint 'joint1': <limit> upper=\"12.6\" rad is beyond two turns"}),
     [](const ::testing::TestParamInfo<InvalidElementCase>& info) { return info.param.name; });
+
+// Two turns is still a limit (the ER50's joint 4 has +-2 pi), a little more than two turns is not.
+TEST(RobotModel, AcceptsLimitsOfTwoTurns) {
+  std::string text = bundled_urdf_text();
+  const std::string from = R"(lower="-3.141592653589793" upper="3.141592653589793")";
+  const std::size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), R"(lower="-12.566370614359172" upper="12.566370614359172")");
+  const std::string path =
+      ::testing::TempDir() + "fuzzypid_two_turns_" + std::to_string(::getpid()) + ".urdf";
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const LoadResult r = RobotModel::load(path);
+  std::remove(path.c_str());
+  ASSERT_TRUE(r.model.has_value()) << r.error;
+  EXPECT_DOUBLE_EQ(r.model->upper_limits_rad()[0], 4.0 * kPi);
+}
+
+// A URDF whose last moving link has no <inertial>: nothing moves with joint 6, whose plant would
+// divide by a zero inertia at t = 0 (numerical_error). Refused at load, naming joint and link.
+TEST(RobotModel, RefusesAJointThatMovesNoInertia) {
+  std::string text = bundled_urdf_text();
+  const std::size_t link = text.find("<link name=\"link6\">");
+  ASSERT_NE(link, std::string::npos);
+  const std::size_t end = text.find("</link>", link);
+  text.replace(link, end + 7 - link, "<link name=\"link6\"/>");
+  const std::string path =
+      ::testing::TempDir() + "fuzzypid_no_inertial_" + std::to_string(::getpid()) + ".urdf";
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const LoadResult r = RobotModel::load(path);
+  EXPECT_FALSE(r.model.has_value());
+  EXPECT_NE(r.error.find("no inertia moves with joint 6 ('joint6'): link 'link6'"),
+            std::string::npos)
+      << r.error;
+  // A link without <inertial> whose joint still moves the links below it loads.
+  std::string inner = bundled_urdf_text();
+  const std::size_t l3 = inner.find("<link name=\"link3\">");
+  ASSERT_NE(l3, std::string::npos);
+  inner.replace(l3, inner.find("</link>", l3) + 7 - l3, "<link name=\"link3\"/>");
+  {
+    std::ofstream out(path);
+    out << inner;
+  }
+  const LoadResult ok = RobotModel::load(path);
+  std::remove(path.c_str());
+  EXPECT_TRUE(ok.model.has_value()) << ok.error;
+}
+
+// URDF's effort="0" and velocity="0" mean "no limit": the model keeps an infinite limit and says
+// so in notes(), one line per joint and limit; the bundled URDF has none.
+TEST(RobotModel, NotesTheLimitsAUrdfLeavesOpen) {
+  EXPECT_TRUE(bundled_model().notes().empty());
+  std::string text = bundled_urdf_text();
+  const std::string from = R"(velocity="3.141592653589793" effort="3500")";
+  const std::size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), R"(velocity="0" effort="0")");
+  const std::string path =
+      ::testing::TempDir() + "fuzzypid_zero_limits_" + std::to_string(::getpid()) + ".urdf";
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const LoadResult r = RobotModel::load(path);
+  std::remove(path.c_str());
+  ASSERT_TRUE(r.model.has_value()) << r.error;
+  EXPECT_TRUE(std::isinf(r.model->effort_limits_nm()[0]));
+  EXPECT_TRUE(std::isinf(r.model->velocity_limits_rad_s()[0]));
+  ASSERT_EQ(r.model->notes().size(), 2u);
+  EXPECT_NE(r.model->notes()[0].find("joint 'joint1': <limit> velocity=\"0\" means no limit"),
+            std::string::npos)
+      << r.model->notes()[0];
+  EXPECT_NE(r.model->notes()[1].find("joint 'joint1': <limit> effort=\"0\" means no limit"),
+            std::string::npos)
+      << r.model->notes()[1];
+}
+
+// The moving mass is the links below the first joint: the ER50-C20's URDF masses minus its base.
+TEST(RobotModel, MovingMassIsTheLinksBelowTheFirstJoint) {
+  std::string text = bundled_urdf_text();
+  double total = 0.0, base = 0.0;
+  for (std::size_t at = text.find("<link name="); at != std::string::npos;
+       at = text.find("<link name=", at + 1)) {
+    const std::size_t next = text.find("<link name=", at + 1);
+    const std::size_t mass = text.find("<mass value=\"", at);
+    if (mass == std::string::npos || (next != std::string::npos && mass > next)) continue;
+    const double m = std::strtod(text.c_str() + mass + 13, nullptr);
+    total += m;
+    if (text.compare(at, 22, "<link name=\"base_link\"") == 0) base = m;
+  }
+  ASSERT_GT(total, base);
+  EXPECT_NEAR(bundled_model().moving_mass_kg(), total - base, 1e-9);
+  EXPECT_EQ(bundled_model().with_payload(50.0).moving_mass_kg(), bundled_model().moving_mass_kg());
+}
 
 // Only a regular file is read: a device that never ends (or a FIFO that would block) is refused by
 // its kind before it is opened, and so is a directory.

@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -190,6 +191,80 @@ TEST(ControllerFile, FileHashIsFnv1aOfTheBytes) {
   std::ofstream(path) << "a";
   EXPECT_EQ(cf::file_hash(path), "af63dc4c8601ec8c");  // FNV-1a 64 of "a"
   EXPECT_EQ(cf::file_hash(path + ".missing"), "");
+}
+
+// trained_on hashes have the one form file_hash writes; any other is refused at its key with the
+// value and the expected form (a hand-edited record that can never match is not a record).
+TEST(ControllerFile, AMalformedTrainedOnHashIsRefusedAtItsKey) {
+  const std::string good = cf::to_toml(tuned_example());
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError error;
+  ASSERT_TRUE(cf::parse(good, "t.toml", spec, error)) << error.to_string();
+  for (const char* bad : {"0123456789ABCDEF", "0123456789abcdeg", "0123456789abcde", "", "xyz"}) {
+    std::string text = good;
+    const std::size_t at = text.find("\"0123456789abcdef\"");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 18, std::string("\"") + bad + "\"");
+    ctl::ControllerSpec s;
+    fuzzypid::FileError e;
+    ASSERT_FALSE(cf::parse(text, "t.toml", s, e)) << bad;
+    EXPECT_GT(e.line, 0u) << bad;
+    EXPECT_NE(e.message.find(std::string("trained_on fnv1a64 \"") + bad + "\" is not a 64-bit"),
+              std::string::npos)
+        << e.to_string();
+    EXPECT_NE(e.message.find("16 lower-case hex digits"), std::string::npos) << e.to_string();
+  }
+}
+
+// trained_on against the run: by content (a copy agrees, an edit in place does not), relative
+// names resolved against the controller file's folder, and an absent entry meaning the bundled
+// URDF or the built-in line.
+TEST(ControllerFile, TrainedOnIsComparedWithTheRobotAndPathOfARun) {
+  const std::string dir = ::testing::TempDir() + "trained_on_" + std::to_string(std::rand()) + "/";
+  ASSERT_EQ(std::system(("mkdir -p '" + dir + "copy'").c_str()), 0);
+  std::ofstream(dir + "robot.urdf") << "<robot name=\"r\"/>\n";
+  std::ofstream(dir + "copy/robot.urdf") << "<robot name=\"r\"/>\n";
+  std::ofstream(dir + "other.urdf") << "<robot name=\"other\"/>\n";
+  std::ofstream(dir + "path.csv") << "t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad\n";
+  ctl::ControllerSpec spec = tuned_example();
+  spec.tuning->trained_on = {{"urdf", "robot.urdf", cf::file_hash(dir + "robot.urdf")},
+                             {"path", "path.csv", cf::file_hash(dir + "path.csv")}};
+  const std::string controller = dir + "c.toml";
+  const std::string bundled = dir + "other.urdf";
+  const auto diff = [&](const std::string& urdf, const std::string& path) {
+    return cf::trained_on_differences(spec, controller, urdf, path, bundled);
+  };
+  EXPECT_TRUE(diff(dir + "robot.urdf", dir + "path.csv").empty());
+  EXPECT_TRUE(diff(dir + "copy/robot.urdf", dir + "path.csv").empty());
+
+  auto d = diff(dir + "other.urdf", dir + "path.csv");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0], "urdf: trained on robot.urdf (fnv1a64 " + cf::file_hash(dir + "robot.urdf") +
+                      "), run on " + dir + "other.urdf (fnv1a64 " +
+                      cf::file_hash(dir + "other.urdf") + ")");
+  d = diff(dir + "robot.urdf", "");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NE(d[0].find("path: trained on path.csv"), std::string::npos) << d[0];
+  EXPECT_NE(d[0].find("run on the built-in line A -> B"), std::string::npos) << d[0];
+
+  std::ofstream(dir + "robot.urdf", std::ios::app) << "<!-- edited -->\n";
+  d = diff(dir + "robot.urdf", dir + "path.csv");
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NE(d[0].find("the file has changed since the controller was tuned"), std::string::npos)
+      << d[0];
+
+  // No urdf or path entry: the bundled URDF (by content) on the built-in line.
+  spec.tuning->trained_on.clear();
+  EXPECT_TRUE(diff(bundled, "").empty());
+  d = diff(dir + "copy/robot.urdf", dir + "path.csv");
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_NE(d[0].find("urdf: trained on the bundled ER50-C20, run on"), std::string::npos) << d[0];
+  EXPECT_NE(d[1].find("path: trained on the built-in line A -> B, run on"), std::string::npos)
+      << d[1];
+  // A controller written by hand has no record to compare.
+  spec.tuning.reset();
+  EXPECT_TRUE(diff(dir + "copy/robot.urdf", dir + "path.csv").empty());
+  std::system(("rm -rf '" + dir + "'").c_str());
 }
 
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {

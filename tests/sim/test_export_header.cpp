@@ -11,6 +11,7 @@
 #include "engine_fuzzy.hpp"
 #include "engine_lock_fuzzy.hpp"
 #include "engine_tip_fuzzy.hpp"
+#include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
@@ -193,6 +194,25 @@ TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {
     }
   }
   EXPECT_TRUE(some_cell_is_not_one);
+}
+
+}  // namespace
+
+namespace {
+
+// A rule-table cell beyond FLT_MAX would be written as a float literal that does not compile:
+// check_float_range names the cell and its value first.
+TEST(ExportHeader, ARuleTableCellBeyondTheFloatRangeIsRefusedNamingTheCell) {
+  ctl::ControllerSpec spec;
+  fuzzypid::FileError err;
+  ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/controllers/tuned_fuzzy_rules.toml", spec, err))
+      << err.to_string();
+  EXPECT_EQ(fuzzypid::codegen::check_float_range(spec), "");
+  spec.supervisor.rule_table.ratio[2][6][5] = 1e300;
+  const std::string bad = fuzzypid::codegen::check_float_range(spec);
+  EXPECT_NE(bad.find("rule_table kd[6][5] (e PB, ec PM) is 1.0000000000000001e+300"),
+            std::string::npos)
+      << bad;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/sim/closed_loop.hpp"
@@ -83,6 +84,50 @@ TEST(RobotSetup, AUrdfThatIsNotASixJointChainIsRefused) {
   std::string error;
   EXPECT_FALSE(Experiment::create(s, ExperimentOptions{}, error));
   EXPECT_NE(error.find("five_joints.urdf"), std::string::npos) << error;
+}
+
+// An IK seed changes only the first row of a Cartesian path file: with the built-in line or a
+// joint path it would be ignored, so it is refused, naming the path.
+TEST(RobotSetup, AnIkSeedIsRefusedWhereNoInverseKinematicsUsesIt) {
+  RobotSetup s;
+  s.ik_seed_rad = robot::JointVector{0, -1, 1, 0, 0, 0};
+  EXPECT_NE(s.validate().find("ik_seed (--ik-seed) applies only to a Cartesian path file"),
+            std::string::npos)
+      << s.validate();
+  std::string error;
+  EXPECT_FALSE(Experiment::create(s, ExperimentOptions{}, error));
+
+  RobotSetup joint = ur5_setup();
+  joint.path = write_temp("ik_seed_joint.csv",
+                          "t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad\n0,0,-1,1,0,0,0\n"
+                          "1,0,-1,1.2,0,0,0\n");
+  joint.ik_seed_rad = robot::JointVector{0, -1, 1, 0, 0, 0};
+  EXPECT_EQ(joint.validate(), "");
+  EXPECT_FALSE(Experiment::create(joint, ExperimentOptions{}, error));
+  EXPECT_NE(error.find("applies only to a Cartesian path file; " + joint.path + " is a joint path"),
+            std::string::npos)
+      << error;
+  joint.ik_seed_rad.reset();
+  EXPECT_TRUE(Experiment::create(joint, ExperimentOptions{}, error)) << error;
+
+  // A Cartesian path (the poses of the joint rows above) takes the seed.
+  const auto model = robot::RobotModel::load(ur5_setup().urdf);
+  ASSERT_TRUE(model.model) << model.error;
+  std::string rows = "t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+  for (const double t : {0.0, 1.0}) {
+    const robot::Pose p = model.model->forward_kinematics({0, -1, 1 + 0.2 * t, 0, 0, 0});
+    const Eigen::Vector3d rpy = p.rotation.eulerAngles(2, 1, 0);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, p.position_m.x(),
+                  p.position_m.y(), p.position_m.z(), rpy[2], rpy[1], rpy[0]);
+    rows += buf;
+  }
+  RobotSetup pose = ur5_setup();
+  pose.path = write_temp("ik_seed_pose.csv", rows);
+  pose.ik_seed_rad = robot::JointVector{0, -1, 1, 0, 0, 0};
+  const auto ex = Experiment::create(pose, ExperimentOptions{}, error);
+  ASSERT_TRUE(ex) << error;
+  EXPECT_NEAR(ex->path().position_rad.front()[2], 1.0, 1e-6);
 }
 
 TEST(ExperimentSet, BuildsOneExperimentPerDistinctSetup) {

@@ -284,6 +284,29 @@ TEST(RuleTableExport, InvalidTablesAreRefusedInEveryFormat) {
   }
 }
 
+// A cell beyond the float range (1e300) is refused naming the cell and its value, in every format,
+// instead of a file whose ramp term name does not parse; a large cell that floats hold (1e30) gets
+// a ramp term whose name every reader takes, and the file loads.
+TEST(RuleTableExport, ACellBeyondTheFloatRangeIsRefusedNamingTheCell) {
+  RuleTable<double> t;
+  t.schedule_ratio = {2.0, 1.0, 1.0};
+  t.table[0][0][1] = 1e300;  // kp, e NB, ec NM
+  for (const Format f : {Format::Fll, Format::Fcl, Format::Fis}) {
+    std::string text, error;
+    EXPECT_FALSE(write(f, t, text, error)) << name(f);
+    EXPECT_NE(error.find("rule table Kp cell [0][1] (e NB, ec NM) is 1e+300, beyond the float"),
+              std::string::npos)
+        << name(f) << ": " << error;
+  }
+  t.table[0][0][1] = 1e30;
+  for (const Format f : {Format::Fll, Format::Fcl}) {
+    std::string text, error;
+    ASSERT_TRUE(write(f, t, text, error)) << name(f) << ": " << error;
+    EXPECT_NE(load(f, text), nullptr) << name(f);
+    EXPECT_EQ(text.find("ramp_x1.2"), std::string::npos) << name(f);
+  }
+}
+
 TEST(RuleTableExport, TermsAreNamedByTheRatioTheyStandFor) {
   EXPECT_EQ(fuzzypid::rulefile::ratio_term_name(0.85), "x0_85");
   EXPECT_EQ(fuzzypid::rulefile::ratio_term_name(1.0), "x1");

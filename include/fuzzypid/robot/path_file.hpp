@@ -7,7 +7,8 @@
 //   t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad             tool poses in the chain's base frame,
 //                                                          URDF fixed-axis roll-pitch-yaw
 //                                                          (R = Rz(yaw) Ry(pitch) Rx(roll))
-// Times strictly increasing, every value finite, at least two rows.
+// Times strictly increasing, every value finite, at least two rows lasting at least one tick;
+// roll, pitch and yaw within +-2 pi (radians: larger angles are refused as probably degrees).
 //
 // From rows to ticks:
 //   1. Cartesian rows are solved by inverse kinematics row by row, each seeded with the previous

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -60,6 +61,15 @@ class RobotModel {
   const JointVector& velocity_limits_rad_s() const noexcept;
   const JointVector& effort_limits_nm() const noexcept;
   bool within_limits(const JointVector& q, double tolerance_rad = 0.0) const noexcept;
+
+  // The mass the joints move: the links of the chain below its first joint, kg (a payload added
+  // by with_payload not included).
+  double moving_mass_kg() const noexcept;
+
+  // What the URDF leaves open that a user should hear, one line per joint and limit, e.g.
+  // "joint 'j1': <limit> effort=\"0\" means no limit: its torque is never clamped". Empty for the
+  // bundled ER50-C20.
+  const std::vector<std::string>& notes() const noexcept;
 
   // Tip pose in the root frame. Does not allocate.
   Pose forward_kinematics(const JointVector& q) const noexcept;

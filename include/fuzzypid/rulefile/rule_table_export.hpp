@@ -32,7 +32,9 @@
 // infinite feet) and refuses the others with a message.
 //
 // Set-up code: allocates, never throws; the functions return false with `error` set when the
-// table is not valid() or the format cannot express it.
+// table is not valid(), a cell or ramp constant lies beyond the float range (FLT_MAX; the error
+// names the cell and its value), or the format cannot express it. The ramp term of a scale s is
+// `ramp_` + ratio_term_name(s) (ramp_x2, ramp_x1_2676506002282294e30).
 #pragma once
 
 #include <string>

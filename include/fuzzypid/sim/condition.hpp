@@ -49,7 +49,8 @@ struct RobotSetup {
   // other URDF (a URDF has no armature field).
   std::optional<robot::JointVector> armature_kgm2;
   // Seed of the first inverse kinematics of a Cartesian path; nullopt: the middle of each joint's
-  // limits (robot::default_ik_seed).
+  // limits (robot::default_ik_seed). Refused with the built-in line or a joint path, which it
+  // would not change.
   std::optional<robot::JointVector> ik_seed_rad;
 
   [[nodiscard]] bool operator==(const RobotSetup& o) const noexcept;
