@@ -209,6 +209,10 @@ TEST(ControllerFile, AMalformedTrainedOnHashIsRefusedAtItsKey) {
     fuzzypid::FileError e;
     ASSERT_FALSE(cf::parse(text, "t.toml", s, e)) << bad;
     EXPECT_GT(e.line, 0u) << bad;
+    if (*bad == '\0') {  // refused as every empty string is, before its form is looked at
+      EXPECT_NE(e.message.find("'fnv1a64' is empty"), std::string::npos) << e.to_string();
+      continue;
+    }
     EXPECT_NE(e.message.find(std::string("trained_on fnv1a64 \"") + bad + "\" is not a 64-bit"),
               std::string::npos)
         << e.to_string();
