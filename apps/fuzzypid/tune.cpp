@@ -590,7 +590,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       ->check(finite_in(0.0, 1e12));
   cmd->add_option("--chatter-weight", t->objective.chatter_weight,
                   "cost per unit of each joint's command reversal share (0..1: the share of ticks "
-                  "on which the command's change reverses; docs/tuning.md) (default 0)")
+                  "on which the command's change reverses; docs/tuning.md) (default 0.1)")
       ->check(finite_in(0.0, 1e9));
   cmd->add_option("--effort-weight", t->objective.effort_weight,
                   "cost per unit of each joint's RMS command over its limit (0..1) (default 0)")

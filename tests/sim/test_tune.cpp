@@ -95,6 +95,8 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
   const std::vector<fuzzypid::sim::Condition> conditions(1);
   const ctl::ControllerSpec pid = ctl::paper_pid();
   tune::Objective plain;
+  EXPECT_EQ(plain.chatter_weight, 0.1);  // the default (docs/tuning.md, "Chatter")
+  plain.chatter_weight = 0.0;
   const tune::Cost base = tune::evaluate(*ex, conditions, pid, plain);
   EXPECT_EQ(base.chatter_penalty, 0.0);
   EXPECT_EQ(base.effort_penalty, 0.0);

@@ -218,8 +218,11 @@ struct Objective {
   double fault_cost = 1000.0;         // per run that faults, diverges or gives non-finite ITAE
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
   // What a drive feels (tune/tune.hpp): cost per unit of each joint's command reversal share
-  // (0..1) and of its RMS command relative to its limit (0..1), summed over the joints.
-  double chatter_weight = 0.0;
+  // (0..1) and of its RMS command relative to its limit (0..1), summed over the joints. The
+  // chatter default is the smallest of 0, 0.1, 1, 10 with which the pid and scheduled families
+  // keep every joint's reversals at or below 10 % on the validation conditions of
+  // tuning/robust.toml (docs/tuning.md, "Chatter"); a file without the key was tuned without it.
+  double chatter_weight = 0.1;
   double effort_weight = 0.0;
 };
 
