@@ -59,6 +59,22 @@ std::vector<SearchBox> default_box(Family family) {
   return ParameterSpace::create(Family::FuzzyRules, start, o, nullptr, error)->box();
 }
 
+std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, double units_tick_s,
+                                    double tick_s) {
+  if (!(units_tick_s > 0.0) || !(tick_s > 0.0) || units_tick_s == tick_s) return box;
+  const double decades = std::log10(units_tick_s / tick_s);
+  for (SearchBox& b : box) {
+    double exponent = 0.0;
+    if (b.name == "kp" || (family == Family::Fuzzy && b.name == "sp")) exponent = 2.0;
+    if (b.name == "ki" || (family == Family::Fuzzy && b.name == "si")) exponent = 3.0;
+    if (b.name == "kd" || (family == Family::Fuzzy && b.name == "sd")) exponent = 1.0;
+    if (b.name == "kec") exponent = -1.0;
+    b.log10_min += exponent * decades;
+    b.log10_max += exponent * decades;
+  }
+  return box;
+}
+
 std::optional<ParameterSpace> ParameterSpace::create(Family family, const ControllerSpec& start,
                                                      const TableOptions& options,
                                                      const VisitMap* visits, std::string& error) {

@@ -398,7 +398,15 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error);
   if (!space) return std::nullopt;
 
+  // The default box moves with the training tick when all training conditions share one.
   std::vector<SearchBox> box = space->box();
+  if (start->units.form == controller::PidForm::PerTick && !data.training_ex.empty()) {
+    const double tick = data.training_ex.front()->options().tick_s;
+    bool one_tick = true;
+    for (const sim::Experiment* e : data.training_ex)
+      one_tick = one_tick && e->options().tick_s == tick;
+    if (one_tick) box = box_for_tick(box, options.family, start->units.tick_s, tick);
+  }
   for (const SearchBox& b : options.box) {
     const auto it =
         std::find_if(box.begin(), box.end(), [&](const SearchBox& d) { return d.name == b.name; });

@@ -69,6 +69,31 @@ double largest_relative_difference(const ctl::ControllerSpec& a, const ctl::Cont
   return worst;
 }
 
+// The default boxes are per-tick gains at 0.05 s; at a 10 ms tick a loop as fast relative to its
+// tick has five times the natural frequency: kp x 25, ki x 125, kd x 5, kec / 5.
+TEST(BoxForTick, MovesEachGainsBoxByItsExponentOfTheTickRatio) {
+  const double d = std::log10(5.0);
+  for (const ctl::Family family : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy}) {
+    const auto base = tune::default_box(family);
+    const auto moved = tune::box_for_tick(base, family, 0.05, 0.01);
+    ASSERT_EQ(moved.size(), base.size());
+    for (std::size_t k = 0; k < base.size(); ++k) {
+      const std::string& n = base[k].name;
+      const bool fuzzy = family == ctl::Family::Fuzzy;
+      const double exponent = n == "kp" || (fuzzy && n == "sp")   ? 2.0
+                              : n == "ki" || (fuzzy && n == "si") ? 3.0
+                              : n == "kd" || (fuzzy && n == "sd") ? 1.0
+                              : n == "kec"                        ? -1.0
+                                                                  : 0.0;
+      EXPECT_NEAR(moved[k].log10_min, base[k].log10_min + exponent * d, 1e-12) << n;
+      EXPECT_NEAR(moved[k].log10_max, base[k].log10_max + exponent * d, 1e-12) << n;
+    }
+    const auto same = tune::box_for_tick(base, family, 0.05, 0.05);
+    for (std::size_t k = 0; k < base.size(); ++k)
+      EXPECT_EQ(same[k].log10_min, base[k].log10_min);
+  }
+}
+
 TEST(Convert, APidAsAScheduleGivesTheSameCommandsBitForBit) {
   ctl::ControllerSpec pid = ctl::paper_pid();
   pid.gains = {40.0, 0.02, 300.0};

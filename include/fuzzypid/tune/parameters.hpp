@@ -114,4 +114,15 @@ class ParameterSpace {
 // The default box of a family (fuzzy-rules: default TableOptions, all cells free).
 [[nodiscard]] std::vector<SearchBox> default_box(Family family);
 
+// `box`, made for per-tick gains at a units_tick_s tick (the default boxes: 0.05 s), moved to a
+// loop sampled every tick_s: a loop as fast relative to its tick has a natural frequency
+// omega ~ 1/tick_s, so the acceleration gains scale as kp ~ omega^2, ki ~ omega^3, kd ~ omega
+// (per-tick kd and ki at units_tick_s are Kd / units_tick_s and Ki * units_tick_s of the
+// continuous gains) and the error-rate scale as kec ~ 1/omega. Each such parameter's log10 box
+// moves by its exponent times log10(units_tick_s / tick_s): kp, sp by 2, ki, si by 3, kd, sd by
+// 1, kec by -1 (sp, si, sd: the fuzzy family's gain increments, in gain units); ke, the ratios
+// and the table cells are dimensionless and stay. Equal ticks return the box unchanged.
+[[nodiscard]] std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family,
+                                                  double units_tick_s, double tick_s);
+
 }  // namespace fuzzypid::tune
