@@ -2,6 +2,7 @@
 // sim/condition.hpp (the condition files use the same ones):
 //   --urdf FILE --base-link NAME --tip-link NAME --path FILE --tick-ms T --armature A1,...,A6
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
+// and what real joints have (sim::JointEffects): --plant-step-ms S
 // Header-only: included by the tools that link fuzzypid::sim.
 #pragma once
 
@@ -28,12 +29,13 @@ struct RobotOptions {
   std::optional<robot::PlantCoupling> dynamics;
   bool gravity = false;
   bool tick_given = false;
+  sim::JointEffects effects;  // --plant-step-ms, ... (what real joints have)
 
   // Whether any option naming the robot, its path or its plant was given.
   [[nodiscard]] bool any() const {
     return !setup.urdf.empty() || !setup.base_link.empty() || !setup.tip_link.empty() ||
            !setup.path.empty() || tick_given || setup.armature_kgm2 || setup.ik_seed_rad ||
-           payload_kg || dynamics || gravity;
+           payload_kg || dynamics || gravity || effects != sim::JointEffects{};
   }
   // The options applied to a condition.
   void apply(sim::Condition& c) const {
@@ -47,8 +49,30 @@ struct RobotOptions {
     if (payload_kg) c.payload_kg = *payload_kg;
     if (dynamics) c.dynamics = *dynamics;
     c.gravity = gravity;
+    c.effects = effects;
   }
 };
+
+// An option of JointEffects: "--" + the range's key with '_' -> '-', in the range's units, 0 (off)
+// or within the range; stored times `to_si`.
+inline void add_effect_option(CLI::App& app, const sim::FieldRange& range, double to_si,
+                              double& target, const std::string& help, const std::string& text) {
+  std::string name = std::string("--") + range.key;
+  for (char& ch : name)
+    if (ch == '_') ch = '-';
+  app.add_option_function<std::string>(
+         name,
+         [name, range, to_si, &target](const std::string& s) {
+           const auto v = parse_finite(s);
+           if (!v || (*v != 0.0 && !range.contains(*v)))
+             throw CLI::ValidationError(name, "expected 0 (off) or a number within " +
+                                                  CLI::detail::to_string(range.lo) + " .. " +
+                                                  CLI::detail::to_string(range.hi) + ": " + s);
+           target = *v * to_si;
+         },
+         help)
+      ->option_text(text);
+}
 
 // "a,b,c,d,e,f": six finite numbers.
 inline bool parse_six(const std::string& text, robot::JointVector& out) {
@@ -140,6 +164,10 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
          "rigid-body dynamics M(q) q'' + C q' + g = tau")
       ->check(CLI::IsMember(names));
   app.add_flag("--gravity", o.gravity, "gravity in the plant (needs --dynamics coupled)");
+  add_effect_option(app, sim::kPlantStepMsRange, 1e-3, o.effects.plant_step_s,
+                    "largest integration step of the plant, ms (default: 1 ms decoupled, 50 ms "
+                    "coupled, shorter where friction, the current loop or the gear is stiff)",
+                    "S");
 }
 
 // Usage errors the options can have on their own; empty when none.

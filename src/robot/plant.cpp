@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "rigid_body_dynamics.hpp"
 
@@ -54,7 +55,12 @@ class JointPlant::Impl {
             all_finite(config.damping_nms) && all_non_negative(limit) &&
             std::isfinite(config.gravity_m_s2) &&
             (!config.fixed_configuration_rad || all_finite(*config.fixed_configuration_rad));
+    valid = valid && std::isfinite(config.step_rate_limit) && config.step_rate_limit > 0.0;
     sqrt_scale = to_vec(config.inertia_scale).cwiseSqrt();
+    // The slopes of the torques that oppose velocity, N·m·s/rad: what makes the plant stiff.
+    stiffness = config.damping_nms;
+    for (double b : stiffness)
+      stiff = stiff || b > 0.0;
     reset(JointVector{}, JointVector{});
   }
 
@@ -73,6 +79,23 @@ class JointPlant::Impl {
                            : Vec6(effective_mass(q0).diagonal()));
   }
 
+  // The longest step with h·rate <= step_rate_limit (+inf for rate 0).
+  double stable_step(double rate) const noexcept {
+    return rate > 0.0 ? config.step_rate_limit / rate : std::numeric_limits<double>::infinity();
+  }
+
+  // The fastest rate of the coupled model's linear terms, 1/s: the largest eigenvalue of
+  // M_eff⁻¹ diag(stiffness), that of the symmetric L⁻¹ diag(stiffness) L⁻ᵀ (M_eff = L Lᵀ). 0 without
+  // such terms.
+  double coupled_rate(const Mat6& mass) const noexcept {
+    if (!stiff) return 0.0;
+    const Eigen::LLT<Mat6> llt(mass);
+    if (llt.info() != Eigen::Success) return 0.0;
+    const Mat6 w = llt.matrixL().solve(Mat6(to_vec(stiffness).cwiseSqrt().asDiagonal()));
+    const Eigen::SelfAdjointEigenSolver<Mat6> eigen(w * w.transpose(), Eigen::EigenvaluesOnly);
+    return eigen.info() == Eigen::Success ? eigen.eigenvalues().maxCoeff() : 0.0;
+  }
+
   // S^½ M(q) S^½ + diag(armature).
   Mat6 effective_mass(const JointVector& at) const noexcept {
     Mat6 m = sqrt_scale.asDiagonal() * model.mass_matrix(at) * sqrt_scale.asDiagonal();
@@ -83,7 +106,7 @@ class JointPlant::Impl {
   // q̈ for the coupled model at (x, v), from the fixed-size RNEA/CRBA over the model's chain;
   // false if M_eff is not positive definite. `diagonal`, when given, receives diag(M_eff).
   bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive, Vec6& a,
-                            Vec6* diagonal = nullptr) const noexcept {
+                            Vec6* diagonal = nullptr, Mat6* mass = nullptr) const noexcept {
     const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
     const double g = config.gravity ? config.gravity_m_s2 : 0.0;
     Mat6 m;
@@ -97,6 +120,7 @@ class JointPlant::Impl {
       m.diagonal() += to_vec(config.armature_kgm2);
     }
     if (diagonal != nullptr) *diagonal = m.diagonal();
+    if (mass != nullptr) *mass = m;
     const Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
     const Eigen::LLT<Mat6> llt(m);
     if (llt.info() != Eigen::Success) return false;
@@ -124,10 +148,6 @@ class JointPlant::Impl {
     Vec6 v = to_vec(qd);
     Vec6 a_end = Vec6::Zero();
     JointVector j_tick{};
-    // Substeps: whole steps of `substep_s`, the last one shortened to end exactly at dt.
-    const double h_nominal = config.substep_s;
-    const double count = std::fmax(1.0, std::ceil(dt / h_nominal - 1e-9));
-    const auto steps = static_cast<long>(count);
 
     if (config.coupling == PlantCoupling::Decoupled) {
       Vec6 inv_j;
@@ -138,10 +158,17 @@ class JointPlant::Impl {
         for (std::size_t i = 0; i < kNumJoints; ++i)
           j_tick[i] = config.inertia_scale[i] * diag[i] + config.armature_kgm2[i];
       }
+      double rate = 0.0;  // the fastest rate of the linear terms, 1/s: max b_i / J_i
       for (std::size_t i = 0; i < kNumJoints; ++i) {
         if (!(j_tick[i] > 0.0) || !std::isfinite(j_tick[i])) return PlantStatus::NumericalError;
         inv_j(static_cast<int>(i)) = 1.0 / j_tick[i];
+        rate = std::fmax(rate, stiffness[i] / j_tick[i]);
       }
+      // Substeps: whole steps of `substep_s` (or shorter, h·rate <= step_rate_limit), the last one
+      // shortened to end exactly at dt.
+      const double h_nominal = std::fmin(config.substep_s, stable_step(rate));
+      const double count = std::fmax(1.0, std::ceil(dt / h_nominal - 1e-9));
+      const auto steps = static_cast<long>(count);
       // θ̈ = (drive − b θ̇) / J is linear in θ̇ and independent of θ.
       const auto accel = [&](const Vec6& vel) -> Vec6 {
         return (drive - damping.cwiseProduct(vel)).cwiseProduct(inv_j);
@@ -165,15 +192,19 @@ class JointPlant::Impl {
       // k1 of the first substep also gives the tick's effective inertia and the step size.
       Vec6 k1_first;
       Vec6 diagonal;
-      if (!coupled_acceleration(x, v, drive, k1_first, &diagonal))
+      Mat6 mass;
+      if (!coupled_acceleration(x, v, drive, k1_first, &diagonal, &mass))
         return PlantStatus::NumericalError;
       j_tick = to_array(diagonal);
       // Equal substeps no longer than coupled_substep_s, nor than the time in which a joint moving
       // with the tick's initial q̇ and q̈ covers coupled_step_rad (|q̇| h + ½ |q̈| h² = θ, in its
       // cancellation-free form h = 2θ / (|q̇| + √(q̇² + 2 |q̈| θ))): RK4's error grows with how far
       // the state moves through M(q), C and g within a step, so slow motion takes long steps and
-      // fast motion short ones. At most kMaxCoupledSubsteps, so a wild state cannot stall the tick.
-      double h_max = config.coupled_substep_s;
+      // fast motion short ones. At most kMaxCoupledSubsteps, so a wild state cannot stall the tick;
+      // the bounds that follow from the configuration (coupled_substep_s, the stiffness bound
+      // h·rate <= step_rate_limit) are always met.
+      const double h_config = std::fmin(config.coupled_substep_s, stable_step(coupled_rate(mass)));
+      double h_max = std::numeric_limits<double>::infinity();
       const double theta = config.coupled_step_rad;
       if (std::isfinite(theta)) {
         for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
@@ -185,7 +216,8 @@ class JointPlant::Impl {
         }
       }
       const double coupled_steps =
-          std::fmin(kMaxCoupledSubsteps, std::fmax(1.0, std::ceil(dt / h_max - 1e-9)));
+          std::fmax(std::fmax(1.0, std::ceil(dt / h_config - 1e-9)),
+                    std::fmin(kMaxCoupledSubsteps, std::ceil(dt / h_max - 1e-9)));
       const double h = dt / coupled_steps;
       for (long s = 0; s < static_cast<long>(coupled_steps); ++s) {
         Vec6 k1v, k2v, k3v, k4v;
@@ -239,6 +271,8 @@ class JointPlant::Impl {
   bool valid = false;
   JointVector limit{};
   Vec6 sqrt_scale = Vec6::Ones();
+  JointVector stiffness{};  // see the constructor
+  bool stiff = false;       // any stiffness > 0
   Mat6 fixed_mass = Mat6::Identity();
   JointVector q{};
   JointVector qd{};

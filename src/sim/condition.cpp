@@ -28,7 +28,22 @@ std::string out_of(const FieldRange& r, double v) {
   return buf;
 }
 
+// Empty when v is 0 (the effect is off) or within r.
+std::string off_or_within(const FieldRange& r, double v) {
+  return v == 0.0 ? std::string() : out_of(r, v);
+}
+
 }  // namespace
+
+bool JointEffects::operator==(const JointEffects& o) const noexcept {
+  return plant_step_s == o.plant_step_s;
+}
+
+std::string JointEffects::validate() const {
+  if (std::string bad = off_or_within(kPlantStepMsRange, plant_step_s * 1e3); !bad.empty())
+    return bad + " ms (0: the default step)";
+  return {};
+}
 
 std::string Condition::validate() const {
   for (const auto& [range, value] :
@@ -39,6 +54,7 @@ std::string Condition::validate() const {
         std::pair{kInitialErrorRange, initial_error_rad}, std::pair{kPayloadKgRange, payload_kg}})
     if (std::string bad = out_of(range, value); !bad.empty()) return bad;
   if (!(payload_scale > 0.0)) return "payload_scale must be > 0";
+  if (std::string bad = effects.validate(); !bad.empty()) return bad;
   if (gravity && dynamics != robot::PlantCoupling::Coupled)
     return "gravity needs the coupled dynamics (dynamics = coupled)";
   return robot.validate();

@@ -22,6 +22,24 @@ std::string resolve(const std::string& name, const std::string& condition_file) 
   return (fs::path(condition_file).parent_path() / name).lexically_normal().string();
 }
 
+// A key of JointEffects in the range's units, stored times `to_si`; 0 (off) or within the range.
+void read_effect(TableReader& r, const FieldRange& range, double to_si, double& target) {
+  if (!r.has(range.key)) return;
+  const double v = r.number(range.key);
+  if (v != 0.0 && !range.contains(v)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "'%s' must be 0 (off) or within %g .. %g", range.key, range.lo,
+                  range.hi);
+    r.fail(*r.raw().get(range.key), buf);
+  }
+  target = v * to_si;
+}
+
+// The keys of what real joints have (JointEffects).
+void read_effects(TableReader& r, JointEffects& e) {
+  read_effect(r, kPlantStepMsRange, 1e-3, e.plant_step_s);
+}
+
 // The robot, path and plant keys (set tables and conditions alike).
 void read_robot(TableReader& r, Condition& c) {
   RobotSetup& s = c.robot;
@@ -63,6 +81,7 @@ void read_robot(TableReader& r, Condition& c) {
   }
   c.dynamics = r.choice("dynamics", kDynamicsNames, c.dynamics);
   c.gravity = r.flag("gravity", c.gravity);
+  read_effects(r, c.effects);
 }
 
 // The fields of a condition common to listed conditions and Monte-Carlo sets.
@@ -100,6 +119,7 @@ Condition read_condition(const toml::node& node, const std::string& file,
     c.payload_kg = defaults.payload_kg;
     c.dynamics = defaults.dynamics;
     c.gravity = defaults.gravity;
+    c.effects = defaults.effects;
   }
   c.name = r.text("name");
   if (c.name.empty() || c.name.find_first_of(",\n\r\"") != std::string::npos)

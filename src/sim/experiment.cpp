@@ -218,6 +218,8 @@ robot::PlantConfig Experiment::plant_config(const Condition& condition) const {
   config.torque_limit_nm = torque_limit(condition);
   config.coupling = condition.dynamics;
   config.gravity = condition.gravity;
+  const JointEffects& e = condition.effects;
+  if (e.plant_step_s > 0.0) config.substep_s = config.coupled_substep_s = e.plant_step_s;
   return config;
 }
 

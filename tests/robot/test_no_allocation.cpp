@@ -82,6 +82,24 @@ TEST(NoAllocation, CoupledPlantStepWithPayloadGravityAndFixedInertia) {
   EXPECT_EQ(c.count(), 0u);
 }
 
+// The stiffness bound of the step (an eigenvalue problem per tick in coupled mode).
+TEST(NoAllocation, PlantStepsWithHighViscousFriction) {
+  PlantConfig config;
+  config.damping_nms = {3000.0, 5000.0, 1000.0, 100.0, 100.0, 30.0};
+  JointPlant decoupled(model(), config);
+  config.coupling = PlantCoupling::Coupled;
+  config.gravity = true;
+  JointPlant coupled(model(), config);
+  decoupled.reset(kPaperStartJoints, JointVector{});
+  coupled.reset(kPaperStartJoints, JointVector{});
+  AllocationCounter c;
+  for (int k = 0; k < 20; ++k) {
+    (void)decoupled.step({100, -50, 20, 1, 1, 0.5}, 0.05);
+    (void)coupled.step({100, -50, 20, 1, 1, 0.5}, 0.05);
+  }
+  EXPECT_EQ(c.count(), 0u);
+}
+
 TEST(NoAllocation, KinematicsAndDynamicsQueries) {
   const RobotModel& m = model();
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};

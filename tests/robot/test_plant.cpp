@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -525,6 +526,58 @@ TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullS
     std::printf("[ accuracy ] no armature, tick %.0f ms: max |q - q_ref| over 5 s %.2e rad\n",
                 tick * 1e3, error);
     EXPECT_LT(error, 1e-6) << "tick " << tick;
+  }
+}
+
+// Every step setting divided by `scale` (1: the defaults).
+PlantConfig scaled_steps(PlantConfig c, double scale) {
+  const PlantConfig d;
+  c.substep_s = d.substep_s * scale;
+  c.coupled_substep_s = d.coupled_substep_s * scale;
+  c.coupled_step_rad = d.coupled_step_rad * scale;
+  c.step_rate_limit = d.step_rate_limit * scale;
+  return c;
+}
+
+// Largest |q − q_reference| over a 5 s PD run (pd_torque) of `c` with the default steps against
+// the same run with every step ten times finer.
+double finer_step_error(const RobotModel& model, const PlantConfig& c, double tick_s) {
+  JointPlant plant(model, scaled_steps(c, 1.0));
+  JointPlant reference(model, scaled_steps(c, 0.1));
+  plant.reset(kPaperStartJoints, JointVector{});
+  reference.reset(kPaperStartJoints, JointVector{});
+  double worst = 0.0;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * tick_s;
+    EXPECT_NE(plant.step(pd_torque(plant, t), tick_s), PlantStatus::NumericalError);
+    EXPECT_NE(reference.step(pd_torque(reference, t), tick_s), PlantStatus::NumericalError);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      worst = std::max(worst, std::fabs(plant.position()[i] - reference.position()[i]));
+  }
+  return worst;
+}
+
+// Viscous friction of 100/s (b_i = 100 J_i, sim_ab --friction 100), and 5000/s decoupled: RK4 at
+// the coupled 50 ms or the decoupled 1 ms step alone would be beyond its stable range
+// (h·λ = 2.785).
+TEST(JointPlant, HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
+  const JointVector j = bundled_model().inertia_diagonal(kPaperStartJoints);
+  for (const auto& [coupling, friction] :
+       {std::pair{PlantCoupling::Decoupled, 100.0}, std::pair{PlantCoupling::Decoupled, 5000.0},
+        std::pair{PlantCoupling::Coupled, 100.0}}) {
+    PlantConfig c;
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      c.damping_nms[i] = friction * (j[i] + c.armature_kgm2[i]);
+    c.coupling = coupling;
+    c.gravity = coupling == PlantCoupling::Coupled;
+    for (double tick : {0.05, 0.01}) {
+      const double error = finer_step_error(bundled_model(), c, tick);
+      std::printf("[ accuracy ] friction %g/s, %s, tick %.0f ms: max |q - q_ref| %.2e rad\n",
+                  friction, coupling == PlantCoupling::Coupled ? "coupled" : "decoupled",
+                  tick * 1e3, error);
+      EXPECT_LT(error, 1e-6) << "tick " << tick << ", friction " << friction;
+    }
   }
 }
 

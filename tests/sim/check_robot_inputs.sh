@@ -63,6 +63,12 @@ expect 2 "the robot options apply without it" -- run --conditions "$src/tuning/r
 expect 2 "--gravity needs --dynamics coupled" -- "$rt_loop" --period-ms 0 --gravity
 expect 2 "--tick-ms and --dt both set the controller period" -- "$rt_loop" --tick-ms 10 --dt 0.01
 expect 1 "limits.csv:3" -- "$rt_loop" --period-ms 0 --urdf "$ur5" --path "$work/limits.csv"
+# What real joints have: 0 (off) or within the range, in sim_ab, rt_loop and condition files.
+expect 2 "--plant-step-ms: expected 0 (off) or a number within 0.001 .. 1000: -1" -- run --plant-step-ms -1
+expect 2 "--plant-step-ms: expected 0 (off) or a number within 0.001 .. 1000: nan" -- run --plant-step-ms nan
+expect 2 "--plant-step-ms" -- "$rt_loop" --period-ms 0 --plant-step-ms 1e9
+row "[sets.s]" "conditions = [ { name = \"c\", plant_step_ms = -1.0 } ]" >"$work/bad_step.toml"
+expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (off)" -- run --conditions "$work/bad_step.toml"
 
 # And the good path runs, with the robot it used stated on stderr.
 run --urdf "$ur5" --path "$work/good.csv" --tick-ms 10 2>"$work/err" ||

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -544,12 +545,49 @@ TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
   }
 }
 
+// Largest |theta - theta_fine| of the paper's PID on `c` with the default plant step against the
+// same run with every step at most `fine_step_s`.
+double finer_step_error(const sim::Experiment& ex, sim::Condition c, double fine_step_s) {
+  const sim::RunResult coarse = ex.run(c, ctl::paper_pid());
+  c.effects.plant_step_s = fine_step_s;
+  const sim::RunResult fine = ex.run(c, ctl::paper_pid());
+  EXPECT_TRUE(coarse.ok && fine.ok) << coarse.error << fine.error;
+  EXPECT_EQ(coarse.rows.size(), fine.rows.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < coarse.rows.size() && k < fine.rows.size(); ++k)
+    worst = std::fmax(worst, std::fabs(coarse.rows[k].theta - fine.rows[k].theta));
+  return worst;
+}
+
+// sim_ab --friction 100: the default step (1 ms decoupled, cut by the plant's
+// stiffness bound h·λ <= 0.25, and coupled the same bound instead of 50 ms) against steps of
+// at most 0.1 ms.
+TEST_F(ClosedLoopTest, AtHighFrictionTheDefaultStepIsWithinAMicroradianOfATenTimesFinerStep) {
+  sim::Condition c;
+  c.friction_per_s = 100.0;
+  const double decoupled = finer_step_error(*experiment_, c, 1e-4);
+  c.dynamics = robot::PlantCoupling::Coupled;
+  c.gravity = true;
+  const double coupled = finer_step_error(*experiment_, c, 1e-4);
+  std::printf(
+      "[ accuracy ] friction 100: max |theta - theta_fine| %.2e rad decoupled, %.2e rad "
+      "coupled with gravity\n",
+      decoupled, coupled);
+  EXPECT_LT(decoupled, 1e-6);
+  EXPECT_LT(coupled, 1e-6);
+}
+
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   sim::Condition bad;
   bad.payload_scale = 0.0;
   const auto r = experiment_->run(bad, ctl::paper_pid());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("payload"), std::string::npos);
+  sim::Condition step;
+  step.effects.plant_step_s = -1e-3;
+  const auto s = experiment_->run(step, ctl::paper_pid());
+  EXPECT_FALSE(s.ok);
+  EXPECT_NE(s.error.find("plant_step_ms must be within"), std::string::npos) << s.error;
 }
 
 TEST(Random, IsTheSameSequenceForTheSameSeedAndStandardNormalOnAverage) {

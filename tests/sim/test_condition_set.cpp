@@ -112,6 +112,10 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
        "unknown scenario 'moon'"},
       {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nfriction = [2.0, 1.0]\n", 4, 12, "reversed"},
       {"[sets.s]\ndescription = \"empty\"\n", 1, 1, "has no conditions"},
+      // What real joints have: 0 (off) or within the key's range, NaN refused.
+      {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = -1.0 } ]\n", 2, 46,
+       "'plant_step_ms' must be 0 (off) or within 0.001 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = nan } ]\n", 2, 46, "NaN"},
   };
   for (const Bad& b : cases) {
     ConditionFile f;
@@ -121,6 +125,20 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
     EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
     EXPECT_NE(e.message.find(b.message), std::string::npos) << e.to_string();
   }
+}
+
+TEST(ConditionSets, JointEffectKeysSetTheirFieldsInSIUnitsForSetsAndScenarios) {
+  const char* text =
+      "[sets.s]\nplant_step_ms = 0.25\nconditions = [ { name = \"a\" }, { name = \"b\", "
+      "scenario = \"friction\" }, { name = \"c\", plant_step_ms = 0.0 } ]\n";
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(parse_conditions(text, "effects.toml", f, e)) << e.to_string();
+  const auto& c = f.sets[0].conditions;
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_DOUBLE_EQ(c[0].effects.plant_step_s, 0.25e-3);
+  EXPECT_DOUBLE_EQ(c[1].effects.plant_step_s, 0.25e-3);  // a scenario keeps the set's effects
+  EXPECT_EQ(c[2].effects.plant_step_s, 0.0);
 }
 
 // Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and

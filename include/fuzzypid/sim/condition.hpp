@@ -76,10 +76,29 @@ inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0};  // 
 inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};         // kg
 inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};            // ms
 inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // kg·m²
+// What real joints have (JointEffects); each is off at 0 and otherwise within its range.
+inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};  // ms
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
 inline constexpr double kMaxArmatureKgm2 = kArmatureRange.hi;
+
+// What real joints have beyond the paper's rigid, delay-free, ideally sensored joint (issue 29).
+// Each field is a condition-file key and a sim_ab / rt_loop option of the same name (underscores
+// -> dashes, e.g. plant_step_ms and --plant-step-ms); each is off by default, and a default
+// JointEffects runs the plant bit for bit as without it. robot/plant.hpp gives the equations.
+struct JointEffects {
+  // plant_step_ms: the largest RK4 step of the plant, s (PlantConfig::substep_s and
+  // coupled_substep_s); the plant's stiffness and motion bounds still apply, so a run with a step
+  // ten times finer than the default checks that a result has converged. 0: the defaults (1 ms
+  // decoupled, 50 ms coupled).
+  double plant_step_s = 0.0;
+
+  [[nodiscard]] bool operator==(const JointEffects& o) const noexcept;
+  [[nodiscard]] bool operator!=(const JointEffects& o) const noexcept { return !(*this == o); }
+  // Empty, or what is wrong, naming the key.
+  [[nodiscard]] std::string validate() const;
+};
 
 struct Condition {
   std::string name;
@@ -100,6 +119,7 @@ struct Condition {
   double payload_kg = 0.0;  // point mass at the tool flange, added to the plant's model only
   robot::PlantCoupling dynamics = robot::PlantCoupling::Decoupled;  // the paper's model
   bool gravity = false;  // rigid-body gravity (coupled dynamics only)
+  JointEffects effects;  // what real joints have; none by default
 
   // Empty, or what is wrong (non-finite or out-of-range values).
   [[nodiscard]] std::string validate() const;

@@ -24,6 +24,9 @@
 //   armature = [A1, A2, A3, A4, A5, A6]                    (kg·m²; default: see RobotSetup)
 //   ik_seed = [Q1, Q2, Q3, Q4, Q5, Q6]                     (rad; first IK of a Cartesian path)
 //   dynamics = "decoupled" | "coupled"                     gravity = true (coupled only)
+// What real joints have (sim::JointEffects; sim_ab's and rt_loop's options of the same names; each
+// 0 = off):
+//   plant_step_ms = 0.1        (largest plant integration step, ms)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
 // to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
 // included; a condition's own keys override them.
