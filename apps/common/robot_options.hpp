@@ -2,7 +2,8 @@
 // sim/condition.hpp (the condition files use the same ones):
 //   --urdf FILE --base-link NAME --tip-link NAME --path FILE --tick-ms T --armature A1,...,A6
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
-// and what real joints have (sim::JointEffects): --plant-step-ms S
+// and what real joints have (sim::JointEffects): --plant-step-ms S --delay-ms D
+//   --torque-bandwidth-hz F --encoder-counts N --coulomb-nm C --stribeck-nm S --stribeck-velocity V
 // Header-only: included by the tools that link fuzzypid::sim.
 #pragma once
 
@@ -88,6 +89,33 @@ inline bool parse_six(const std::string& text, robot::JointVector& out) {
   return k == out.size() && !text.empty() && text.back() != ',';
 }
 
+// A per-joint option of JointEffects: one number for every joint or six, each within the range.
+inline void add_joint_effect_option(CLI::App& app, const sim::FieldRange& range,
+                                    robot::JointVector& target, const std::string& help,
+                                    const std::string& text) {
+  std::string name = std::string("--") + range.key;
+  for (char& ch : name)
+    if (ch == '_') ch = '-';
+  app.add_option_function<std::string>(
+         name,
+         [name, range, &target](const std::string& s) {
+           robot::JointVector v{};
+           if (const auto one = parse_finite(s)) {
+             v.fill(*one);
+           } else if (!parse_six(s, v)) {
+             throw CLI::ValidationError(name, "expected one number or 6 comma-separated: " + s);
+           }
+           for (double x : v)
+             if (!range.contains(x))
+               throw CLI::ValidationError(name, "values must be within " +
+                                                    CLI::detail::to_string(range.lo) + " .. " +
+                                                    CLI::detail::to_string(range.hi) + ": " + s);
+           target = v;
+         },
+         help)
+      ->option_text(text);
+}
+
 // Adds the options; `with_tick` adds --tick-ms (rt_loop has its own period and dt options).
 inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
   const auto path_check = [](const std::string& s) -> std::string {
@@ -168,6 +196,29 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
                     "largest integration step of the plant, ms (default: 1 ms decoupled, 50 ms "
                     "coupled, shorter where friction, the current loop or the gear is stiff)",
                     "S");
+  add_effect_option(app, sim::kDelayMsRange, 1e-3, o.effects.delay_s,
+                    "time from sampling the joint to the torque reaching it, ms (fractions of a "
+                    "tick allowed; default 0)",
+                    "D");
+  add_effect_option(app, sim::kTorqueBandwidthRange, 1.0, o.effects.torque_bandwidth_hz,
+                    "current loop as a first-order lag on the torque, Hz (default 0: ideal)", "F");
+  app.add_option_function<std::string>(
+         "--encoder-counts",
+         [&o](const std::string& s) {
+           const auto n = parse_unsigned(s);
+           if (!n || (*n != 0 && !sim::kEncoderCountsRange.contains(static_cast<double>(*n))))
+             throw CLI::ValidationError("--encoder-counts",
+                                        "expected 0 (off) or an integer within 4 .. 1e12: " + s);
+           o.effects.encoder_counts = *n;
+         },
+         "the measured angle quantised to 2 pi/N, the rate differenced from it (default 0: exact)")
+      ->option_text("N");
+  add_joint_effect_option(app, sim::kCoulombRange, o.effects.coulomb_nm,
+                          "Coulomb friction at each joint, N·m (default 0)", "C|C1,...,C6");
+  add_joint_effect_option(app, sim::kStribeckRange, o.effects.stribeck_nm,
+                          "Stribeck peak of static friction, N·m (default 0: none)", "S|S1,...,S6");
+  add_effect_option(app, sim::kStribeckVelocityRange, 1.0, o.effects.stribeck_velocity_rad_s,
+                    "Stribeck velocity, rad/s (default 0.01)", "V");
 }
 
 // Usage errors the options can have on their own; empty when none.

@@ -1,6 +1,7 @@
 // JointPlant: the equations are documented in plant.hpp.
 #include "fuzzypid/robot/plant.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,6 +14,13 @@ namespace fuzzypid::robot {
 namespace {
 
 constexpr double kMaxCoupledSubsteps = 1000.0;
+constexpr double kTwoPi = 6.283185307179586476925;
+
+// A torque command and when it was issued (plant time, s): the delay line's entries.
+struct DelayedCommand {
+  double issued_s = 0.0;
+  JointVector torque_nm{};
+};
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
@@ -55,12 +63,31 @@ class JointPlant::Impl {
             all_finite(config.damping_nms) && all_non_negative(limit) &&
             std::isfinite(config.gravity_m_s2) &&
             (!config.fixed_configuration_rad || all_finite(*config.fixed_configuration_rad));
-    valid = valid && std::isfinite(config.step_rate_limit) && config.step_rate_limit > 0.0;
+    valid = valid && std::isfinite(config.step_rate_limit) && config.step_rate_limit > 0.0 &&
+            std::isfinite(config.delay_s) && config.delay_s >= 0.0 &&
+            std::isfinite(config.torque_bandwidth_hz) && config.torque_bandwidth_hz >= 0.0 &&
+            all_finite(config.coulomb_nm) && all_non_negative(config.coulomb_nm) &&
+            all_finite(config.stribeck_nm) && all_non_negative(config.stribeck_nm) &&
+            std::isfinite(config.stribeck_velocity_rad_s) && config.stribeck_velocity_rad_s > 0.0 &&
+            std::isfinite(config.coulomb_smoothing_rad_s) && config.coulomb_smoothing_rad_s > 0.0;
     sqrt_scale = to_vec(config.inertia_scale).cwiseSqrt();
+    lag_rate = kTwoPi * config.torque_bandwidth_hz;
     // The slopes of the torques that oppose velocity, N·m·s/rad: what makes the plant stiff.
+    // Friction's steepest slope: (peak) / smoothing at rest, plus the Stribeck fall's
+    // (peak − C) √(2/e) / v_s.
     stiffness = config.damping_nms;
-    for (double b : stiffness)
-      stiff = stiff || b > 0.0;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double c = config.coulomb_nm[i];
+      const double peak = std::fmax(config.stribeck_nm[i], c);
+      coulomb = coulomb || peak > 0.0;
+      if (peak > 0.0)
+        stiffness[i] += peak / config.coulomb_smoothing_rad_s + (peak - c) *
+                                                                    std::sqrt(2.0 / std::exp(1.0)) /
+                                                                    config.stribeck_velocity_rad_s;
+      stiff = stiff || stiffness[i] > 0.0;
+    }
+    if (config.encoder_counts > 0)
+      encoder_step = kTwoPi / static_cast<double>(config.encoder_counts);
     reset(JointVector{}, JointVector{});
   }
 
@@ -72,11 +99,26 @@ class JointPlant::Impl {
     applied = JointVector{};
     saturated = {};
     time = 0.0;
+    lag_torque = JointVector{};
+    delay_count = 0;
+    delay_head = 0;
+    measured_q = quantised(q0);
+    measured_qd = qd0;
     // Decoupled J_i = s_i M_ii + armature_i is the diagonal of the effective mass matrix.
     fixed_mass = effective_mass(config.fixed_configuration_rad.value_or(q0));
     inertia = to_array(config.inertia_update == InertiaUpdate::Fixed
                            ? Vec6(fixed_mass.diagonal())
                            : Vec6(effective_mass(q0).diagonal()));
+  }
+
+  // The encoder's reading of `angle`: the nearest multiple of encoder_step (the angle itself
+  // without an encoder).
+  JointVector quantised(const JointVector& angle) const noexcept {
+    if (encoder_step == 0.0) return angle;
+    JointVector out{};
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      out[i] = std::nearbyint(angle[i] / encoder_step) * encoder_step;
+    return out;
   }
 
   // The longest step with h·rate <= step_rate_limit (+inf for rate 0).
@@ -121,11 +163,31 @@ class JointPlant::Impl {
     }
     if (diagonal != nullptr) *diagonal = m.diagonal();
     if (mass != nullptr) *mass = m;
-    const Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
+    Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
+    if (coulomb) rhs -= friction(v);
     const Eigen::LLT<Mat6> llt(m);
     if (llt.info() != Eigen::Success) return false;
     a = llt.solve(rhs);
     return true;
+  }
+
+  // The torque (N·m, at the joint, after the drive's limit) that opposes velocity beyond viscous
+  // friction: Coulomb friction with a Stribeck peak, its sign smoothed over coulomb_smoothing_rad_s.
+  Vec6 friction(const Vec6& v) const noexcept {
+    Vec6 f;
+    for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double c = config.coulomb_nm[k];
+      const double peak = config.stribeck_nm[k] > c ? config.stribeck_nm[k] : c;
+      const double r = v[i] / config.stribeck_velocity_rad_s;
+      f[i] = std::tanh(v[i] / config.coulomb_smoothing_rad_s) * (c + (peak - c) * std::exp(-r * r));
+    }
+    return f;
+  }
+
+  // The k-th newest command of the delay line (k < delay_count).
+  const DelayedCommand& delayed(std::size_t k) const noexcept {
+    return delay_line[(delay_head + kDelayCommands - k) % kDelayCommands];
   }
 
   PlantStatus step(const JointVector& torque, double dt, const JointVector& disturbance) noexcept {
@@ -141,103 +203,172 @@ class JointPlant::Impl {
       sat[i] = clamped[i] != torque[i];
       any = any || sat[i];
     }
-    const Vec6 drive = to_vec(clamped) + to_vec(disturbance);
     const Vec6 damping = to_vec(config.damping_nms);
+    const Vec6 dist = to_vec(disturbance);
+    const double wc = lag_rate;
+    const bool delayed_drive = config.delay_s > 0.0;
+
+    // The commands reaching the joint within this step: without delay, this one for the whole
+    // step; with it, the newest command issued at least delay_s before each instant (zero torque
+    // before the first one), so the step is cut where a later command arrives. Offsets within
+    // 1e-9 dt of the step's ends count as the ends (a delay of whole ticks switches exactly there).
+    // `next_command` is the index (newest = 0) of the command that arrives next, -1 when none does.
+    long next_command = -1;
+    JointVector command = clamped;
+    double next_switch = dt;
+    const double eps = 1e-9 * dt;
+    if (delayed_drive) {
+      delay_head = (delay_head + 1) % kDelayCommands;
+      delay_line[delay_head] = {time, clamped};
+      delay_count = std::min(delay_count + 1, kDelayCommands);
+      std::size_t active = delay_count;
+      for (std::size_t k = 0; k < delay_count; ++k) {
+        if (delayed(k).issued_s + config.delay_s - time <= eps) {
+          active = k;
+          break;
+        }
+      }
+      if (active == delay_count && delay_count == kDelayCommands) active = delay_count - 1;
+      command = active < delay_count ? delayed(active).torque_nm : JointVector{};
+      next_command = static_cast<long>(active) - 1;
+    }
+    // The offset of command k's arrival within this step (dt when it arrives later).
+    const auto arrival = [&](long k) {
+      if (k < 0) return dt;
+      const double at = delayed(static_cast<std::size_t>(k)).issued_s + config.delay_s - time;
+      return at >= dt - eps ? dt : std::fmax(at, 0.0);
+    };
+    if (delayed_drive) next_switch = arrival(next_command);
 
     Vec6 x = to_vec(q);
     Vec6 v = to_vec(qd);
     Vec6 a_end = Vec6::Zero();
     JointVector j_tick{};
-
-    if (config.coupling == PlantCoupling::Decoupled) {
-      Vec6 inv_j;
-      if (config.inertia_update == InertiaUpdate::Fixed) {
-        j_tick = to_array(fixed_mass.diagonal());
-      } else {
-        const JointVector diag = model.inertia_diagonal(q);
-        for (std::size_t i = 0; i < kNumJoints; ++i)
-          j_tick[i] = config.inertia_scale[i] * diag[i] + config.armature_kgm2[i];
-      }
-      double rate = 0.0;  // the fastest rate of the linear terms, 1/s: max b_i / J_i
-      for (std::size_t i = 0; i < kNumJoints; ++i) {
-        if (!(j_tick[i] > 0.0) || !std::isfinite(j_tick[i])) return PlantStatus::NumericalError;
-        inv_j(static_cast<int>(i)) = 1.0 / j_tick[i];
-        rate = std::fmax(rate, stiffness[i] / j_tick[i]);
-      }
-      // Substeps: whole steps of `substep_s` (or shorter, h·rate <= step_rate_limit), the last one
-      // shortened to end exactly at dt.
-      const double h_nominal = std::fmin(config.substep_s, stable_step(rate));
-      const double count = std::fmax(1.0, std::ceil(dt / h_nominal - 1e-9));
-      const auto steps = static_cast<long>(count);
-      // θ̈ = (drive − b θ̇) / J is linear in θ̇ and independent of θ.
-      const auto accel = [&](const Vec6& vel) -> Vec6 {
-        return (drive - damping.cwiseProduct(vel)).cwiseProduct(inv_j);
+    Vec6 lag = to_vec(lag_torque);  // the current loop's torque at the segment's start
+    Vec6 drive_end = to_vec(clamped) + dist;
+    // Segments of one command each, [t0, t1) within the step.
+    double t0 = 0.0;
+    bool first = true;
+    Vec6 inv_j = Vec6::Zero();
+    double h_nominal = 0.0;
+    while (true) {
+      const double t1 = next_switch;
+      const double length = t1 - t0;
+      const Vec6 u = to_vec(command);
+      // The drive at offset s into the segment: the command (after the current loop's first-order
+      // lag, exact: τ(s) = u + (τ(0) − u) e^(−ω_c s)) plus the disturbance.
+      const Vec6 held = u + dist;
+      const auto drive_at = [&](double s_in) -> Vec6 {
+        if (wc == 0.0) return held;
+        return u + (lag - u) * std::exp(-wc * s_in) + dist;
       };
-      for (long s = 0; s < steps; ++s) {
-        const double h =
-            s + 1 < steps ? h_nominal : dt - h_nominal * static_cast<double>(steps - 1);
-        const Vec6 k1v = accel(v);
-        const Vec6 k1x = v;
-        const Vec6 k2v = accel(v + 0.5 * h * k1v);
-        const Vec6 k2x = v + 0.5 * h * k1v;
-        const Vec6 k3v = accel(v + 0.5 * h * k2v);
-        const Vec6 k3x = v + 0.5 * h * k2v;
-        const Vec6 k4v = accel(v + h * k3v);
-        const Vec6 k4x = v + h * k3v;
-        x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
-        v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-      }
-      a_end = accel(v);
-    } else {
-      // k1 of the first substep also gives the tick's effective inertia and the step size.
-      Vec6 k1_first;
-      Vec6 diagonal;
-      Mat6 mass;
-      if (!coupled_acceleration(x, v, drive, k1_first, &diagonal, &mass))
-        return PlantStatus::NumericalError;
-      j_tick = to_array(diagonal);
-      // Equal substeps no longer than coupled_substep_s, nor than the time in which a joint moving
-      // with the tick's initial q̇ and q̈ covers coupled_step_rad (|q̇| h + ½ |q̈| h² = θ, in its
-      // cancellation-free form h = 2θ / (|q̇| + √(q̇² + 2 |q̈| θ))): RK4's error grows with how far
-      // the state moves through M(q), C and g within a step, so slow motion takes long steps and
-      // fast motion short ones. At most kMaxCoupledSubsteps, so a wild state cannot stall the tick;
-      // the bounds that follow from the configuration (coupled_substep_s, the stiffness bound
-      // h·rate <= step_rate_limit) are always met.
-      const double h_config = std::fmin(config.coupled_substep_s, stable_step(coupled_rate(mass)));
-      double h_max = std::numeric_limits<double>::infinity();
-      const double theta = config.coupled_step_rad;
-      if (std::isfinite(theta)) {
-        for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
-          const double speed = std::fabs(v[i]);
-          const double h_i =
-              2.0 * theta /
-              (speed + std::sqrt(speed * speed + 2.0 * std::fabs(k1_first[i]) * theta));
-          h_max = std::fmin(h_max, h_i);
+      if (length > 0.0 && config.coupling == PlantCoupling::Decoupled) {
+        if (first) {
+          if (config.inertia_update == InertiaUpdate::Fixed) {
+            j_tick = to_array(fixed_mass.diagonal());
+          } else {
+            const JointVector diag = model.inertia_diagonal(q);
+            for (std::size_t i = 0; i < kNumJoints; ++i)
+              j_tick[i] = config.inertia_scale[i] * diag[i] + config.armature_kgm2[i];
+          }
+          double rate = wc;  // the fastest rate of the stiff terms, 1/s: max b_i / J_i, ω_c
+          for (std::size_t i = 0; i < kNumJoints; ++i) {
+            if (!(j_tick[i] > 0.0) || !std::isfinite(j_tick[i])) return PlantStatus::NumericalError;
+            inv_j(static_cast<int>(i)) = 1.0 / j_tick[i];
+            rate = std::fmax(rate, stiffness[i] / j_tick[i]);
+          }
+          // Substeps: whole steps of `substep_s` (or shorter, h·rate <= step_rate_limit), the
+          // last one of each segment shortened to end exactly at its end.
+          h_nominal = std::fmin(config.substep_s, stable_step(rate));
+        }
+        const double count = std::fmax(1.0, std::ceil(length / h_nominal - 1e-9));
+        const auto steps = static_cast<long>(count);
+        // θ̈ = (drive − b θ̇ − friction(θ̇)) / J is independent of θ.
+        const auto accel = [&](double s_in, const Vec6& vel) -> Vec6 {
+          Vec6 f = drive_at(s_in) - damping.cwiseProduct(vel);
+          if (coulomb) f -= friction(vel);
+          return f.cwiseProduct(inv_j);
+        };
+        double s_in = 0.0;
+        for (long s = 0; s < steps; ++s) {
+          const double h =
+              s + 1 < steps ? h_nominal : length - h_nominal * static_cast<double>(steps - 1);
+          const Vec6 k1v = accel(s_in, v);
+          const Vec6 k1x = v;
+          const Vec6 k2v = accel(s_in + 0.5 * h, v + 0.5 * h * k1v);
+          const Vec6 k2x = v + 0.5 * h * k1v;
+          const Vec6 k3v = accel(s_in + 0.5 * h, v + 0.5 * h * k2v);
+          const Vec6 k3x = v + 0.5 * h * k2v;
+          const Vec6 k4v = accel(s_in + h, v + h * k3v);
+          const Vec6 k4x = v + h * k3v;
+          x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
+          v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+          s_in += h;
+        }
+        a_end = accel(length, v);
+      } else if (length > 0.0) {
+        // k1 of the first substep also gives the tick's effective inertia and the step size.
+        Vec6 k1_first;
+        Vec6 diagonal;
+        Mat6 mass;
+        if (!coupled_acceleration(x, v, drive_at(0.0), k1_first, &diagonal, &mass))
+          return PlantStatus::NumericalError;
+        if (first) j_tick = to_array(diagonal);
+        // Equal substeps no longer than coupled_substep_s, nor than the time in which a joint
+        // moving with the segment's initial q̇ and q̈ covers coupled_step_rad (|q̇| h + ½ |q̈| h² =
+        // θ, in its cancellation-free form h = 2θ / (|q̇| + √(q̇² + 2 |q̈| θ))): RK4's error grows
+        // with how far the state moves through M(q), C and g within a step, so slow motion takes
+        // long steps and fast motion short ones. At most kMaxCoupledSubsteps, so a wild state
+        // cannot stall the tick; the bounds that follow from the configuration
+        // (coupled_substep_s, the stiffness bound h·rate <= step_rate_limit) are always met.
+        const double h_config =
+            std::fmin(config.coupled_substep_s, stable_step(std::fmax(wc, coupled_rate(mass))));
+        double h_max = std::numeric_limits<double>::infinity();
+        const double theta = config.coupled_step_rad;
+        if (std::isfinite(theta)) {
+          for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+            const double speed = std::fabs(v[i]);
+            const double h_i =
+                2.0 * theta /
+                (speed + std::sqrt(speed * speed + 2.0 * std::fabs(k1_first[i]) * theta));
+            h_max = std::fmin(h_max, h_i);
+          }
+        }
+        const double coupled_steps =
+            std::fmax(std::fmax(1.0, std::ceil(length / h_config - 1e-9)),
+                      std::fmin(kMaxCoupledSubsteps, std::ceil(length / h_max - 1e-9)));
+        const double h = length / coupled_steps;
+        for (long s = 0; s < static_cast<long>(coupled_steps); ++s) {
+          const double s_in = static_cast<double>(s) * h;
+          Vec6 k1v, k2v, k3v, k4v;
+          if (s == 0) {
+            k1v = k1_first;
+          } else if (!coupled_acceleration(x, v, drive_at(s_in), k1v)) {
+            return PlantStatus::NumericalError;
+          }
+          const Vec6 k1x = v;
+          const Vec6 k2x = v + 0.5 * h * k1v;
+          if (!coupled_acceleration(x + 0.5 * h * k1x, k2x, drive_at(s_in + 0.5 * h), k2v))
+            return PlantStatus::NumericalError;
+          const Vec6 k3x = v + 0.5 * h * k2v;
+          if (!coupled_acceleration(x + 0.5 * h * k2x, k3x, drive_at(s_in + 0.5 * h), k3v))
+            return PlantStatus::NumericalError;
+          const Vec6 k4x = v + h * k3v;
+          if (!coupled_acceleration(x + h * k3x, k4x, drive_at(s_in + h), k4v))
+            return PlantStatus::NumericalError;
+          x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
+          v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
         }
       }
-      const double coupled_steps =
-          std::fmax(std::fmax(1.0, std::ceil(dt / h_config - 1e-9)),
-                    std::fmin(kMaxCoupledSubsteps, std::ceil(dt / h_max - 1e-9)));
-      const double h = dt / coupled_steps;
-      for (long s = 0; s < static_cast<long>(coupled_steps); ++s) {
-        Vec6 k1v, k2v, k3v, k4v;
-        if (s == 0) {
-          k1v = k1_first;
-        } else if (!coupled_acceleration(x, v, drive, k1v)) {
-          return PlantStatus::NumericalError;
-        }
-        const Vec6 k1x = v;
-        const Vec6 k2x = v + 0.5 * h * k1v;
-        if (!coupled_acceleration(x + 0.5 * h * k1x, k2x, drive, k2v))
-          return PlantStatus::NumericalError;
-        const Vec6 k3x = v + 0.5 * h * k2v;
-        if (!coupled_acceleration(x + 0.5 * h * k2x, k3x, drive, k3v))
-          return PlantStatus::NumericalError;
-        const Vec6 k4x = v + h * k3v;
-        if (!coupled_acceleration(x + h * k3x, k4x, drive, k4v)) return PlantStatus::NumericalError;
-        x += h / 6.0 * (k1x + 2.0 * k2x + 2.0 * k3x + k4x);
-        v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
-      }
+      if (length > 0.0) first = false;
+      drive_end = drive_at(length);
+      if (wc > 0.0) lag = u + (lag - u) * std::exp(-wc * length);
+      if (t1 >= dt) break;
+      // The next command arrives.
+      command = delayed(static_cast<std::size_t>(next_command)).torque_nm;
+      --next_command;
+      t0 = t1;
+      next_switch = arrival(next_command);
     }
     if (!x.allFinite() || !v.allFinite() || !a_end.allFinite()) return PlantStatus::NumericalError;
 
@@ -247,11 +378,18 @@ class JointPlant::Impl {
     // The coupled q̈ at the end of the tick costs a full dynamics evaluation (a fifth of a 10 ms
     // tick's): acceleration() computes it when asked.
     qdd_pending = config.coupling == PlantCoupling::Coupled;
-    qdd_drive = drive;
+    qdd_drive = drive_end;
     inertia = j_tick;
-    applied = clamped;
+    applied = wc > 0.0 ? to_array(lag) : command;
+    lag_torque = wc > 0.0 ? to_array(lag) : JointVector{};
     saturated = sat;
     time += dt;
+    if (encoder_step > 0.0) {
+      const JointVector reading = quantised(q);
+      for (std::size_t i = 0; i < kNumJoints; ++i)
+        measured_qd[i] = (reading[i] - measured_q[i]) / dt;
+      measured_q = reading;
+    }
     return any ? PlantStatus::Saturated : PlantStatus::Ok;
   }
 
@@ -271,8 +409,19 @@ class JointPlant::Impl {
   bool valid = false;
   JointVector limit{};
   Vec6 sqrt_scale = Vec6::Ones();
-  JointVector stiffness{};  // see the constructor
-  bool stiff = false;       // any stiffness > 0
+  JointVector stiffness{};   // see the constructor
+  bool stiff = false;        // any stiffness > 0
+  bool coulomb = false;      // any Coulomb or Stribeck friction
+  double lag_rate = 0.0;     // ω_c = 2π torque_bandwidth_hz, 1/s; 0: an ideal current loop
+  JointVector lag_torque{};  // the current loop's output torque, N·m
+  // The delay line: the last kDelayCommands commands, newest at delay_head.
+  std::array<DelayedCommand, kDelayCommands> delay_line{};
+  std::size_t delay_head = 0;
+  std::size_t delay_count = 0;
+  // The encoder: its resolution (rad; 0 = ideal) and the readings of the last step.
+  double encoder_step = 0.0;
+  JointVector measured_q{};
+  JointVector measured_qd{};
   Mat6 fixed_mass = Mat6::Identity();
   JointVector q{};
   JointVector qd{};
@@ -312,6 +461,12 @@ const JointVector& JointPlant::position() const noexcept {
 }
 const JointVector& JointPlant::velocity() const noexcept {
   return impl_->qd;
+}
+const JointVector& JointPlant::measured_position() const noexcept {
+  return impl_->encoder_step > 0.0 ? impl_->measured_q : impl_->q;
+}
+const JointVector& JointPlant::measured_velocity() const noexcept {
+  return impl_->encoder_step > 0.0 ? impl_->measured_qd : impl_->qd;
 }
 const JointVector& JointPlant::acceleration() const noexcept {
   return impl_->acceleration();

@@ -143,8 +143,9 @@ TickResult ClosedLoop::tick(const PathSample& sample, const TickInjection& injec
   controller::Input in;
   in.desired_position_rad = r.theta_d;
   in.desired_velocity_rad_s = r.theta_d_dot;
-  in.measured_position_rad = r.theta;
-  in.measured_velocity_rad_s = r.theta_dot;
+  // What the drive measures: the true state, or the encoder's reading (plant.hpp).
+  in.measured_position_rad = plant_.measured_position();
+  in.measured_velocity_rad_s = plant_.measured_velocity();
   for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
     // The noise is drawn whatever is injected, so that the same seed gives the same noise.
     in.measured_position_rad[i] += noise_.normal(condition_.noise_position_rad);

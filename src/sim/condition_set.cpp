@@ -35,9 +35,48 @@ void read_effect(TableReader& r, const FieldRange& range, double to_si, double& 
   target = v * to_si;
 }
 
+// A per-joint key of JointEffects: one number for every joint or six, each within the range.
+void read_joint_effect(TableReader& r, const FieldRange& range, robot::JointVector& target) {
+  if (!r.has(range.key)) return;
+  const toml::node& node = *r.raw().get(range.key);
+  const auto check = [&](const toml::node& at, double v) {
+    if (!range.contains(v)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "'%s' values must be within %g .. %g", range.key, range.lo,
+                    range.hi);
+      r.fail(at, buf);
+    }
+    return v;
+  };
+  if (const toml::array* a = node.as_array()) {
+    (void)r.array(range.key, true);
+    if (a->size() != robot::kNumJoints)
+      r.fail(*a, std::string("'") + range.key + "' must be one number or list 6, found " +
+                     std::to_string(a->size()));
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      target[i] = check(*a->get(i), support::number_of(r, *a->get(i),
+                                                       std::string("'") + range.key + "[" +
+                                                           std::to_string(i) + "]'"));
+    return;
+  }
+  target.fill(check(node, r.number(range.key)));
+}
+
 // The keys of what real joints have (JointEffects).
 void read_effects(TableReader& r, JointEffects& e) {
   read_effect(r, kPlantStepMsRange, 1e-3, e.plant_step_s);
+  read_effect(r, kDelayMsRange, 1e-3, e.delay_s);
+  read_effect(r, kTorqueBandwidthRange, 1.0, e.torque_bandwidth_hz);
+  if (r.has(kEncoderCountsRange.key)) {
+    const std::uint64_t n = r.count(kEncoderCountsRange.key);
+    if (n != 0 && !kEncoderCountsRange.contains(static_cast<double>(n)))
+      r.fail(*r.raw().get(kEncoderCountsRange.key),
+             "'encoder_counts' must be 0 (off) or within 4 .. 1e12");
+    e.encoder_counts = n;
+  }
+  read_joint_effect(r, kCoulombRange, e.coulomb_nm);
+  read_joint_effect(r, kStribeckRange, e.stribeck_nm);
+  read_effect(r, kStribeckVelocityRange, 1.0, e.stribeck_velocity_rad_s);
 }
 
 // The robot, path and plant keys (set tables and conditions alike).

@@ -100,6 +100,30 @@ TEST(NoAllocation, PlantStepsWithHighViscousFriction) {
   EXPECT_EQ(c.count(), 0u);
 }
 
+// What real joints have: a fractional delay (the step cut in two), the current loop, Coulomb and
+// Stribeck friction and an encoder.
+TEST(NoAllocation, PlantStepsWithEveryJointEffect) {
+  PlantConfig config;
+  config.delay_s = 0.0123;
+  config.torque_bandwidth_hz = 50.0;
+  config.coulomb_nm = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  config.stribeck_nm = {30.0, 45.0, 15.0, 1.5, 1.5, 0.3};
+  config.encoder_counts = 1u << 17;
+  JointPlant decoupled(model(), config);
+  config.coupling = PlantCoupling::Coupled;
+  config.gravity = true;
+  JointPlant coupled(model(), config);
+  decoupled.reset(kPaperStartJoints, JointVector{});
+  coupled.reset(kPaperStartJoints, JointVector{});
+  AllocationCounter c;
+  for (int k = 0; k < 5; ++k) {
+    (void)decoupled.step({100, -50, 20, 1, 1, 0.5}, 0.01);
+    (void)coupled.step({100, -50, 20, 1, 1, 0.5}, 0.01);
+    EXPECT_TRUE(std::isfinite(decoupled.measured_velocity()[0]));
+  }
+  EXPECT_EQ(c.count(), 0u);
+}
+
 TEST(NoAllocation, KinematicsAndDynamicsQueries) {
   const RobotModel& m = model();
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};

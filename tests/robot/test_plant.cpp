@@ -581,6 +581,204 @@ TEST(JointPlant, HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerS
   }
 }
 
+// What real joints have. A decoupled plant with a fixed inertia and no friction is a double
+// integrator per joint, J θ̈ = τ(t): with τ piecewise constant RK4 is exact, so closed forms hold
+// to rounding.
+PlantConfig double_integrator() {
+  PlantConfig c;
+  c.inertia_update = InertiaUpdate::Fixed;
+  c.torque_limit_nm = JointVector{1e6, 1e6, 1e6, 1e6, 1e6, 1e6};
+  return c;
+}
+
+// θ, θ̇ after `t` seconds of constant torque `tau` on inertia `j`.
+void hold(double j, double tau, double t, double& th, double& w) {
+  th += w * t + 0.5 * tau / j * t * t;
+  w += tau / j * t;
+}
+
+JointVector tick_torque(int k) {
+  JointVector tau{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    tau[i] = 50.0 * std::sin(0.7 * k + static_cast<double>(i)) + 5.0 * static_cast<double>(i);
+  return tau;
+}
+
+TEST(JointPlant, ADelayOfOneTickIsThePreviousTicksTorque) {
+  const double dt = 0.01;
+  PlantConfig c = double_integrator();
+  JointPlant plain(bundled_model(), c);
+  c.delay_s = dt;
+  JointPlant delayed(bundled_model(), c);
+  plain.reset(kPaperStartJoints, JointVector{});
+  delayed.reset(kPaperStartJoints, JointVector{});
+  const JointVector j = plain.inertia();
+  JointVector th = kPaperStartJoints;
+  JointVector w{};
+  for (int k = 0; k < 40; ++k) {
+    const JointVector previous = k == 0 ? JointVector{} : tick_torque(k - 1);
+    ASSERT_EQ(delayed.step(tick_torque(k), dt), PlantStatus::Ok);
+    ASSERT_EQ(plain.step(previous, dt), PlantStatus::Ok);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      hold(j[i], previous[i], dt, th[i], w[i]);
+    EXPECT_EQ(delayed.applied_torque(), previous) << "tick " << k;
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_DOUBLE_EQ(delayed.position()[i], plain.position()[i]) << "joint " << i + 1;
+    EXPECT_DOUBLE_EQ(delayed.velocity()[i], plain.velocity()[i]) << "joint " << i + 1;
+    EXPECT_NEAR(delayed.position()[i], th[i], 1e-12) << "joint " << i + 1;
+    EXPECT_NEAR(delayed.velocity()[i], w[i], 1e-12) << "joint " << i + 1;
+  }
+}
+
+// D = n dt + f: over each tick the command of n + 1 ticks ago for f seconds, then that of n ticks
+// ago (zero before the first command).
+TEST(JointPlant, AFractionalDelaySwitchesTheTorqueWithinTheTick) {
+  const double dt = 0.01;
+  for (double ticks : {0.3, 1.3, 2.75}) {
+    PlantConfig c = double_integrator();
+    c.delay_s = ticks * dt;
+    JointPlant plant(bundled_model(), c);
+    plant.reset(JointVector{}, JointVector{});
+    const JointVector j = plant.inertia();
+    const int n = static_cast<int>(ticks);
+    const double f = (ticks - n) * dt;
+    const auto command = [](int k) { return k < 0 ? JointVector{} : tick_torque(k); };
+    JointVector th{};
+    JointVector w{};
+    for (int k = 0; k < 30; ++k) {
+      ASSERT_EQ(plant.step(tick_torque(k), dt), PlantStatus::Ok);
+      for (std::size_t i = 0; i < kNumJoints; ++i) {
+        hold(j[i], command(k - n - 1)[i], f, th[i], w[i]);
+        hold(j[i], command(k - n)[i], dt - f, th[i], w[i]);
+      }
+    }
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      EXPECT_NEAR(plant.position()[i], th[i], 1e-11) << ticks << " ticks, joint " << i + 1;
+      EXPECT_NEAR(plant.velocity()[i], w[i], 1e-11) << ticks << " ticks, joint " << i + 1;
+    }
+  }
+}
+
+// A torque step through the current loop τ̇ = ω (u − τ) on J θ̈ = τ from rest:
+// τ = u (1 − e^(−ωt)), θ̇ = u/J (t − (1 − e^(−ωt))/ω), θ = u/J (t²/2 − t/ω + (1 − e^(−ωt))/ω²).
+TEST(JointPlant, TheCurrentLoopIsAFirstOrderLagDrivingTheJoint) {
+  PlantConfig c = double_integrator();
+  c.torque_bandwidth_hz = 8.0;
+  JointPlant plant(bundled_model(), c);
+  plant.reset(JointVector{}, JointVector{});
+  const JointVector j = plant.inertia();
+  const JointVector u = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double w = 2.0 * 3.14159265358979323846 * c.torque_bandwidth_hz;
+  for (int k = 1; k <= 50; ++k) {
+    ASSERT_EQ(plant.step(u, 0.01), PlantStatus::Ok);
+    const double t = 0.01 * k;
+    const double e = std::exp(-w * t);
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      EXPECT_NEAR(plant.applied_torque()[i], u[i] * (1.0 - e), 1e-12 * std::fabs(u[i]));
+      const double a = u[i] / j[i];
+      EXPECT_NEAR(plant.velocity()[i], a * (t - (1.0 - e) / w), 1e-9 * std::fabs(a));
+      EXPECT_NEAR(plant.position()[i], a * (0.5 * t * t - t / w + (1.0 - e) / (w * w)),
+                  1e-9 * std::fabs(a));
+    }
+  }
+}
+
+// Friction torque F(θ̇) of joint i as plant.hpp writes it.
+double friction_of(const PlantConfig& c, std::size_t i, double w) {
+  const double cc = c.coulomb_nm[i];
+  const double peak = std::max(c.stribeck_nm[i], cc);
+  const double r = w / c.stribeck_velocity_rad_s;
+  return std::tanh(w / c.coulomb_smoothing_rad_s) * (cc + (peak - cc) * std::exp(-r * r));
+}
+
+// The creep speed where F(θ̇) = tau, by bisection below the friction's peak.
+double creep(const PlantConfig& c, std::size_t i, double tau) {
+  double lo = 0.0;
+  double hi = 5.0 * c.coulomb_smoothing_rad_s;
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (friction_of(c, i, mid) < tau ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+TEST(JointPlant, CoulombFrictionHoldsATorqueBelowItAndLetsThroughTheRest) {
+  PlantConfig c = double_integrator();
+  c.coulomb_nm = {40.0, 60.0, 20.0, 4.0, 3.0, 1.0};
+  JointPlant plant(bundled_model(), c);
+  // Half the friction: the joint creeps at v_ε atanh(1/2) = 0.55 mrad/s, the root of F = τ.
+  plant.reset(JointVector{}, JointVector{});
+  JointVector half{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    half[i] = 0.5 * c.coulomb_nm[i];
+  for (int k = 0; k < 100; ++k)
+    ASSERT_EQ(plant.step(half, 0.02), PlantStatus::Ok);
+  const double bound = c.coulomb_smoothing_rad_s * std::atanh(0.5);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_NEAR(plant.velocity()[i], creep(c, i, half[i]), 1e-9) << "joint " << i + 1;
+    EXPECT_NEAR(plant.velocity()[i], bound, 1e-9) << "joint " << i + 1;
+    EXPECT_LT(plant.position()[i], 2.0 * bound) << "joint " << i + 1;  // over 2 s
+  }
+  // Three times the friction: (τ − C) / J once moving.
+  JointPlant moving(bundled_model(), c);
+  moving.reset(JointVector{}, JointVector{});
+  const JointVector j = moving.inertia();
+  JointVector triple{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    triple[i] = 3.0 * c.coulomb_nm[i];
+  for (int k = 0; k < 50; ++k)
+    ASSERT_EQ(moving.step(triple, 0.02), PlantStatus::Ok);
+  const JointVector w1 = moving.velocity();
+  for (int k = 0; k < 50; ++k)
+    ASSERT_EQ(moving.step(triple, 0.02), PlantStatus::Ok);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const double expected = 2.0 * c.coulomb_nm[i] / j[i];
+    EXPECT_NEAR(moving.velocity()[i] - w1[i], expected * 1.0, 1e-9 * expected) << i + 1;
+  }
+}
+
+// With a Stribeck peak S = 2 C, a torque between C and S still holds the joint (it creeps at the
+// low root of F = τ); the plain Coulomb joint would accelerate.
+TEST(JointPlant, AStribeckPeakHoldsATorqueBetweenCoulombAndThePeak) {
+  PlantConfig c = double_integrator();
+  c.coulomb_nm = {40.0, 60.0, 20.0, 4.0, 3.0, 1.0};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    c.stribeck_nm[i] = 2.0 * c.coulomb_nm[i];
+  JointPlant plant(bundled_model(), c);
+  plant.reset(JointVector{}, JointVector{});
+  JointVector tau{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    tau[i] = 1.5 * c.coulomb_nm[i];
+  for (int k = 0; k < 100; ++k)
+    ASSERT_EQ(plant.step(tau, 0.02), PlantStatus::Ok);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_NEAR(plant.velocity()[i], creep(c, i, tau[i]), 1e-9) << "joint " << i + 1;
+    EXPECT_LT(plant.velocity()[i], c.coulomb_smoothing_rad_s) << "joint " << i + 1;
+  }
+}
+
+TEST(JointPlant, AnEncoderQuantisesTheAngleAndDifferencesItForTheRate) {
+  PlantConfig c = double_integrator();
+  c.encoder_counts = 1000;  // 2π/1000 = 6.2832 mrad a count
+  JointPlant plant(bundled_model(), c);
+  const JointVector q0 = {0.3, -0.3, 0.0031, 0.0032, 1.0, -2.0};
+  plant.reset(q0, {1.0, 1.0, 0.0, 0.0, 0.0, 0.0});
+  const double count = 2.0 * 3.14159265358979323846 / 1000.0;
+  // 0.3 rad = 47.75 counts -> 48; 0.0031 = 0.49 -> 0; 0.0032 = 0.51 -> 1; 1 = 159.15 -> 159.
+  const std::array<double, kNumJoints> counts = {48, -48, 0, 1, 159, -318};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    EXPECT_DOUBLE_EQ(plant.measured_position()[i], counts[i] * count) << "joint " << i + 1;
+  EXPECT_EQ(plant.measured_velocity(), plant.velocity());  // the true rate right after reset
+  EXPECT_EQ(plant.position(), q0);                         // the true angle is untouched
+  // 10 ms at 1 rad/s: 0.31 rad = 49.34 counts -> 49, one count in 10 ms: 0.628 rad/s.
+  ASSERT_EQ(plant.step(JointVector{}, 0.01), PlantStatus::Ok);
+  EXPECT_DOUBLE_EQ(plant.measured_position()[0], 49 * count);
+  EXPECT_DOUBLE_EQ(plant.measured_velocity()[0], (49 * count - 48 * count) / 0.01);
+  EXPECT_DOUBLE_EQ(plant.measured_position()[1], -46 * count);  // -0.29 rad = -46.15 counts
+  EXPECT_EQ(plant.measured_velocity()[2], 0.0);
+}
+
 TEST(JointPlant, CoupledAccelerationIsTheDynamicsAtTheEndOfTheTick) {
   PlantConfig c;
   c.coupling = PlantCoupling::Coupled;

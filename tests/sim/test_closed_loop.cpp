@@ -281,6 +281,51 @@ TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
   }
 }
 
+// An encoder of N counts: the controller gets the angle rounded to 2π/N and the rate differenced
+// from it over the plant's last step, exactly as a plain loop given those readings by injection.
+TEST_F(ClosedLoopTest, AnEncoderFeedsTheControllerQuantisedAnglesAndDifferencedRates) {
+  sim::Condition c;
+  c.effects.encoder_counts = 2048;
+  const double count = 2.0 * 3.14159265358979323846 / 2048.0;
+  std::string error;
+  auto encoded = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  ASSERT_TRUE(encoded && plain) << error;
+  robot::JointVector last{};
+  for (std::size_t i = 0; i < kJ; ++i)
+    last[i] = std::nearbyint(plain->plant().position()[i] / count) * count;
+  for (std::size_t k = 0; k + 1 < encoded->samples(); ++k) {
+    sim::TickInjection readings;
+    for (std::size_t i = 0; i < kJ; ++i) {
+      const double now = std::nearbyint(plain->plant().position()[i] / count) * count;
+      readings.measured_position_rad[i] = now;
+      readings.measured_velocity_rad_s[i] =
+          k == 0 ? plain->plant().velocity()[i] : (now - last[i]) / plain->sample(k - 1).dt_s;
+      last[i] = now;
+    }
+    const sim::TickResult a = encoded->tick(k);
+    const sim::TickResult b = plain->tick(plain->sample(k), readings);
+    for (std::size_t i = 0; i < kJ; ++i)
+      ASSERT_TRUE(same_bits(a.torque_nm[i], b.torque_nm[i]))
+          << "tick " << k << " joint " << i << ": " << a.torque_nm[i] << " " << b.torque_nm[i];
+  }
+}
+
+// A delay of one tick: the torque reaching the joint over tick k is the command of tick k - 1.
+TEST_F(ClosedLoopTest, ADelayOfOneTickAppliesThePreviousTicksCommand) {
+  sim::Condition c;
+  c.effects.delay_s = experiment_->options().tick_s;
+  std::string error;
+  auto loop = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
+  ASSERT_TRUE(loop) << error;
+  robot::JointVector previous{};
+  for (std::size_t k = 0; k + 1 < loop->samples(); ++k) {
+    const sim::TickResult r = loop->tick(k);
+    EXPECT_EQ(loop->plant().applied_torque(), previous) << "tick " << k;
+    previous = r.torque_nm;
+  }
+}
+
 TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   std::string error;
   auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);

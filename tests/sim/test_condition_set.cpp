@@ -116,6 +116,26 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
       {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = -1.0 } ]\n", 2, 46,
        "'plant_step_ms' must be 0 (off) or within 0.001 .. 1000"},
       {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = nan } ]\n", 2, 46, "NaN"},
+      {"[sets.s]\nconditions = [ { name = \"c\", delay_ms = -1.0 } ]\n", 2, 41,
+       "'delay_ms' must be 0 (off) or within 0 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", delay_ms = 3001.0 } ]\n", 2, 41,
+       "'delay_ms' must be 0 (off) or within 0 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", tick_ms = 1.0, delay_ms = 61.0 } ]\n", 2, 16,
+       "delay_ms must be at most 60 ticks (60 ms at this tick)"},
+      {"[sets.s]\nconditions = [ { name = \"c\", torque_bandwidth_hz = 0.01 } ]\n", 2, 52,
+       "'torque_bandwidth_hz' must be 0 (off) or within 0.1 .. 100000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 2 } ]\n", 2, 47,
+       "'encoder_counts' must be 0 (off) or within 4 .. 1e12"},
+      {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 1.5 } ]\n", 2, 47,
+       "non-negative integer"},
+      {"[sets.s]\nconditions = [ { name = \"c\", coulomb_nm = -1.0 } ]\n", 2, 43,
+       "'coulomb_nm' values must be within 0 .. 1e+06"},
+      {"[sets.s]\nconditions = [ { name = \"c\", coulomb_nm = [1.0, 2.0] } ]\n", 2, 43,
+       "'coulomb_nm' must be one number or list 6, found 2"},
+      {"[sets.s]\nconditions = [ { name = \"c\", stribeck_nm = [1, 2, 3, 4, 5, nan] } ]\n", 2, 60,
+       "NaN"},
+      {"[sets.s]\nconditions = [ { name = \"c\", stribeck_velocity = -0.1 } ]\n", 2, 50,
+       "'stribeck_velocity' must be 0 (off)"},
   };
   for (const Bad& b : cases) {
     ConditionFile f;
@@ -139,6 +159,19 @@ TEST(ConditionSets, JointEffectKeysSetTheirFieldsInSIUnitsForSetsAndScenarios) {
   EXPECT_DOUBLE_EQ(c[0].effects.plant_step_s, 0.25e-3);
   EXPECT_DOUBLE_EQ(c[1].effects.plant_step_s, 0.25e-3);  // a scenario keeps the set's effects
   EXPECT_EQ(c[2].effects.plant_step_s, 0.0);
+
+  const char* all =
+      "[sets.s]\nconditions = [ { name = \"a\", delay_ms = 12.5, torque_bandwidth_hz = 150.0, "
+      "encoder_counts = 131072, coulomb_nm = [1, 2, 3, 4, 5, 6], stribeck_nm = 9.0, "
+      "stribeck_velocity = 0.02 } ]\n";
+  ASSERT_TRUE(parse_conditions(all, "effects.toml", f, e)) << e.to_string();
+  const fuzzypid::sim::JointEffects& x = f.sets[0].conditions[0].effects;
+  EXPECT_DOUBLE_EQ(x.delay_s, 12.5e-3);
+  EXPECT_EQ(x.torque_bandwidth_hz, 150.0);
+  EXPECT_EQ(x.encoder_counts, 131072u);
+  EXPECT_EQ(x.coulomb_nm, (fuzzypid::robot::JointVector{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(x.stribeck_nm, (fuzzypid::robot::JointVector{9, 9, 9, 9, 9, 9}));
+  EXPECT_EQ(x.stribeck_velocity_rad_s, 0.02);
 }
 
 // Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and

@@ -77,7 +77,13 @@ inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};         // 
 inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};            // ms
 inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // kg·m²
 // What real joints have (JointEffects); each is off at 0 and otherwise within its range.
-inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};  // ms
+inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};        // ms
+inline constexpr FieldRange kDelayMsRange{"delay_ms", 0.0, 1000.0};                  // ms
+inline constexpr FieldRange kTorqueBandwidthRange{"torque_bandwidth_hz", 0.1, 1e5};  // Hz
+inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12};  // per revolution
+inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};             // N·m
+inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};           // N·m
+inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
@@ -93,6 +99,21 @@ struct JointEffects {
   // ten times finer than the default checks that a result has converged. 0: the defaults (1 ms
   // decoupled, 50 ms coupled).
   double plant_step_s = 0.0;
+  // delay_ms: time from sampling the joint to the torque reaching it, s (fractions of a tick
+  // allowed; one tick is a digital drive's usual computation delay). At most 60 ticks.
+  double delay_s = 0.0;
+  // torque_bandwidth_hz: the current loop as a first-order lag on the applied torque, Hz
+  // (0: ideal).
+  double torque_bandwidth_hz = 0.0;
+  // encoder_counts: the controller measures the angle quantised to 2π/N and the rate as the
+  // difference of the last two readings over the tick (0: the true angle and rate).
+  std::uint64_t encoder_counts = 0;
+  // coulomb_nm, stribeck_nm (one number for every joint, or six): Coulomb friction C_i and the
+  // Stribeck peak S_i of static friction (0 or below C_i: none), N·m at the joint, opposing its
+  // velocity; stribeck_velocity: the Stribeck velocity v_s, rad/s (0: 0.01 rad/s).
+  robot::JointVector coulomb_nm{};
+  robot::JointVector stribeck_nm{};
+  double stribeck_velocity_rad_s = 0.0;
 
   [[nodiscard]] bool operator==(const JointEffects& o) const noexcept;
   [[nodiscard]] bool operator!=(const JointEffects& o) const noexcept { return !(*this == o); }

@@ -27,6 +27,10 @@
 // What real joints have (sim::JointEffects; sim_ab's and rt_loop's options of the same names; each
 // 0 = off):
 //   plant_step_ms = 0.1        (largest plant integration step, ms)
+//   delay_ms = 10.0            (sampling to torque, ms)    torque_bandwidth_hz = 200.0
+//   encoder_counts = 131072    (per revolution, integer)
+//   coulomb_nm = 20.0 | [C1, ..., C6]   stribeck_nm = 30.0 | [S1, ..., S6]   (N·m)
+//   stribeck_velocity = 0.01   (rad/s)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
 // to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
 // included; a condition's own keys override them.
