@@ -4,6 +4,7 @@
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
 // and what real joints have (sim::JointEffects): --plant-step-ms S --delay-ms D
 //   --torque-bandwidth-hz F --encoder-counts N --coulomb-nm C --stribeck-nm S --stribeck-velocity V
+//   --joint-resonance-hz F --joint-damping-ratio Z
 // Header-only: included by the tools that link fuzzypid::sim.
 #pragma once
 
@@ -219,6 +220,12 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
                           "Stribeck peak of static friction, N·m (default 0: none)", "S|S1,...,S6");
   add_effect_option(app, sim::kStribeckVelocityRange, 1.0, o.effects.stribeck_velocity_rad_s,
                     "Stribeck velocity, rad/s (default 0.01)", "V");
+  add_joint_effect_option(app, sim::kJointResonanceRange, o.effects.joint_resonance_hz,
+                          "gear resonance of a two-mass joint, Hz (needs an armature; the drive "
+                          "measures the motor side; default 0: rigid)",
+                          "F|F1,...,F6");
+  add_effect_option(app, sim::kJointDampingRatioRange, 1.0, o.effects.joint_damping_ratio,
+                    "damping ratio of the gear resonance (default 0)", "Z");
 }
 
 // Usage errors the options can have on their own; empty when none.

@@ -15,6 +15,11 @@ namespace {
 
 constexpr double kMaxCoupledSubsteps = 1000.0;
 constexpr double kTwoPi = 6.283185307179586476925;
+// The gear's rate in the step rule is this many times its ω max(1, 2ζ): an oscillation's phase
+// error adds up over its periods, so it needs h ω <= step_rate_limit / 4 (0.0625) to keep a 5 s
+// run at 20 Hz within 1e-6 rad of a ten times finer step (1.7e-7 coupled, 6e-8 decoupled;
+// JointPlant.ResonantGearDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep).
+constexpr double kGearRateFactor = 4.0;
 
 // A torque command and when it was issued (plant time, s): the delay line's entries.
 struct DelayedCommand {
@@ -88,6 +93,16 @@ class JointPlant::Impl {
     }
     if (config.encoder_counts > 0)
       encoder_step = kTwoPi / static_cast<double>(config.encoder_counts);
+    valid = valid && all_finite(config.joint_resonance_hz) &&
+            all_non_negative(config.joint_resonance_hz) &&
+            std::isfinite(config.joint_damping_ratio) && config.joint_damping_ratio >= 0.0;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      if (!(config.joint_resonance_hz[i] > 0.0)) continue;
+      elastic = true;
+      elastic_mask[static_cast<int>(i)] = 1.0;
+      // The motor side is the armature: an elastic joint needs one.
+      valid = valid && config.armature_kgm2[i] > 0.0;
+    }
     reset(JointVector{}, JointVector{});
   }
 
@@ -109,6 +124,53 @@ class JointPlant::Impl {
     inertia = to_array(config.inertia_update == InertiaUpdate::Fixed
                            ? Vec6(fixed_mass.diagonal())
                            : Vec6(effective_mass(q0).diagonal()));
+    // The two-mass joint: the motor side starts where the link is (the gear unloaded); the gear's
+    // stiffness and damping follow from the resonance and the two inertias at this configuration.
+    xm = to_vec(q0);
+    vm = to_vec(qd0);
+    xm_out = q0;
+    vm_out = qd0;
+    gear_k = Vec6::Zero();
+    gear_c = Vec6::Zero();
+    if (elastic) {
+      const Vec6 link = fixed_mass.diagonal() - to_vec(config.armature_kgm2);
+      for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        if (elastic_mask[i] == 0.0) continue;
+        const double omega = kTwoPi * config.joint_resonance_hz[k];
+        const double reduced = 1.0 / (1.0 / config.armature_kgm2[k] + 1.0 / link[i]);
+        gear_k[i] = omega * omega * reduced;
+        gear_c[i] = 2.0 * config.joint_damping_ratio * omega * reduced;
+      }
+    }
+  }
+
+  // The link-side acceleration of the two-mass joint (coupled or decoupled) for the link force
+  // `f` (gear torque and disturbance on elastic joints; the drive, friction and disturbance on
+  // rigid ones, whose armature stays on the link side). `j_link` is the decoupled link inertia.
+  bool link_acceleration(const Vec6& x, const Vec6& v, const Vec6& f, const Vec6& j_link,
+                         Vec6& a) const noexcept {
+    if (config.coupling == PlantCoupling::Decoupled) {
+      a = f.cwiseQuotient(j_link);
+      return true;
+    }
+    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
+    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
+    Mat6 m;
+    Vec6 bias;
+    if (config.inertia_update == InertiaUpdate::Fixed) {
+      m = fixed_mass;
+      bias = dynamics.bias(x, v, g);
+    } else {
+      dynamics.mass_and_bias(x, v, g, m, bias);
+      m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
+      m.diagonal() += to_vec(config.armature_kgm2);
+    }
+    m.diagonal() -= to_vec(config.armature_kgm2).cwiseProduct(elastic_mask);
+    const Eigen::LLT<Mat6> llt(m);
+    if (llt.info() != Eigen::Success) return false;
+    a = llt.solve(f - bias);
+    return true;
   }
 
   // The encoder's reading of `angle`: the nearest multiple of encoder_step (the angle itself
@@ -245,6 +307,8 @@ class JointPlant::Impl {
     Vec6 a_end = Vec6::Zero();
     JointVector j_tick{};
     Vec6 lag = to_vec(lag_torque);  // the current loop's torque at the segment's start
+    Vec6 mx = xm;                   // the motor side of a two-mass joint
+    Vec6 mv = vm;
     Vec6 drive_end = to_vec(clamped) + dist;
     // Segments of one command each, [t0, t1) within the step.
     double t0 = 0.0;
@@ -262,7 +326,87 @@ class JointPlant::Impl {
         if (wc == 0.0) return held;
         return u + (lag - u) * std::exp(-wc * s_in) + dist;
       };
-      if (length > 0.0 && config.coupling == PlantCoupling::Decoupled) {
+      if (length > 0.0 && elastic) {
+        // The two-mass joint: link (x, v) and motor (xm, vm) per joint, the gear between them;
+        // rigid joints keep xm = x. Equal substeps within the configured step, the stiffness bound
+        // (gear: ω_i max(1, 2ζ); friction and viscous on the motor side: slope / J_motor) and,
+        // coupled, 1000 at most.
+        Vec6 j_link = Vec6::Ones();
+        if (first) {
+          const Vec6 diag = config.inertia_update == InertiaUpdate::Fixed
+                                ? Vec6(fixed_mass.diagonal())
+                                : Vec6(effective_mass(q).diagonal());
+          j_tick = to_array(diag);
+        }
+        j_link = to_vec(j_tick) - to_vec(config.armature_kgm2).cwiseProduct(elastic_mask);
+        double rate = wc;
+        for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+          const auto k = static_cast<std::size_t>(i);
+          if (!(j_link[i] > 0.0) || !std::isfinite(j_link[i])) return PlantStatus::NumericalError;
+          if (elastic_mask[i] != 0.0) {
+            const double omega = kTwoPi * config.joint_resonance_hz[k];
+            rate = std::fmax(
+                rate, kGearRateFactor * omega * std::fmax(1.0, 2.0 * config.joint_damping_ratio));
+            rate = std::fmax(rate, stiffness[k] / config.armature_kgm2[k]);
+          } else {
+            rate = std::fmax(rate, stiffness[k] / j_link[i]);
+          }
+        }
+        const double h_cap = config.coupling == PlantCoupling::Decoupled ? config.substep_s
+                                                                         : config.coupled_substep_s;
+        const double h_limit = std::fmin(h_cap, stable_step(rate));
+        const double count = std::fmax(1.0, std::ceil(length / h_limit - 1e-9));
+        const double h = length / count;
+        const Vec6 jm = to_vec(config.armature_kgm2);
+        // d/dt (x, v, xm, vm) at offset s_in.
+        const auto derivative = [&](double s_in, const Vec6& px, const Vec6& pv, const Vec6& pxm,
+                                    const Vec6& pvm, Vec6& av, Vec6& avm) {
+          const Vec6 cmd = drive_at(s_in) - dist;
+          const Vec6 gear = gear_k.cwiseProduct(pxm - px) + gear_c.cwiseProduct(pvm - pv);
+          // Friction acts on the motor side of an elastic joint, on the joint of a rigid one.
+          const Vec6 w =
+              pvm.cwiseProduct(elastic_mask) + pv.cwiseProduct(Vec6::Ones() - elastic_mask);
+          Vec6 resist = damping.cwiseProduct(w);
+          if (coulomb) resist += friction(w);
+          Vec6 f_link;
+          Vec6 f_motor;
+          for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+            const bool e = elastic_mask[i] != 0.0;
+            f_link[i] = (e ? gear[i] : cmd[i] - resist[i]) + dist[i];
+            f_motor[i] = e ? cmd[i] - resist[i] - gear[i] : 0.0;
+          }
+          if (!link_acceleration(px, pv, f_link, j_link, av)) return false;
+          for (int i = 0; i < static_cast<int>(kNumJoints); ++i)
+            avm[i] = elastic_mask[i] != 0.0 ? f_motor[i] / jm[i] : av[i];
+          return true;
+        };
+        Vec6& y_vm = mv;
+        Vec6& y_xm = mx;
+        for (long step_k = 0; step_k < static_cast<long>(count); ++step_k) {
+          const double s_in = static_cast<double>(step_k) * h;
+          Vec6 k1v, k1m, k2v, k2m, k3v, k3m, k4v, k4m;
+          if (!derivative(s_in, x, v, y_xm, y_vm, k1v, k1m)) return PlantStatus::NumericalError;
+          const Vec6 x2 = x + 0.5 * h * v, v2 = v + 0.5 * h * k1v;
+          const Vec6 xm2 = y_xm + 0.5 * h * y_vm, vm2 = y_vm + 0.5 * h * k1m;
+          if (!derivative(s_in + 0.5 * h, x2, v2, xm2, vm2, k2v, k2m))
+            return PlantStatus::NumericalError;
+          const Vec6 x3 = x + 0.5 * h * v2, v3 = v + 0.5 * h * k2v;
+          const Vec6 xm3 = y_xm + 0.5 * h * vm2, vm3 = y_vm + 0.5 * h * k2m;
+          if (!derivative(s_in + 0.5 * h, x3, v3, xm3, vm3, k3v, k3m))
+            return PlantStatus::NumericalError;
+          const Vec6 x4 = x + h * v3, v4 = v + h * k3v;
+          const Vec6 xm4 = y_xm + h * vm3, vm4 = y_vm + h * k3m;
+          if (!derivative(s_in + h, x4, v4, xm4, vm4, k4v, k4m)) return PlantStatus::NumericalError;
+          x += h / 6.0 * (v + 2.0 * v2 + 2.0 * v3 + v4);
+          v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+          y_xm += h / 6.0 * (y_vm + 2.0 * vm2 + 2.0 * vm3 + vm4);
+          y_vm += h / 6.0 * (k1m + 2.0 * k2m + 2.0 * k3m + k4m);
+        }
+        if (config.coupling == PlantCoupling::Decoupled) {
+          Vec6 a_m;
+          if (!derivative(length, x, v, mx, mv, a_end, a_m)) return PlantStatus::NumericalError;
+        }
+      } else if (length > 0.0 && config.coupling == PlantCoupling::Decoupled) {
         if (first) {
           if (config.inertia_update == InertiaUpdate::Fixed) {
             j_tick = to_array(fixed_mass.diagonal());
@@ -371,6 +515,9 @@ class JointPlant::Impl {
       next_switch = arrival(next_command);
     }
     if (!x.allFinite() || !v.allFinite() || !a_end.allFinite()) return PlantStatus::NumericalError;
+    if (elastic && !(mx.allFinite() && mv.allFinite())) return PlantStatus::NumericalError;
+    xm = mx;
+    vm = mv;
 
     q = to_array(x);
     qd = to_array(v);
@@ -384,8 +531,11 @@ class JointPlant::Impl {
     lag_torque = wc > 0.0 ? to_array(lag) : JointVector{};
     saturated = sat;
     time += dt;
+    xm_out = to_array(xm);
+    vm_out = to_array(vm);
     if (encoder_step > 0.0) {
-      const JointVector reading = quantised(q);
+      // The encoder is on the motor side (the two-mass joint's xm; the joint itself when rigid).
+      const JointVector reading = quantised(elastic ? to_array(xm) : q);
       for (std::size_t i = 0; i < kNumJoints; ++i)
         measured_qd[i] = (reading[i] - measured_q[i]) / dt;
       measured_q = reading;
@@ -422,6 +572,16 @@ class JointPlant::Impl {
   double encoder_step = 0.0;
   JointVector measured_q{};
   JointVector measured_qd{};
+  // The two-mass joint (joint_resonance_hz): which joints are elastic (1) or rigid (0), the gear's
+  // stiffness (N·m/rad) and damping (N·m·s/rad), and the motor side's angle and velocity.
+  bool elastic = false;
+  Vec6 elastic_mask = Vec6::Zero();
+  Vec6 gear_k = Vec6::Zero();
+  Vec6 gear_c = Vec6::Zero();
+  Vec6 xm = Vec6::Zero();
+  Vec6 vm = Vec6::Zero();
+  JointVector xm_out{};
+  JointVector vm_out{};
   Mat6 fixed_mass = Mat6::Identity();
   JointVector q{};
   JointVector qd{};
@@ -463,10 +623,15 @@ const JointVector& JointPlant::velocity() const noexcept {
   return impl_->qd;
 }
 const JointVector& JointPlant::measured_position() const noexcept {
-  return impl_->encoder_step > 0.0 ? impl_->measured_q : impl_->q;
+  if (impl_->encoder_step > 0.0) return impl_->measured_q;
+  return impl_->elastic ? impl_->xm_out : impl_->q;
 }
 const JointVector& JointPlant::measured_velocity() const noexcept {
-  return impl_->encoder_step > 0.0 ? impl_->measured_qd : impl_->qd;
+  if (impl_->encoder_step > 0.0) return impl_->measured_qd;
+  return impl_->elastic ? impl_->vm_out : impl_->qd;
+}
+const JointVector& JointPlant::motor_position() const noexcept {
+  return impl_->elastic ? impl_->xm_out : impl_->q;
 }
 const JointVector& JointPlant::acceleration() const noexcept {
   return impl_->acceleration();

@@ -54,6 +54,13 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
   }
   const robot::JointPathResult* path = experiment.path(condition, error);
   if (path == nullptr) return std::nullopt;
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+    if (condition.effects.joint_resonance_hz[i] > 0.0 && !(experiment.armature_kgm2()[i] > 0.0)) {
+      error = "condition " + condition.name +
+              ": joint_resonance_hz needs an armature > 0 on joint " + std::to_string(i + 1) +
+              " (the motor side of the two-mass joint; --armature or the key armature)";
+      return std::nullopt;
+    }
   ClosedLoop loop(experiment, condition, *path, std::move(controller));
   if (!loop.plant_.valid()) {
     error = "invalid plant configuration for condition " + condition.name;

@@ -39,7 +39,8 @@ bool JointEffects::operator==(const JointEffects& o) const noexcept {
   return plant_step_s == o.plant_step_s && delay_s == o.delay_s &&
          torque_bandwidth_hz == o.torque_bandwidth_hz && encoder_counts == o.encoder_counts &&
          coulomb_nm == o.coulomb_nm && stribeck_nm == o.stribeck_nm &&
-         stribeck_velocity_rad_s == o.stribeck_velocity_rad_s;
+         stribeck_velocity_rad_s == o.stribeck_velocity_rad_s &&
+         joint_resonance_hz == o.joint_resonance_hz && joint_damping_ratio == o.joint_damping_ratio;
 }
 
 std::string JointEffects::validate() const {
@@ -49,10 +50,12 @@ std::string JointEffects::validate() const {
        {std::pair{kDelayMsRange, delay_s * 1e3},
         std::pair{kTorqueBandwidthRange, torque_bandwidth_hz},
         std::pair{kEncoderCountsRange, static_cast<double>(encoder_counts)},
-        std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s}})
+        std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s},
+        std::pair{kJointDampingRatioRange, joint_damping_ratio}})
     if (std::string bad = off_or_within(range, value); !bad.empty()) return bad + " (0: off)";
   for (const auto& [range, values] :
-       {std::pair{kCoulombRange, coulomb_nm}, std::pair{kStribeckRange, stribeck_nm}})
+       {std::pair{kCoulombRange, coulomb_nm}, std::pair{kStribeckRange, stribeck_nm},
+        std::pair{kJointResonanceRange, joint_resonance_hz}})
     for (double v : values)
       if (std::string bad = out_of(range, v); !bad.empty()) return bad;
   return {};

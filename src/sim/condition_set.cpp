@@ -77,6 +77,8 @@ void read_effects(TableReader& r, JointEffects& e) {
   read_joint_effect(r, kCoulombRange, e.coulomb_nm);
   read_joint_effect(r, kStribeckRange, e.stribeck_nm);
   read_effect(r, kStribeckVelocityRange, 1.0, e.stribeck_velocity_rad_s);
+  read_joint_effect(r, kJointResonanceRange, e.joint_resonance_hz);
+  read_effect(r, kJointDampingRatioRange, 1.0, e.joint_damping_ratio);
 }
 
 // The robot, path and plant keys (set tables and conditions alike).

@@ -101,7 +101,7 @@ TEST(NoAllocation, PlantStepsWithHighViscousFriction) {
 }
 
 // What real joints have: a fractional delay (the step cut in two), the current loop, Coulomb and
-// Stribeck friction and an encoder.
+// Stribeck friction, an encoder and elastic joints beside rigid ones.
 TEST(NoAllocation, PlantStepsWithEveryJointEffect) {
   PlantConfig config;
   config.delay_s = 0.0123;
@@ -109,6 +109,8 @@ TEST(NoAllocation, PlantStepsWithEveryJointEffect) {
   config.coulomb_nm = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
   config.stribeck_nm = {30.0, 45.0, 15.0, 1.5, 1.5, 0.3};
   config.encoder_counts = 1u << 17;
+  config.joint_resonance_hz = {20.0, 20.0, 30.0, 0.0, 0.0, 40.0};
+  config.joint_damping_ratio = 0.05;
   JointPlant decoupled(model(), config);
   config.coupling = PlantCoupling::Coupled;
   config.gravity = true;

@@ -422,7 +422,8 @@ JointVector pd_torque(const JointPlant& plant, double t) {
   for (std::size_t i = 0; i < kNumJoints; ++i) {
     const double target =
         kPaperStartJoints[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
-    tau[i] = kp[i] * (target - plant.position()[i]) - kd[i] * plant.velocity()[i];
+    // What the drive measures: the joint, or the motor side of an elastic one.
+    tau[i] = kp[i] * (target - plant.measured_position()[i]) - kd[i] * plant.measured_velocity()[i];
   }
   return tau;
 }
@@ -777,6 +778,78 @@ TEST(JointPlant, AnEncoderQuantisesTheAngleAndDifferencesItForTheRate) {
   EXPECT_DOUBLE_EQ(plant.measured_velocity()[0], (49 * count - 48 * count) / 0.01);
   EXPECT_DOUBLE_EQ(plant.measured_position()[1], -46 * count);  // -0.29 rad = -46.15 counts
   EXPECT_EQ(plant.measured_velocity()[2], 0.0);
+}
+
+// A constant torque τ on the undamped two-mass joint from rest: the gear's deflection
+// δ = θ_m − θ obeys δ̈ = τ / J_m − ω² δ, so δ(t) = τ / (J_m ω²) (1 − cos ωt) at ω = 2π F.
+TEST(JointPlant, AnElasticJointOscillatesFreelyAtItsResonance) {
+  PlantConfig c = double_integrator();
+  c.joint_resonance_hz = {20.0, 20.0, 35.0, 50.0, 0.0, 15.0};
+  JointPlant plant(bundled_model(), c);
+  ASSERT_TRUE(plant.valid());
+  plant.reset(kPaperStartJoints, JointVector{});
+  const JointVector tau = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double dt = 0.001;
+  std::array<int, kNumJoints> crossings{};
+  std::array<double, kNumJoints> first{}, last{};
+  JointVector previous{};
+  for (int k = 1; k <= 2000; ++k) {
+    ASSERT_EQ(plant.step(tau, dt), PlantStatus::Ok);
+    const double t = k * dt;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double delta = plant.motor_position()[i] - plant.position()[i];
+      if (c.joint_resonance_hz[i] == 0.0) {
+        EXPECT_EQ(delta, 0.0) << "joint " << i + 1 << " is rigid";
+        continue;
+      }
+      const double w = 2.0 * 3.14159265358979323846 * c.joint_resonance_hz[i];
+      const double amplitude = tau[i] / (c.armature_kgm2[i] * w * w);
+      EXPECT_NEAR(delta, amplitude * (1.0 - std::cos(w * t)), 5e-3 * std::fabs(amplitude))
+          << "joint " << i + 1 << ", t = " << t;
+      // Upward crossings of the mean deflection, interpolated: whole periods between them.
+      const double now = delta / amplitude - 1.0;
+      if (k > 1 && previous[i] < 0.0 && now >= 0.0) {
+        const double at = t - dt * now / (now - previous[i]);
+        if (crossings[i]++ == 0) first[i] = at;
+        last[i] = at;
+      }
+      previous[i] = now;
+    }
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    if (c.joint_resonance_hz[i] == 0.0) continue;
+    ASSERT_GT(crossings[i], 10);
+    const double frequency = (crossings[i] - 1) / (last[i] - first[i]);
+    EXPECT_NEAR(frequency, c.joint_resonance_hz[i], 0.01 * c.joint_resonance_hz[i]) << i + 1;
+  }
+  // The drive measures the motor side.
+  EXPECT_EQ(plant.measured_position(), plant.motor_position());
+}
+
+TEST(JointPlant, ElasticJointsNeedAnArmature) {
+  PlantConfig c;
+  c.armature_kgm2 = {8.5, 0.0, 5.4, 1.7, 1.7, 0.5};
+  c.joint_resonance_hz = {20.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_TRUE(JointPlant(bundled_model(), c).valid());
+  c.joint_resonance_hz[1] = 20.0;
+  EXPECT_FALSE(JointPlant(bundled_model(), c).valid());
+}
+
+// A 20 Hz gear (ζ = 0.05) on every joint: the default step (h ω <= 0.25) against ten times finer.
+TEST(JointPlant, ResonantGearDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
+  PlantConfig c;
+  c.joint_resonance_hz.fill(20.0);
+  c.joint_damping_ratio = 0.05;
+  for (PlantCoupling coupling : {PlantCoupling::Decoupled, PlantCoupling::Coupled}) {
+    c.coupling = coupling;
+    c.gravity = coupling == PlantCoupling::Coupled;
+    for (double tick : {0.05, 0.01}) {
+      const double error = finer_step_error(bundled_model(), c, tick);
+      std::printf("[ accuracy ] 20 Hz gear, %s, tick %.0f ms: max |q - q_ref| %.2e rad\n",
+                  coupling == PlantCoupling::Coupled ? "coupled" : "decoupled", tick * 1e3, error);
+      EXPECT_LT(error, 1e-6) << "tick " << tick;
+    }
+  }
 }
 
 TEST(JointPlant, CoupledAccelerationIsTheDynamicsAtTheEndOfTheTick) {

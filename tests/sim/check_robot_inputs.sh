@@ -74,6 +74,9 @@ expect 2 "--coulomb-nm: values must be within 0 .. 1e+06: 1,2,3,4,5,-6" -- run -
 expect 2 "--stribeck-nm: expected one number or 6 comma-separated: 1,2" -- run --stribeck-nm 1,2
 expect 2 "--stribeck-velocity" -- "$rt_loop" --period-ms 0 --stribeck-velocity -1
 expect 2 "delay_ms must be at most 60 ticks (60 ms at this tick)" -- run --tick-ms 1 --delay-ms 61
+expect 2 "--joint-resonance-hz: values must be within 0 .. 10000: -1" -- run --joint-resonance-hz -1
+expect 2 "--joint-damping-ratio" -- "$rt_loop" --period-ms 0 --joint-damping-ratio nan
+expect 1 "joint_resonance_hz needs an armature > 0 on joint 2" -- run --joint-resonance-hz 20 --armature 1,0,1,1,1,1
 row "[sets.s]" "conditions = [ { name = \"c\", plant_step_ms = -1.0 } ]" >"$work/bad_step.toml"
 expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (off)" -- run --conditions "$work/bad_step.toml"
 

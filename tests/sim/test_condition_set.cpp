@@ -136,6 +136,10 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
        "NaN"},
       {"[sets.s]\nconditions = [ { name = \"c\", stribeck_velocity = -0.1 } ]\n", 2, 50,
        "'stribeck_velocity' must be 0 (off)"},
+      {"[sets.s]\nconditions = [ { name = \"c\", joint_resonance_hz = -20.0 } ]\n", 2, 51,
+       "'joint_resonance_hz' values must be within 0 .. 10000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", joint_damping_ratio = 11.0 } ]\n", 2, 52,
+       "'joint_damping_ratio' must be 0 (off) or within 0 .. 10"},
   };
   for (const Bad& b : cases) {
     ConditionFile f;
@@ -163,7 +167,8 @@ TEST(ConditionSets, JointEffectKeysSetTheirFieldsInSIUnitsForSetsAndScenarios) {
   const char* all =
       "[sets.s]\nconditions = [ { name = \"a\", delay_ms = 12.5, torque_bandwidth_hz = 150.0, "
       "encoder_counts = 131072, coulomb_nm = [1, 2, 3, 4, 5, 6], stribeck_nm = 9.0, "
-      "stribeck_velocity = 0.02 } ]\n";
+      "stribeck_velocity = 0.02, joint_resonance_hz = [20, 20, 30, 0, 0, 0], "
+      "joint_damping_ratio = 0.05 } ]\n";
   ASSERT_TRUE(parse_conditions(all, "effects.toml", f, e)) << e.to_string();
   const fuzzypid::sim::JointEffects& x = f.sets[0].conditions[0].effects;
   EXPECT_DOUBLE_EQ(x.delay_s, 12.5e-3);
@@ -172,6 +177,8 @@ TEST(ConditionSets, JointEffectKeysSetTheirFieldsInSIUnitsForSetsAndScenarios) {
   EXPECT_EQ(x.coulomb_nm, (fuzzypid::robot::JointVector{1, 2, 3, 4, 5, 6}));
   EXPECT_EQ(x.stribeck_nm, (fuzzypid::robot::JointVector{9, 9, 9, 9, 9, 9}));
   EXPECT_EQ(x.stribeck_velocity_rad_s, 0.02);
+  EXPECT_EQ(x.joint_resonance_hz, (fuzzypid::robot::JointVector{20, 20, 30, 0, 0, 0}));
+  EXPECT_EQ(x.joint_damping_ratio, 0.05);
 }
 
 // Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and

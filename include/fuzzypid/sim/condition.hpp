@@ -80,9 +80,11 @@ inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // 
 inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};        // ms
 inline constexpr FieldRange kDelayMsRange{"delay_ms", 0.0, 1000.0};                  // ms
 inline constexpr FieldRange kTorqueBandwidthRange{"torque_bandwidth_hz", 0.1, 1e5};  // Hz
-inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12};  // per revolution
-inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};             // N·m
-inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};           // N·m
+inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12};      // per revolution
+inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};                 // N·m
+inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};               // N·m
+inline constexpr FieldRange kJointResonanceRange{"joint_resonance_hz", 0.0, 1e4};  // Hz
+inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0};
 inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
@@ -114,6 +116,13 @@ struct JointEffects {
   robot::JointVector coulomb_nm{};
   robot::JointVector stribeck_nm{};
   double stribeck_velocity_rad_s = 0.0;
+  // joint_resonance_hz (one number for every joint, or six; 0: rigid) and joint_damping_ratio:
+  // an elastic gear as a two-mass joint, the motor side the armature (which must be > 0 there,
+  // --armature), the link side the arm, the stiffness from the resonance and the two inertias at
+  // the start. The controller measures the motor side (a motor encoder); trajectory.csv and the
+  // metrics keep the link's angle.
+  robot::JointVector joint_resonance_hz{};
+  double joint_damping_ratio = 0.0;
 
   [[nodiscard]] bool operator==(const JointEffects& o) const noexcept;
   [[nodiscard]] bool operator!=(const JointEffects& o) const noexcept { return !(*this == o); }
