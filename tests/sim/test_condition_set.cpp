@@ -2,6 +2,7 @@
 // draws, scenario shorthands, and file:line:column errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -70,6 +71,50 @@ TEST(ConditionSets, MonteCarloDrawsAreSeededAndInsideTheirRanges) {
   other.replace(other.find("seed = 9"), 8, "seed = 8");
   ASSERT_TRUE(parse_conditions(other, "mc.toml", c, e)) << e.to_string();
   EXPECT_NE(da[0].payload_scale, c.find("mc")->conditions[0].payload_scale);
+}
+
+// payload_kg and the keys of what real joints have are drawn from [min, max] from a stream of
+// their own: the payload-scale, friction and start-error draws stay as without them.
+TEST(ConditionSets, MonteCarloDrawsPayloadKgAndJointEffectsWithoutChangingTheOtherDraws) {
+  const std::string plain =
+      "[sets.mc.monte_carlo]\ncount = 40\nseed = 9\npayload_scale = [0.5, 2.0]\n"
+      "friction = [0.0, 2.0]\ninitial_error = [-0.08, 0.08]\n";
+  const std::string with = plain +
+                           "payload_kg = [0.0, 5.0]\ndelay_ms = [0.0, 20.0]\n"
+                           "encoder_counts = [4096, 65536]\ncoulomb_nm = [0.0, 10.0]\n"
+                           "joint_resonance_hz = [15.0, 30.0]\njoint_damping_ratio = 0.05\n";
+  ConditionFile a, b, again;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(parse_conditions(plain, "mc.toml", a, e)) << e.to_string();
+  ASSERT_TRUE(parse_conditions(with, "mc.toml", b, e)) << e.to_string();
+  ASSERT_TRUE(parse_conditions(with, "mc.toml", again, e)) << e.to_string();
+  const auto& da = a.sets[0].conditions;
+  const auto& db = b.sets[0].conditions;
+  ASSERT_EQ(db.size(), 40u);
+  double lo = 1e9, hi = -1e9;
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    EXPECT_EQ(db[k].payload_scale, da[k].payload_scale);
+    EXPECT_EQ(db[k].friction_per_s, da[k].friction_per_s);
+    EXPECT_EQ(db[k].initial_error_rad, da[k].initial_error_rad);
+    EXPECT_EQ(db[k].effects, again.sets[0].conditions[k].effects);  // seeded
+    const fuzzypid::sim::JointEffects& x = db[k].effects;
+    EXPECT_GE(db[k].payload_kg, 0.0);
+    EXPECT_LE(db[k].payload_kg, 5.0);
+    EXPECT_GE(x.delay_s, 0.0);
+    EXPECT_LE(x.delay_s, 20e-3);
+    EXPECT_GE(x.encoder_counts, 4096u);
+    EXPECT_LE(x.encoder_counts, 65536u);
+    EXPECT_GE(x.coulomb_nm[0], 0.0);
+    EXPECT_LE(x.coulomb_nm[0], 10.0);
+    EXPECT_EQ(x.coulomb_nm[5], x.coulomb_nm[0]);  // one draw for every joint
+    EXPECT_GE(x.joint_resonance_hz[2], 15.0);
+    EXPECT_LE(x.joint_resonance_hz[2], 30.0);
+    EXPECT_EQ(x.joint_damping_ratio, 0.05);  // a number sets it
+    lo = std::min(lo, x.delay_s);
+    hi = std::max(hi, x.delay_s);
+  }
+  EXPECT_GT(hi - lo, 10e-3);  // the draws spread over the range
+  EXPECT_NE(db[0].payload_kg, db[1].payload_kg);
 }
 
 TEST(ConditionSets, AScenarioIsAShorthandTheOtherKeysOverride) {

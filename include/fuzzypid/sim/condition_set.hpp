@@ -13,6 +13,11 @@
 //   payload_scale = [0.5, 2.0]                # drawn log-uniformly in [min, max]
 //   friction = [0.0, 2.0]                     # uniformly
 //   initial_error = [-0.08, 0.08]             # uniformly
+//   payload_kg = [0.0, 5.0]                   # uniformly; so are the keys of what real joints
+//   delay_ms = [0.0, 10.0]                    # have given as [min, max] (one value for every
+//   encoder_counts = [4096, 65536]            # joint; counts rounded), and a number sets them
+// The draws of payload_kg and the joint keys come from a stream of their own (one draw per key and
+// condition, in a fixed order), so adding one changes neither the others nor the three above.
 //
 // Condition keys: name, description, scenario, payload_scale, friction, torque_limit, contact,
 // noise = [SIGMA_Q, SIGMA_QD], seed, reverse, initial_error (sim_ab's options of the same names).
