@@ -4,7 +4,7 @@
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
 // and what real joints have (sim::JointEffects): --plant-step-ms S --delay-ms D
 //   --torque-bandwidth-hz F --encoder-counts N --coulomb-nm C --stribeck-nm S --stribeck-velocity V
-//   --joint-resonance-hz F --joint-damping-ratio Z
+//   --joint-resonance-hz F --joint-damping-ratio Z --backlash-rad B
 // Header-only: included by the tools that link fuzzypid::sim.
 #pragma once
 
@@ -226,6 +226,8 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
                           "F|F1,...,F6");
   add_effect_option(app, sim::kJointDampingRatioRange, 1.0, o.effects.joint_damping_ratio,
                     "damping ratio of the gear resonance (default 0)", "Z");
+  add_effect_option(app, sim::kBacklashRange, 1.0, o.effects.backlash_rad,
+                    "play of the elastic gears, rad (needs --joint-resonance-hz; default 0)", "B");
 }
 
 // Usage errors the options can have on their own; empty when none.

@@ -95,7 +95,9 @@ class JointPlant::Impl {
       encoder_step = kTwoPi / static_cast<double>(config.encoder_counts);
     valid = valid && all_finite(config.joint_resonance_hz) &&
             all_non_negative(config.joint_resonance_hz) &&
-            std::isfinite(config.joint_damping_ratio) && config.joint_damping_ratio >= 0.0;
+            std::isfinite(config.joint_damping_ratio) && config.joint_damping_ratio >= 0.0 &&
+            std::isfinite(config.backlash_rad) && config.backlash_rad >= 0.0;
+    half_play = 0.5 * config.backlash_rad;
     for (std::size_t i = 0; i < kNumJoints; ++i) {
       if (!(config.joint_resonance_hz[i] > 0.0)) continue;
       elastic = true;
@@ -103,6 +105,8 @@ class JointPlant::Impl {
       // The motor side is the armature: an elastic joint needs one.
       valid = valid && config.armature_kgm2[i] > 0.0;
     }
+    // Backlash lives in the gear of the two-mass joint.
+    valid = valid && (config.backlash_rad == 0.0 || elastic);
     reset(JointVector{}, JointVector{});
   }
 
@@ -362,7 +366,17 @@ class JointPlant::Impl {
         const auto derivative = [&](double s_in, const Vec6& px, const Vec6& pv, const Vec6& pxm,
                                     const Vec6& pvm, Vec6& av, Vec6& avm) {
           const Vec6 cmd = drive_at(s_in) - dist;
-          const Vec6 gear = gear_k.cwiseProduct(pxm - px) + gear_c.cwiseProduct(pvm - pv);
+          Vec6 gear = gear_k.cwiseProduct(pxm - px) + gear_c.cwiseProduct(pvm - pv);
+          if (half_play > 0.0) {
+            // Backlash: no gear torque within ±half_play of deflection, the spring beyond it.
+            for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
+              const double d = pxm[i] - px[i];
+              const double beyond = d > half_play    ? d - half_play
+                                    : d < -half_play ? d + half_play
+                                                     : 0.0;
+              gear[i] = beyond == 0.0 ? 0.0 : gear_k[i] * beyond + gear_c[i] * (pvm[i] - pv[i]);
+            }
+          }
           // Friction acts on the motor side of an elastic joint, on the joint of a rigid one.
           const Vec6 w =
               pvm.cwiseProduct(elastic_mask) + pv.cwiseProduct(Vec6::Ones() - elastic_mask);
@@ -575,6 +589,7 @@ class JointPlant::Impl {
   // The two-mass joint (joint_resonance_hz): which joints are elastic (1) or rigid (0), the gear's
   // stiffness (N·m/rad) and damping (N·m·s/rad), and the motor side's angle and velocity.
   bool elastic = false;
+  double half_play = 0.0;  // half the backlash, rad
   Vec6 elastic_mask = Vec6::Zero();
   Vec6 gear_k = Vec6::Zero();
   Vec6 gear_c = Vec6::Zero();

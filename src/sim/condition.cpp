@@ -40,7 +40,8 @@ bool JointEffects::operator==(const JointEffects& o) const noexcept {
          torque_bandwidth_hz == o.torque_bandwidth_hz && encoder_counts == o.encoder_counts &&
          coulomb_nm == o.coulomb_nm && stribeck_nm == o.stribeck_nm &&
          stribeck_velocity_rad_s == o.stribeck_velocity_rad_s &&
-         joint_resonance_hz == o.joint_resonance_hz && joint_damping_ratio == o.joint_damping_ratio;
+         joint_resonance_hz == o.joint_resonance_hz &&
+         joint_damping_ratio == o.joint_damping_ratio && backlash_rad == o.backlash_rad;
 }
 
 std::string JointEffects::validate() const {
@@ -51,8 +52,11 @@ std::string JointEffects::validate() const {
         std::pair{kTorqueBandwidthRange, torque_bandwidth_hz},
         std::pair{kEncoderCountsRange, static_cast<double>(encoder_counts)},
         std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s},
-        std::pair{kJointDampingRatioRange, joint_damping_ratio}})
+        std::pair{kJointDampingRatioRange, joint_damping_ratio},
+        std::pair{kBacklashRange, backlash_rad}})
     if (std::string bad = off_or_within(range, value); !bad.empty()) return bad + " (0: off)";
+  if (backlash_rad > 0.0 && joint_resonance_hz == robot::JointVector{})
+    return "backlash_rad needs an elastic gear (joint_resonance_hz > 0)";
   for (const auto& [range, values] :
        {std::pair{kCoulombRange, coulomb_nm}, std::pair{kStribeckRange, stribeck_nm},
         std::pair{kJointResonanceRange, joint_resonance_hz}})

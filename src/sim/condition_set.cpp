@@ -90,6 +90,7 @@ void read_effects(TableReader& r, JointEffects& e, const DrawnKeys* skip = nullp
   read_effect(r, kStribeckVelocityRange, 1.0, e.stribeck_velocity_rad_s, skip);
   read_joint_effect(r, kJointResonanceRange, e.joint_resonance_hz, skip);
   read_effect(r, kJointDampingRatioRange, 1.0, e.joint_damping_ratio, skip);
+  read_effect(r, kBacklashRange, 1.0, e.backlash_rad, skip);
 }
 
 // The robot, path and plant keys (set tables and conditions alike).
@@ -214,7 +215,7 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
     double lo = 0.0, hi = 0.0;
     bool given = false;
   };
-  std::array<Draw, 10> draws = {{{"payload_kg"},
+  std::array<Draw, 11> draws = {{{"payload_kg"},
                                  {kDelayMsRange.key},
                                  {kTorqueBandwidthRange.key},
                                  {kEncoderCountsRange.key},
@@ -223,7 +224,8 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
                                  {kStribeckVelocityRange.key},
                                  {kJointResonanceRange.key},
                                  {kJointDampingRatioRange.key},
-                                 {kPlantStepMsRange.key}}};
+                                 {kPlantStepMsRange.key},
+                                 {kBacklashRange.key}}};
   DrawnKeys ranged;
   for (Draw& d : draws) {
     const toml::node* node = r.raw().get(d.key);

@@ -228,6 +228,7 @@ robot::PlantConfig Experiment::plant_config(const Condition& condition) const {
   if (e.stribeck_velocity_rad_s > 0.0) config.stribeck_velocity_rad_s = e.stribeck_velocity_rad_s;
   config.joint_resonance_hz = e.joint_resonance_hz;
   config.joint_damping_ratio = e.joint_damping_ratio;
+  config.backlash_rad = e.backlash_rad;
   return config;
 }
 

@@ -826,6 +826,37 @@ TEST(JointPlant, AnElasticJointOscillatesFreelyAtItsResonance) {
   EXPECT_EQ(plant.measured_position(), plant.motor_position());
 }
 
+// Backlash B: from rest under a constant torque the motor turns freely (θ_m = ½ τ/J_m t²) and the
+// link does not move at all until the play B/2 is taken up at t* = √(B J_m / τ); then it follows.
+TEST(JointPlant, BacklashLetsTheMotorTurnFreelyUntilThePlayIsTakenUp) {
+  PlantConfig c = double_integrator();
+  c.joint_resonance_hz.fill(20.0);
+  c.backlash_rad = 0.01;
+  JointPlant plant(bundled_model(), c);
+  ASSERT_TRUE(plant.valid());
+  plant.reset(JointVector{}, JointVector{});
+  const JointVector tau = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double dt = 0.001;
+  for (int k = 1; k <= 400; ++k) {
+    ASSERT_EQ(plant.step(tau, dt), PlantStatus::Ok);
+    const double t = k * dt;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double jm = c.armature_kgm2[i];
+      const double contact = std::sqrt(c.backlash_rad * jm / std::fabs(tau[i]));
+      if (t < contact - dt) {
+        EXPECT_EQ(plant.position()[i], 0.0) << "joint " << i + 1 << ", t = " << t;
+        EXPECT_NEAR(plant.motor_position()[i], 0.5 * tau[i] / jm * t * t, 1e-12)
+            << "joint " << i + 1 << ", t = " << t;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i)  // every joint has made contact and moves
+    EXPECT_GT(plant.position()[i] * tau[i], 0.0) << "joint " << i + 1;
+  PlantConfig rigid = c;
+  rigid.joint_resonance_hz = {};
+  EXPECT_FALSE(JointPlant(bundled_model(), rigid).valid());  // backlash needs the gear
+}
+
 TEST(JointPlant, ElasticJointsNeedAnArmature) {
   PlantConfig c;
   c.armature_kgm2 = {8.5, 0.0, 5.4, 1.7, 1.7, 0.5};

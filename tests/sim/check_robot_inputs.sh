@@ -77,6 +77,8 @@ expect 2 "delay_ms must be at most 60 ticks (60 ms at this tick)" -- run --tick-
 expect 2 "--joint-resonance-hz: values must be within 0 .. 10000: -1" -- run --joint-resonance-hz -1
 expect 2 "--joint-damping-ratio" -- "$rt_loop" --period-ms 0 --joint-damping-ratio nan
 expect 1 "joint_resonance_hz needs an armature > 0 on joint 2" -- run --joint-resonance-hz 20 --armature 1,0,1,1,1,1
+expect 2 "--backlash-rad: expected 0 (off) or a number within 0 .. 1: 2" -- run --backlash-rad 2
+expect 2 "backlash_rad needs an elastic gear (joint_resonance_hz > 0)" -- run --backlash-rad 0.001
 row "[sets.s]" "conditions = [ { name = \"c\", plant_step_ms = -1.0 } ]" >"$work/bad_step.toml"
 expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (off)" -- run --conditions "$work/bad_step.toml"
 

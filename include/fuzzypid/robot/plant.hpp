@@ -54,6 +54,10 @@
 //     and measured_velocity() are θ_m, θ̇_m (quantised by the encoder, if any); position() and
 //     velocity() stay the link's, the angle the tool follows. reset() starts the motor where the
 //     link is (the gear unloaded). F_i = 0: a rigid joint (armature on the link side).
+//   - backlash_rad B: a dead zone of B (total play) in the gear of every elastic joint: the gear
+//     torque is 0 while |θ_m − θ| <= B/2, else k (θ_m − θ ∓ B/2) + c (θ̇_m − θ̇). Needs
+//     joint_resonance_hz (valid() is false otherwise). The contact is not smoothed: RK4's error
+//     at each impact is of the step's first order.
 // Every stiff term enters the step rule (step_rate_limit): viscous b_i, friction's steepest slope
 // (max(S_i, C_i) / v_ε + (max(S_i, C_i) − C_i) √(2/e) / v_s; over J_m,i on an elastic joint),
 // ω_c and the gear's 4 ω_i max(1, 2ζ) (h ω_i <= 0.0625: a 5 s run at 20 Hz stays within 2e-7 rad
@@ -122,6 +126,7 @@ struct PlantConfig {
   std::uint64_t encoder_counts = 0;       // counts per revolution N; 0: an ideal sensor
   JointVector joint_resonance_hz{};       // gear resonance F_i, Hz, >= 0 (0: rigid)
   double joint_damping_ratio = 0.0;       // ζ of the gear's resonance, >= 0
+  double backlash_rad = 0.0;              // total play B of the elastic gears, rad, >= 0
 };
 
 // Commands the plant keeps for delay_s (see the top of this file).

@@ -85,6 +85,7 @@ inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};              
 inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};               // N·m
 inline constexpr FieldRange kJointResonanceRange{"joint_resonance_hz", 0.0, 1e4};  // Hz
 inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0};
+inline constexpr FieldRange kBacklashRange{"backlash_rad", 0.0, 1.0};                  // rad
 inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
@@ -123,6 +124,9 @@ struct JointEffects {
   // metrics keep the link's angle.
   robot::JointVector joint_resonance_hz{};
   double joint_damping_ratio = 0.0;
+  // backlash_rad: total play of the elastic gears, rad (needs joint_resonance_hz): no gear torque
+  // while the deflection is within ±B/2.
+  double backlash_rad = 0.0;
 
   [[nodiscard]] bool operator==(const JointEffects& o) const noexcept;
   [[nodiscard]] bool operator!=(const JointEffects& o) const noexcept { return !(*this == o); }

@@ -37,6 +37,7 @@
 //   coulomb_nm = 20.0 | [C1, ..., C6]   stribeck_nm = 30.0 | [S1, ..., S6]   (N·m)
 //   stribeck_velocity = 0.01   (rad/s)
 //   joint_resonance_hz = 20.0 | [F1, ..., F6]   joint_damping_ratio = 0.05   (two-mass gear)
+//   backlash_rad = 0.001       (play of the elastic gears, rad)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
 // to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
 // included; a condition's own keys override them.
