@@ -416,10 +416,8 @@ class JointPlant::Impl {
           y_xm += h / 6.0 * (y_vm + 2.0 * vm2 + 2.0 * vm3 + vm4);
           y_vm += h / 6.0 * (k1m + 2.0 * k2m + 2.0 * k3m + k4m);
         }
-        if (config.coupling == PlantCoupling::Decoupled) {
-          Vec6 a_m;
-          if (!derivative(length, x, v, mx, mv, a_end, a_m)) return PlantStatus::NumericalError;
-        }
+        Vec6 a_m;
+        if (!derivative(length, x, v, mx, mv, a_end, a_m)) return PlantStatus::NumericalError;
       } else if (length > 0.0 && config.coupling == PlantCoupling::Decoupled) {
         if (first) {
           if (config.inertia_update == InertiaUpdate::Fixed) {
@@ -538,7 +536,7 @@ class JointPlant::Impl {
     qdd = to_array(a_end);
     // The coupled q̈ at the end of the tick costs a full dynamics evaluation (a fifth of a 10 ms
     // tick's): acceleration() computes it when asked.
-    qdd_pending = config.coupling == PlantCoupling::Coupled;
+    qdd_pending = config.coupling == PlantCoupling::Coupled && !elastic;
     qdd_drive = drive_end;
     inertia = j_tick;
     applied = wc > 0.0 ? to_array(lag) : command;

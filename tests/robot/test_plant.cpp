@@ -822,8 +822,19 @@ TEST(JointPlant, AnElasticJointOscillatesFreelyAtItsResonance) {
     const double frequency = (crossings[i] - 1) / (last[i] - first[i]);
     EXPECT_NEAR(frequency, c.joint_resonance_hz[i], 0.01 * c.joint_resonance_hz[i]) << i + 1;
   }
-  // The drive measures the motor side.
+  // The drive measures the motor side; the acceleration is the link's, τ_g / J_l (a rigid joint's
+  // τ / J).
   EXPECT_EQ(plant.measured_position(), plant.motor_position());
+  const JointVector j = plant.inertia();
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const double delta = plant.motor_position()[i] - plant.position()[i];
+    const double w = 2.0 * 3.14159265358979323846 * c.joint_resonance_hz[i];
+    const double jm = c.armature_kgm2[i];
+    const double jl = j[i] - jm;
+    const double expected =
+        c.joint_resonance_hz[i] == 0.0 ? tau[i] / j[i] : w * w / (1.0 / jm + 1.0 / jl) * delta / jl;
+    EXPECT_NEAR(plant.acceleration()[i], expected, 1e-9 * std::fabs(expected) + 1e-12) << i + 1;
+  }
 }
 
 // Backlash B: from rest under a constant torque the motor turns freely (θ_m = ½ τ/J_m t²) and the

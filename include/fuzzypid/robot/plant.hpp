@@ -183,7 +183,8 @@ class JointPlant {
   // The motor side's angle of the two-mass joint (position() for rigid joints), rad.
   const JointVector& motor_position() const noexcept;
   // rad/s², at the end of the last tick (0 after reset()). In coupled mode it is evaluated on the
-  // first call after a tick (no allocation), NaN if M_eff is not positive definite there.
+  // first call after a tick (no allocation), NaN if M_eff is not positive definite there; with an
+  // elastic joint it is the link's, evaluated at the end of every tick.
   const JointVector& acceleration() const noexcept;
   const JointVector& inertia() const noexcept;  // effective J_i of the last tick, kg·m²
   // The torque reaching the joint at the end of the last tick: the clamped command, delayed and
