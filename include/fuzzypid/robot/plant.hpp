@@ -111,7 +111,7 @@ struct PlantConfig {
   // the fastest rate of the terms that oppose velocity (viscous friction: λ = max b_i / J_i
   // decoupled; coupled, the largest eigenvalue of M_eff⁻¹ diag(b) at the tick's start).
   // Dimensionless, > 0. RK4 is stable for h·λ <= 2.785; 0.25 keeps a 5 s run at 100/s of viscous
-  // friction within 3e-9 rad of the same run with every step ten times finer
+  // friction within 4e-9 rad of the same run with every step ten times finer
   // (JointPlant.HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) and leaves
   // the coupled 50 ms step alone up to 5/s (the shipped conditions' friction: their results are
   // unchanged). In coupled mode this bound and coupled_substep_s hold even beyond 1000 substeps.
