@@ -2,6 +2,9 @@
 // sim/condition.hpp (the condition files use the same ones):
 //   --urdf FILE --base-link NAME --tip-link NAME --path FILE --tick-ms T --armature A1,...,A6
 //   --ik-seed Q1,...,Q6 --payload-kg M --dynamics decoupled|coupled --gravity
+// and what real joints have (sim::JointEffects): --plant-step-ms S --delay-ms D
+//   --torque-bandwidth-hz F --encoder-counts N --coulomb-nm C --stribeck-nm S --stribeck-velocity V
+//   --joint-resonance-hz F --joint-damping-ratio Z --backlash-rad B
 // Header-only: included by the tools that link fuzzypid::sim and fuzzypid::controller_file.
 #pragma once
 
@@ -32,12 +35,13 @@ struct RobotOptions {
   std::optional<robot::PlantCoupling> dynamics;
   std::optional<bool> gravity;
   bool tick_given = false;
+  sim::JointEffects effects;  // --plant-step-ms, ... (what real joints have)
 
   // Whether any option naming the robot, its path or its plant was given.
   [[nodiscard]] bool any() const {
     return !setup.urdf.empty() || !setup.base_link.empty() || !setup.tip_link.empty() ||
            !setup.path.empty() || tick_given || setup.armature_kgm2 || setup.ik_seed_rad ||
-           payload_kg || dynamics || gravity.has_value();
+           payload_kg || dynamics || gravity.has_value() || effects != sim::JointEffects{};
   }
   // The options applied to a condition.
   void apply(sim::Condition& c) const {
@@ -51,8 +55,30 @@ struct RobotOptions {
     if (payload_kg) c.payload_kg = *payload_kg;
     c.dynamics = dynamics.value_or(sim::default_dynamics(c.robot));
     c.gravity = gravity.value_or(sim::default_gravity(c.robot, c.dynamics));
+    c.effects = effects;
   }
 };
+
+// An option of JointEffects: "--" + the range's key with '_' -> '-', in the range's units, 0 (off)
+// or within the range; stored times `to_si`.
+inline void add_effect_option(CLI::App& app, const sim::FieldRange& range, double to_si,
+                              double& target, const std::string& help, const std::string& text) {
+  std::string name = std::string("--") + range.key;
+  for (char& ch : name)
+    if (ch == '_') ch = '-';
+  app.add_option_function<std::string>(
+         name,
+         [name, range, to_si, &target](const std::string& s) {
+           const auto v = parse_finite(s);
+           if (!v || (*v != 0.0 && !range.contains(*v)))
+             throw CLI::ValidationError(name, "expected 0 (off) or a number within " +
+                                                  CLI::detail::to_string(range.lo) + " .. " +
+                                                  CLI::detail::to_string(range.hi) + ": " + s);
+           target = *v * to_si;
+         },
+         help)
+      ->option_text(text);
+}
 
 // "a,b,c,d,e,f": six finite numbers.
 inline bool parse_six(const std::string& text, robot::JointVector& out) {
@@ -66,6 +92,33 @@ inline bool parse_six(const std::string& text, robot::JointVector& out) {
     out[k++] = *v;
   }
   return k == out.size() && !text.empty() && text.back() != ',';
+}
+
+// A per-joint option of JointEffects: one number for every joint or six, each within the range.
+inline void add_joint_effect_option(CLI::App& app, const sim::FieldRange& range,
+                                    robot::JointVector& target, const std::string& help,
+                                    const std::string& text) {
+  std::string name = std::string("--") + range.key;
+  for (char& ch : name)
+    if (ch == '_') ch = '-';
+  app.add_option_function<std::string>(
+         name,
+         [name, range, &target](const std::string& s) {
+           robot::JointVector v{};
+           if (const auto one = parse_finite(s)) {
+             v.fill(*one);
+           } else if (!parse_six(s, v)) {
+             throw CLI::ValidationError(name, "expected one number or 6 comma-separated: " + s);
+           }
+           for (double x : v)
+             if (!range.contains(x))
+               throw CLI::ValidationError(name, "values must be within " +
+                                                    CLI::detail::to_string(range.lo) + " .. " +
+                                                    CLI::detail::to_string(range.hi) + ": " + s);
+           target = v;
+         },
+         help)
+      ->option_text(text);
 }
 
 // Adds the options; `with_tick` adds --tick-ms (rt_loop has its own period and dt options).
@@ -148,6 +201,41 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
       "--gravity,!--no-gravity", [&o](std::int64_t n) { o.gravity = n > 0; },
       "gravity in the plant (needs the coupled dynamics; default: on for a coupled plant of any "
       "URDF but the bundled ER50-C20)");
+  add_effect_option(app, sim::kPlantStepMsRange, 1e-3, o.effects.plant_step_s,
+                    "largest integration step of the plant, ms (default: 1 ms decoupled, 50 ms "
+                    "coupled, shorter where friction, the current loop or the gear is stiff)",
+                    "S");
+  add_effect_option(app, sim::kDelayMsRange, 1e-3, o.effects.delay_s,
+                    "time from sampling the joint to the torque reaching it, ms (fractions of a "
+                    "tick allowed; default 0)",
+                    "D");
+  add_effect_option(app, sim::kTorqueBandwidthRange, 1.0, o.effects.torque_bandwidth_hz,
+                    "current loop as a first-order lag on the torque, Hz (default 0: ideal)", "F");
+  app.add_option_function<std::string>(
+         "--encoder-counts",
+         [&o](const std::string& s) {
+           const auto n = parse_unsigned(s);
+           if (!n || (*n != 0 && !sim::kEncoderCountsRange.contains(static_cast<double>(*n))))
+             throw CLI::ValidationError("--encoder-counts",
+                                        "expected 0 (off) or an integer within 4 .. 1e12: " + s);
+           o.effects.encoder_counts = *n;
+         },
+         "the measured angle quantised to 2 pi/N, the rate differenced from it (default 0: exact)")
+      ->option_text("N");
+  add_joint_effect_option(app, sim::kCoulombRange, o.effects.coulomb_nm,
+                          "Coulomb friction at each joint, N·m (default 0)", "C|C1,...,C6");
+  add_joint_effect_option(app, sim::kStribeckRange, o.effects.stribeck_nm,
+                          "Stribeck peak of static friction, N·m (default 0: none)", "S|S1,...,S6");
+  add_effect_option(app, sim::kStribeckVelocityRange, 1.0, o.effects.stribeck_velocity_rad_s,
+                    "Stribeck velocity, rad/s (default 0.01)", "V");
+  add_joint_effect_option(app, sim::kJointResonanceRange, o.effects.joint_resonance_hz,
+                          "gear resonance of a two-mass joint, Hz (needs an armature; the drive "
+                          "measures the motor side; default 0: rigid)",
+                          "F|F1,...,F6");
+  add_effect_option(app, sim::kJointDampingRatioRange, 1.0, o.effects.joint_damping_ratio,
+                    "damping ratio of the gear resonance (default 0)", "Z");
+  add_effect_option(app, sim::kBacklashRange, 1.0, o.effects.backlash_rad,
+                    "play of the elastic gears, rad (needs --joint-resonance-hz; default 0)", "B");
 }
 
 // Usage errors the options can have on their own; empty when none.

@@ -264,7 +264,8 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   if (!o.conditions_file.empty() && (o.robot.any() || o.start_mm || o.end_mm)) {
     std::fprintf(stderr,
                  "sim_ab: --conditions runs the file's conditions on the robots and paths they "
-                 "name (keys urdf, path, tick_ms, payload_kg, armature, dynamics, gravity); "
+                 "name (keys urdf, path, tick_ms, payload_kg, armature, dynamics, gravity and the "
+                 "joint effects such as plant_step_ms); "
                  "the robot options apply without it (see --help)\n");
     return ParseResult::UsageError;
   }

@@ -54,6 +54,13 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
   }
   const robot::JointPathResult* path = experiment.path(condition, error);
   if (path == nullptr) return std::nullopt;
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+    if (condition.effects.joint_resonance_hz[i] > 0.0 && !(experiment.armature_kgm2()[i] > 0.0)) {
+      error = "condition " + condition.name +
+              ": joint_resonance_hz needs an armature > 0 on joint " + std::to_string(i + 1) +
+              " (the motor side of the two-mass joint; --armature or the key armature)";
+      return std::nullopt;
+    }
   ClosedLoop loop(experiment, condition, *path, std::move(controller));
   if (!loop.plant_.valid()) {
     error = "invalid plant configuration for condition " + condition.name;
@@ -143,8 +150,9 @@ TickResult ClosedLoop::tick(const PathSample& sample, const TickInjection& injec
   controller::Input in;
   in.desired_position_rad = r.theta_d;
   in.desired_velocity_rad_s = r.theta_d_dot;
-  in.measured_position_rad = r.theta;
-  in.measured_velocity_rad_s = r.theta_dot;
+  // What the drive measures: the true state, or the encoder's reading (plant.hpp).
+  in.measured_position_rad = plant_.measured_position();
+  in.measured_velocity_rad_s = plant_.measured_velocity();
   for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
     // The noise is drawn whatever is injected, so that the same seed gives the same noise.
     in.measured_position_rad[i] += noise_.normal(condition_.noise_position_rad);

@@ -28,7 +28,42 @@ std::string out_of(const FieldRange& r, double v) {
   return buf;
 }
 
+// Empty when v is 0 (the effect is off) or within r.
+std::string off_or_within(const FieldRange& r, double v) {
+  return v == 0.0 ? std::string() : out_of(r, v);
+}
+
 }  // namespace
+
+bool JointEffects::operator==(const JointEffects& o) const noexcept {
+  return plant_step_s == o.plant_step_s && delay_s == o.delay_s &&
+         torque_bandwidth_hz == o.torque_bandwidth_hz && encoder_counts == o.encoder_counts &&
+         coulomb_nm == o.coulomb_nm && stribeck_nm == o.stribeck_nm &&
+         stribeck_velocity_rad_s == o.stribeck_velocity_rad_s &&
+         joint_resonance_hz == o.joint_resonance_hz &&
+         joint_damping_ratio == o.joint_damping_ratio && backlash_rad == o.backlash_rad;
+}
+
+std::string JointEffects::validate() const {
+  if (std::string bad = off_or_within(kPlantStepMsRange, plant_step_s * 1e3); !bad.empty())
+    return bad + " ms (0: the default step)";
+  for (const auto& [range, value] :
+       {std::pair{kDelayMsRange, delay_s * 1e3},
+        std::pair{kTorqueBandwidthRange, torque_bandwidth_hz},
+        std::pair{kEncoderCountsRange, static_cast<double>(encoder_counts)},
+        std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s},
+        std::pair{kJointDampingRatioRange, joint_damping_ratio},
+        std::pair{kBacklashRange, backlash_rad}})
+    if (std::string bad = off_or_within(range, value); !bad.empty()) return bad + " (0: off)";
+  if (backlash_rad > 0.0 && joint_resonance_hz == robot::JointVector{})
+    return "backlash_rad needs an elastic gear (joint_resonance_hz > 0)";
+  for (const auto& [range, values] :
+       {std::pair{kCoulombRange, coulomb_nm}, std::pair{kStribeckRange, stribeck_nm},
+        std::pair{kJointResonanceRange, joint_resonance_hz}})
+    for (double v : values)
+      if (std::string bad = out_of(range, v); !bad.empty()) return bad;
+  return {};
+}
 
 std::string Condition::validate() const {
   for (const auto& [range, value] :
@@ -39,6 +74,14 @@ std::string Condition::validate() const {
         std::pair{kInitialErrorRange, initial_error_rad}, std::pair{kPayloadKgRange, payload_kg}})
     if (std::string bad = out_of(range, value); !bad.empty()) return bad;
   if (!(payload_scale > 0.0)) return "payload_scale must be > 0";
+  if (std::string bad = effects.validate(); !bad.empty()) return bad;
+  // The plant keeps robot::kDelayCommands commands for the delay (robot/plant.hpp).
+  if (effects.delay_s > 60.0 * robot.tick_s * (1.0 + 1e-9)) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, "delay_ms must be at most 60 ticks (%g ms at this tick)",
+                  60.0 * robot.tick_s * 1e3);
+    return buf;
+  }
   if (gravity && dynamics != robot::PlantCoupling::Coupled)
     return "gravity needs the coupled dynamics (dynamics = coupled)";
   return robot.validate();

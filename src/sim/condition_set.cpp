@@ -1,10 +1,12 @@
 #include "fuzzypid/sim/condition_set.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include "fuzzypid/sim/random.hpp"
 #include "fuzzypid_support/toml_reader.hpp"
@@ -40,8 +42,77 @@ struct PlantKeys {
   }
 };
 
+// Keys a Monte-Carlo table draws ([min, max]) instead of setting (read_monte_carlo).
+using DrawnKeys = std::set<std::string>;
+
+bool drawn(const DrawnKeys* keys, const char* key) {
+  return keys != nullptr && keys->count(key) > 0;
+}
+
+// A key of JointEffects in the range's units, stored times `to_si`; 0 (off) or within the range.
+void read_effect(TableReader& r, const FieldRange& range, double to_si, double& target,
+                 const DrawnKeys* skip = nullptr) {
+  if (!r.has(range.key) || drawn(skip, range.key)) return;
+  const double v = r.number(range.key);
+  if (v != 0.0 && !range.contains(v)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "'%s' must be 0 (off) or within %g .. %g", range.key, range.lo,
+                  range.hi);
+    r.fail(*r.raw().get(range.key), buf);
+  }
+  target = v * to_si;
+}
+
+// A per-joint key of JointEffects: one number for every joint or six, each within the range.
+void read_joint_effect(TableReader& r, const FieldRange& range, robot::JointVector& target,
+                       const DrawnKeys* skip = nullptr) {
+  if (!r.has(range.key) || drawn(skip, range.key)) return;
+  const toml::node& node = *r.raw().get(range.key);
+  const auto check = [&](const toml::node& at, double v) {
+    if (!range.contains(v)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "'%s' values must be within %g .. %g", range.key, range.lo,
+                    range.hi);
+      r.fail(at, buf);
+    }
+    return v;
+  };
+  if (const toml::array* a = node.as_array()) {
+    (void)r.array(range.key, true);
+    if (a->size() != robot::kNumJoints)
+      r.fail(*a, std::string("'") + range.key + "' must be one number or list 6, found " +
+                     std::to_string(a->size()));
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      target[i] = check(*a->get(i), support::number_of(r, *a->get(i),
+                                                       std::string("'") + range.key + "[" +
+                                                           std::to_string(i) + "]'"));
+    return;
+  }
+  target.fill(check(node, r.number(range.key)));
+}
+
+// The keys of what real joints have (JointEffects).
+void read_effects(TableReader& r, JointEffects& e, const DrawnKeys* skip = nullptr) {
+  read_effect(r, kPlantStepMsRange, 1e-3, e.plant_step_s);
+  read_effect(r, kDelayMsRange, 1e-3, e.delay_s, skip);
+  read_effect(r, kTorqueBandwidthRange, 1.0, e.torque_bandwidth_hz, skip);
+  if (r.has(kEncoderCountsRange.key) && !drawn(skip, kEncoderCountsRange.key)) {
+    const std::uint64_t n = r.count(kEncoderCountsRange.key);
+    if (n != 0 && !kEncoderCountsRange.contains(static_cast<double>(n)))
+      r.fail(*r.raw().get(kEncoderCountsRange.key),
+             "'encoder_counts' must be 0 (off) or within 4 .. 1e12");
+    e.encoder_counts = n;
+  }
+  read_joint_effect(r, kCoulombRange, e.coulomb_nm, skip);
+  read_joint_effect(r, kStribeckRange, e.stribeck_nm, skip);
+  read_effect(r, kStribeckVelocityRange, 1.0, e.stribeck_velocity_rad_s, skip);
+  read_joint_effect(r, kJointResonanceRange, e.joint_resonance_hz, skip);
+  read_effect(r, kJointDampingRatioRange, 1.0, e.joint_damping_ratio, skip);
+  read_effect(r, kBacklashRange, 1.0, e.backlash_rad, skip);
+}
+
 // The robot, path and plant keys (set tables and conditions alike).
-void read_robot(TableReader& r, Condition& c, PlantKeys& plant) {
+void read_robot(TableReader& r, Condition& c, PlantKeys& plant, const DrawnKeys* skip = nullptr) {
   RobotSetup& s = c.robot;
   if (r.has("urdf")) s.urdf = resolve(r.text("urdf"), r.file());
   s.base_link = r.text("base_link", s.base_link);
@@ -74,12 +145,13 @@ void read_robot(TableReader& r, Condition& c, PlantKeys& plant) {
       v[i] = support::number_of(r, *a->get(i), "'ik_seed[" + std::to_string(i) + "]'");
     s.ik_seed_rad = v;
   }
-  if (r.has("payload_kg")) {
+  if (r.has("payload_kg") && !drawn(skip, "payload_kg")) {
     c.payload_kg = r.number("payload_kg");
     if (!(c.payload_kg >= 0.0 && c.payload_kg <= kMaxPayloadKg))
       r.fail(*r.raw().get("payload_kg"), "'payload_kg' must be within 0 .. 1e4");
   }
   plant.read(r);
+  read_effects(r, c.effects, skip);
 }
 
 // The fields of a condition common to listed conditions and Monte-Carlo sets.
@@ -115,6 +187,7 @@ Condition read_condition(const toml::node& node, const std::string& file, const 
     c = *s;
     c.robot = defaults.robot;
     c.payload_kg = defaults.payload_kg;
+    c.effects = defaults.effects;
   }
   c.name = r.text("name");
   if (c.name.empty() || c.name.find_first_of(",\n\r\"") != std::string::npos)
@@ -151,14 +224,46 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
   if (!(payload.first > 0.0)) r.fail(*r.raw().get("payload_scale"), "payload_scale must be > 0");
   const auto friction = range(r, "friction", 0.0, 0.0);
   const auto initial = range(r, "initial_error", 0.05, 0.05);
+  // payload_kg and the keys of what real joints have: a number sets them, [min, max] draws them
+  // uniformly (one value for every joint; encoder_counts rounded to a whole count).
+  struct Draw {
+    const char* key;
+    double lo = 0.0, hi = 0.0;
+    bool given = false;
+  };
+  std::array<Draw, 11> draws = {{{"payload_kg"},
+                                 {kDelayMsRange.key},
+                                 {kTorqueBandwidthRange.key},
+                                 {kEncoderCountsRange.key},
+                                 {kCoulombRange.key},
+                                 {kStribeckRange.key},
+                                 {kStribeckVelocityRange.key},
+                                 {kJointResonanceRange.key},
+                                 {kJointDampingRatioRange.key},
+                                 {kPlantStepMsRange.key},
+                                 {kBacklashRange.key}}};
+  DrawnKeys ranged;
+  for (Draw& d : draws) {
+    const toml::node* node = r.raw().get(d.key);
+    const toml::array* a = node != nullptr ? node->as_array() : nullptr;
+    if (a == nullptr || a->size() != 2) continue;
+    if (std::string(d.key) == kPlantStepMsRange.key)
+      r.fail(*a, "'plant_step_ms' is a numerical setting: give one value, not a range");
+    std::tie(d.lo, d.hi) = range(r, d.key, 0.0, 0.0);
+    d.given = true;
+    ranged.insert(d.key);
+  }
   Condition base = defaults;
-  read_robot(r, base, plant);
+  read_robot(r, base, plant, &ranged);
   plant.apply(base);
   base.reverse = r.flag("reverse", false);
   base.contact_rad_s2 = r.number("contact", 0.0);
   base.torque_limit_rad_s2 = r.number("torque_limit", 0.0);
   r.finish();
   Random rng(seed);
+  // The draws above come from their own stream, one per key and condition whatever is given, so
+  // that adding a range changes no other draw (and the three below stay as they always were).
+  Random effects_rng(seed ^ 0x9E3779B97F4A7C15ull);
   for (std::uint64_t k = 0; k < count; ++k) {
     Condition c = base;
     char name[64];
@@ -172,6 +277,31 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
     c.payload_scale = payload.first * std::pow(payload.second / payload.first, u_payload);
     c.friction_per_s = friction.first + (friction.second - friction.first) * u_friction;
     c.initial_error_rad = initial.first + (initial.second - initial.first) * u_initial;
+    for (const Draw& d : draws) {
+      const double u = effects_rng.uniform();
+      if (!d.given) continue;
+      const double v = d.lo + (d.hi - d.lo) * u;
+      JointEffects& e = c.effects;
+      const std::string key = d.key;
+      if (key == "payload_kg")
+        c.payload_kg = v;
+      else if (key == kDelayMsRange.key)
+        e.delay_s = v * 1e-3;
+      else if (key == kTorqueBandwidthRange.key)
+        e.torque_bandwidth_hz = v;
+      else if (key == kEncoderCountsRange.key)
+        e.encoder_counts = static_cast<std::uint64_t>(std::llround(std::fmax(v, 0.0)));
+      else if (key == kCoulombRange.key)
+        e.coulomb_nm.fill(v);
+      else if (key == kStribeckRange.key)
+        e.stribeck_nm.fill(v);
+      else if (key == kStribeckVelocityRange.key)
+        e.stribeck_velocity_rad_s = v;
+      else if (key == kJointResonanceRange.key)
+        e.joint_resonance_hz.fill(v);
+      else if (key == kJointDampingRatioRange.key)
+        e.joint_damping_ratio = v;
+    }
     c.description = "Monte-Carlo draw";
     if (const std::string bad = c.validate(); !bad.empty()) r.fail_here(c.name + ": " + bad);
     set.conditions.push_back(c);

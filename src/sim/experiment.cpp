@@ -224,6 +224,17 @@ robot::PlantConfig Experiment::plant_config(const Condition& condition) const {
   config.torque_limit_nm = torque_limit(condition);
   config.coupling = condition.dynamics;
   config.gravity = condition.gravity;
+  const JointEffects& e = condition.effects;
+  if (e.plant_step_s > 0.0) config.substep_s = config.coupled_substep_s = e.plant_step_s;
+  config.delay_s = e.delay_s;
+  config.torque_bandwidth_hz = e.torque_bandwidth_hz;
+  config.encoder_counts = e.encoder_counts;
+  config.coulomb_nm = e.coulomb_nm;
+  config.stribeck_nm = e.stribeck_nm;
+  if (e.stribeck_velocity_rad_s > 0.0) config.stribeck_velocity_rad_s = e.stribeck_velocity_rad_s;
+  config.joint_resonance_hz = e.joint_resonance_hz;
+  config.joint_damping_ratio = e.joint_damping_ratio;
+  config.backlash_rad = e.backlash_rad;
   return config;
 }
 

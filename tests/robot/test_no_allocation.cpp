@@ -82,6 +82,50 @@ TEST(NoAllocation, CoupledPlantStepWithPayloadGravityAndFixedInertia) {
   EXPECT_EQ(c.count(), 0u);
 }
 
+// The stiffness bound of the step (an eigenvalue problem per tick in coupled mode).
+TEST(NoAllocation, PlantStepsWithHighViscousFriction) {
+  PlantConfig config;
+  config.damping_nms = {3000.0, 5000.0, 1000.0, 100.0, 100.0, 30.0};
+  JointPlant decoupled(model(), config);
+  config.coupling = PlantCoupling::Coupled;
+  config.gravity = true;
+  JointPlant coupled(model(), config);
+  decoupled.reset(kPaperStartJoints, JointVector{});
+  coupled.reset(kPaperStartJoints, JointVector{});
+  AllocationCounter c;
+  for (int k = 0; k < 20; ++k) {
+    (void)decoupled.step({100, -50, 20, 1, 1, 0.5}, 0.05);
+    (void)coupled.step({100, -50, 20, 1, 1, 0.5}, 0.05);
+  }
+  EXPECT_EQ(c.count(), 0u);
+}
+
+// What real joints have: a fractional delay (the step cut in two), the current loop, Coulomb and
+// Stribeck friction, an encoder and elastic joints beside rigid ones.
+TEST(NoAllocation, PlantStepsWithEveryJointEffect) {
+  PlantConfig config;
+  config.delay_s = 0.0123;
+  config.torque_bandwidth_hz = 50.0;
+  config.coulomb_nm = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
+  config.stribeck_nm = {30.0, 45.0, 15.0, 1.5, 1.5, 0.3};
+  config.encoder_counts = 1u << 17;
+  config.joint_resonance_hz = {20.0, 20.0, 30.0, 0.0, 0.0, 40.0};
+  config.joint_damping_ratio = 0.05;
+  JointPlant decoupled(model(), config);
+  config.coupling = PlantCoupling::Coupled;
+  config.gravity = true;
+  JointPlant coupled(model(), config);
+  decoupled.reset(kPaperStartJoints, JointVector{});
+  coupled.reset(kPaperStartJoints, JointVector{});
+  AllocationCounter c;
+  for (int k = 0; k < 5; ++k) {
+    (void)decoupled.step({100, -50, 20, 1, 1, 0.5}, 0.01);
+    (void)coupled.step({100, -50, 20, 1, 1, 0.5}, 0.01);
+    EXPECT_TRUE(std::isfinite(decoupled.measured_velocity()[0]));
+  }
+  EXPECT_EQ(c.count(), 0u);
+}
+
 TEST(NoAllocation, KinematicsAndDynamicsQueries) {
   const RobotModel& m = model();
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};

@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -421,7 +422,8 @@ JointVector pd_torque(const JointPlant& plant, double t) {
   for (std::size_t i = 0; i < kNumJoints; ++i) {
     const double target =
         kPaperStartJoints[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
-    tau[i] = kp[i] * (target - plant.position()[i]) - kd[i] * plant.velocity()[i];
+    // What the drive measures: the joint, or the motor side of an elastic one.
+    tau[i] = kp[i] * (target - plant.measured_position()[i]) - kd[i] * plant.measured_velocity()[i];
   }
   return tau;
 }
@@ -525,6 +527,370 @@ TEST(JointPlant, CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullS
     std::printf("[ accuracy ] no armature, tick %.0f ms: max |q - q_ref| over 5 s %.2e rad\n",
                 tick * 1e3, error);
     EXPECT_LT(error, 1e-6) << "tick " << tick;
+  }
+}
+
+// Every step setting divided by `scale` (1: the defaults).
+PlantConfig scaled_steps(PlantConfig c, double scale) {
+  const PlantConfig d;
+  c.substep_s = d.substep_s * scale;
+  c.coupled_substep_s = d.coupled_substep_s * scale;
+  c.coupled_step_rad = d.coupled_step_rad * scale;
+  c.step_rate_limit = d.step_rate_limit * scale;
+  return c;
+}
+
+// Largest |q − q_reference| over a 5 s PD run (pd_torque) of `c` with the default steps against
+// the same run with every step ten times finer.
+double finer_step_error(const RobotModel& model, const PlantConfig& c, double tick_s) {
+  JointPlant plant(model, scaled_steps(c, 1.0));
+  JointPlant reference(model, scaled_steps(c, 0.1));
+  plant.reset(kPaperStartJoints, JointVector{});
+  reference.reset(kPaperStartJoints, JointVector{});
+  double worst = 0.0;
+  const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
+  for (int k = 0; k < ticks; ++k) {
+    const double t = k * tick_s;
+    EXPECT_NE(plant.step(pd_torque(plant, t), tick_s), PlantStatus::NumericalError);
+    EXPECT_NE(reference.step(pd_torque(reference, t), tick_s), PlantStatus::NumericalError);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      worst = std::max(worst, std::fabs(plant.position()[i] - reference.position()[i]));
+  }
+  return worst;
+}
+
+// Viscous friction of 100/s (b_i = 100 J_i, sim_ab --friction 100), and 5000/s decoupled: RK4 at
+// the coupled 50 ms or the decoupled 1 ms step alone would be beyond its stable range
+// (h·λ = 2.785).
+TEST(JointPlant, HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
+  const JointVector j = bundled_model().inertia_diagonal(kPaperStartJoints);
+  for (const auto& [coupling, friction] :
+       {std::pair{PlantCoupling::Decoupled, 100.0}, std::pair{PlantCoupling::Decoupled, 5000.0},
+        std::pair{PlantCoupling::Coupled, 100.0}}) {
+    PlantConfig c;
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      c.damping_nms[i] = friction * (j[i] + c.armature_kgm2[i]);
+    c.coupling = coupling;
+    c.gravity = coupling == PlantCoupling::Coupled;
+    for (double tick : {0.05, 0.01}) {
+      const double error = finer_step_error(bundled_model(), c, tick);
+      std::printf("[ accuracy ] friction %g/s, %s, tick %.0f ms: max |q - q_ref| %.2e rad\n",
+                  friction, coupling == PlantCoupling::Coupled ? "coupled" : "decoupled",
+                  tick * 1e3, error);
+      EXPECT_LT(error, 1e-6) << "tick " << tick << ", friction " << friction;
+    }
+  }
+}
+
+// What real joints have. A decoupled plant with a fixed inertia and no friction is a double
+// integrator per joint, J θ̈ = τ(t): with τ piecewise constant RK4 is exact, so closed forms hold
+// to rounding.
+PlantConfig double_integrator() {
+  PlantConfig c;
+  c.inertia_update = InertiaUpdate::Fixed;
+  c.torque_limit_nm = JointVector{1e6, 1e6, 1e6, 1e6, 1e6, 1e6};
+  return c;
+}
+
+// θ, θ̇ after `t` seconds of constant torque `tau` on inertia `j`.
+void hold(double j, double tau, double t, double& th, double& w) {
+  th += w * t + 0.5 * tau / j * t * t;
+  w += tau / j * t;
+}
+
+JointVector tick_torque(int k) {
+  JointVector tau{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    tau[i] = 50.0 * std::sin(0.7 * k + static_cast<double>(i)) + 5.0 * static_cast<double>(i);
+  return tau;
+}
+
+TEST(JointPlant, ADelayOfOneTickIsThePreviousTicksTorque) {
+  const double dt = 0.01;
+  PlantConfig c = double_integrator();
+  JointPlant plain(bundled_model(), c);
+  c.delay_s = dt;
+  JointPlant delayed(bundled_model(), c);
+  plain.reset(kPaperStartJoints, JointVector{});
+  delayed.reset(kPaperStartJoints, JointVector{});
+  const JointVector j = plain.inertia();
+  JointVector th = kPaperStartJoints;
+  JointVector w{};
+  for (int k = 0; k < 40; ++k) {
+    const JointVector previous = k == 0 ? JointVector{} : tick_torque(k - 1);
+    ASSERT_EQ(delayed.step(tick_torque(k), dt), PlantStatus::Ok);
+    ASSERT_EQ(plain.step(previous, dt), PlantStatus::Ok);
+    for (std::size_t i = 0; i < kNumJoints; ++i)
+      hold(j[i], previous[i], dt, th[i], w[i]);
+    EXPECT_EQ(delayed.applied_torque(), previous) << "tick " << k;
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_DOUBLE_EQ(delayed.position()[i], plain.position()[i]) << "joint " << i + 1;
+    EXPECT_DOUBLE_EQ(delayed.velocity()[i], plain.velocity()[i]) << "joint " << i + 1;
+    EXPECT_NEAR(delayed.position()[i], th[i], 1e-12) << "joint " << i + 1;
+    EXPECT_NEAR(delayed.velocity()[i], w[i], 1e-12) << "joint " << i + 1;
+  }
+}
+
+// D = n dt + f: over each tick the command of n + 1 ticks ago for f seconds, then that of n ticks
+// ago (zero before the first command).
+TEST(JointPlant, AFractionalDelaySwitchesTheTorqueWithinTheTick) {
+  const double dt = 0.01;
+  for (double ticks : {0.3, 1.3, 2.75}) {
+    PlantConfig c = double_integrator();
+    c.delay_s = ticks * dt;
+    JointPlant plant(bundled_model(), c);
+    plant.reset(JointVector{}, JointVector{});
+    const JointVector j = plant.inertia();
+    const int n = static_cast<int>(ticks);
+    const double f = (ticks - n) * dt;
+    const auto command = [](int k) { return k < 0 ? JointVector{} : tick_torque(k); };
+    JointVector th{};
+    JointVector w{};
+    for (int k = 0; k < 30; ++k) {
+      ASSERT_EQ(plant.step(tick_torque(k), dt), PlantStatus::Ok);
+      for (std::size_t i = 0; i < kNumJoints; ++i) {
+        hold(j[i], command(k - n - 1)[i], f, th[i], w[i]);
+        hold(j[i], command(k - n)[i], dt - f, th[i], w[i]);
+      }
+    }
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      EXPECT_NEAR(plant.position()[i], th[i], 1e-11) << ticks << " ticks, joint " << i + 1;
+      EXPECT_NEAR(plant.velocity()[i], w[i], 1e-11) << ticks << " ticks, joint " << i + 1;
+    }
+  }
+}
+
+// A torque step through the current loop τ̇ = ω (u − τ) on J θ̈ = τ from rest:
+// τ = u (1 − e^(−ωt)), θ̇ = u/J (t − (1 − e^(−ωt))/ω), θ = u/J (t²/2 − t/ω + (1 − e^(−ωt))/ω²).
+TEST(JointPlant, TheCurrentLoopIsAFirstOrderLagDrivingTheJoint) {
+  PlantConfig c = double_integrator();
+  c.torque_bandwidth_hz = 8.0;
+  JointPlant plant(bundled_model(), c);
+  plant.reset(JointVector{}, JointVector{});
+  const JointVector j = plant.inertia();
+  const JointVector u = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double w = 2.0 * 3.14159265358979323846 * c.torque_bandwidth_hz;
+  for (int k = 1; k <= 50; ++k) {
+    ASSERT_EQ(plant.step(u, 0.01), PlantStatus::Ok);
+    const double t = 0.01 * k;
+    const double e = std::exp(-w * t);
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      EXPECT_NEAR(plant.applied_torque()[i], u[i] * (1.0 - e), 1e-12 * std::fabs(u[i]));
+      const double a = u[i] / j[i];
+      EXPECT_NEAR(plant.velocity()[i], a * (t - (1.0 - e) / w), 1e-9 * std::fabs(a));
+      EXPECT_NEAR(plant.position()[i], a * (0.5 * t * t - t / w + (1.0 - e) / (w * w)),
+                  1e-9 * std::fabs(a));
+    }
+  }
+}
+
+// Friction torque F(θ̇) of joint i as plant.hpp writes it.
+double friction_of(const PlantConfig& c, std::size_t i, double w) {
+  const double cc = c.coulomb_nm[i];
+  const double peak = std::max(c.stribeck_nm[i], cc);
+  const double r = w / c.stribeck_velocity_rad_s;
+  return std::tanh(w / c.coulomb_smoothing_rad_s) * (cc + (peak - cc) * std::exp(-r * r));
+}
+
+// The creep speed where F(θ̇) = tau, by bisection below the friction's peak.
+double creep(const PlantConfig& c, std::size_t i, double tau) {
+  double lo = 0.0;
+  double hi = 5.0 * c.coulomb_smoothing_rad_s;
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (friction_of(c, i, mid) < tau ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+TEST(JointPlant, CoulombFrictionHoldsATorqueBelowItAndLetsThroughTheRest) {
+  PlantConfig c = double_integrator();
+  c.coulomb_nm = {40.0, 60.0, 20.0, 4.0, 3.0, 1.0};
+  JointPlant plant(bundled_model(), c);
+  // Half the friction: the joint creeps at v_ε atanh(1/2) = 0.55 mrad/s, the root of F = τ.
+  plant.reset(JointVector{}, JointVector{});
+  JointVector half{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    half[i] = 0.5 * c.coulomb_nm[i];
+  for (int k = 0; k < 100; ++k)
+    ASSERT_EQ(plant.step(half, 0.02), PlantStatus::Ok);
+  const double bound = c.coulomb_smoothing_rad_s * std::atanh(0.5);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_NEAR(plant.velocity()[i], creep(c, i, half[i]), 1e-9) << "joint " << i + 1;
+    EXPECT_NEAR(plant.velocity()[i], bound, 1e-9) << "joint " << i + 1;
+    EXPECT_LT(plant.position()[i], 2.0 * bound) << "joint " << i + 1;  // over 2 s
+  }
+  // Three times the friction: (τ − C) / J once moving.
+  JointPlant moving(bundled_model(), c);
+  moving.reset(JointVector{}, JointVector{});
+  const JointVector j = moving.inertia();
+  JointVector triple{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    triple[i] = 3.0 * c.coulomb_nm[i];
+  for (int k = 0; k < 50; ++k)
+    ASSERT_EQ(moving.step(triple, 0.02), PlantStatus::Ok);
+  const JointVector w1 = moving.velocity();
+  for (int k = 0; k < 50; ++k)
+    ASSERT_EQ(moving.step(triple, 0.02), PlantStatus::Ok);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const double expected = 2.0 * c.coulomb_nm[i] / j[i];
+    EXPECT_NEAR(moving.velocity()[i] - w1[i], expected * 1.0, 1e-9 * expected) << i + 1;
+  }
+}
+
+// With a Stribeck peak S = 2 C, a torque between C and S still holds the joint (it creeps at the
+// low root of F = τ); the plain Coulomb joint would accelerate.
+TEST(JointPlant, AStribeckPeakHoldsATorqueBetweenCoulombAndThePeak) {
+  PlantConfig c = double_integrator();
+  c.coulomb_nm = {40.0, 60.0, 20.0, 4.0, 3.0, 1.0};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    c.stribeck_nm[i] = 2.0 * c.coulomb_nm[i];
+  JointPlant plant(bundled_model(), c);
+  plant.reset(JointVector{}, JointVector{});
+  JointVector tau{};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    tau[i] = 1.5 * c.coulomb_nm[i];
+  for (int k = 0; k < 100; ++k)
+    ASSERT_EQ(plant.step(tau, 0.02), PlantStatus::Ok);
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    EXPECT_NEAR(plant.velocity()[i], creep(c, i, tau[i]), 1e-9) << "joint " << i + 1;
+    EXPECT_LT(plant.velocity()[i], c.coulomb_smoothing_rad_s) << "joint " << i + 1;
+  }
+}
+
+TEST(JointPlant, AnEncoderQuantisesTheAngleAndDifferencesItForTheRate) {
+  PlantConfig c = double_integrator();
+  c.encoder_counts = 1000;  // 2π/1000 = 6.2832 mrad a count
+  JointPlant plant(bundled_model(), c);
+  const JointVector q0 = {0.3, -0.3, 0.0031, 0.0032, 1.0, -2.0};
+  plant.reset(q0, {1.0, 1.0, 0.0, 0.0, 0.0, 0.0});
+  const double count = 2.0 * 3.14159265358979323846 / 1000.0;
+  // 0.3 rad = 47.75 counts -> 48; 0.0031 = 0.49 -> 0; 0.0032 = 0.51 -> 1; 1 = 159.15 -> 159.
+  const std::array<double, kNumJoints> counts = {48, -48, 0, 1, 159, -318};
+  for (std::size_t i = 0; i < kNumJoints; ++i)
+    EXPECT_DOUBLE_EQ(plant.measured_position()[i], counts[i] * count) << "joint " << i + 1;
+  EXPECT_EQ(plant.measured_velocity(), plant.velocity());  // the true rate right after reset
+  EXPECT_EQ(plant.position(), q0);                         // the true angle is untouched
+  // 10 ms at 1 rad/s: 0.31 rad = 49.34 counts -> 49, one count in 10 ms: 0.628 rad/s.
+  ASSERT_EQ(plant.step(JointVector{}, 0.01), PlantStatus::Ok);
+  EXPECT_DOUBLE_EQ(plant.measured_position()[0], 49 * count);
+  EXPECT_DOUBLE_EQ(plant.measured_velocity()[0], (49 * count - 48 * count) / 0.01);
+  EXPECT_DOUBLE_EQ(plant.measured_position()[1], -46 * count);  // -0.29 rad = -46.15 counts
+  EXPECT_EQ(plant.measured_velocity()[2], 0.0);
+}
+
+// A constant torque τ on the undamped two-mass joint from rest: the gear's deflection
+// δ = θ_m − θ obeys δ̈ = τ / J_m − ω² δ, so δ(t) = τ / (J_m ω²) (1 − cos ωt) at ω = 2π F.
+TEST(JointPlant, AnElasticJointOscillatesFreelyAtItsResonance) {
+  PlantConfig c = double_integrator();
+  c.joint_resonance_hz = {20.0, 20.0, 35.0, 50.0, 0.0, 15.0};
+  JointPlant plant(bundled_model(), c);
+  ASSERT_TRUE(plant.valid());
+  plant.reset(kPaperStartJoints, JointVector{});
+  const JointVector tau = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double dt = 0.001;
+  std::array<int, kNumJoints> crossings{};
+  std::array<double, kNumJoints> first{}, last{};
+  JointVector previous{};
+  for (int k = 1; k <= 2000; ++k) {
+    ASSERT_EQ(plant.step(tau, dt), PlantStatus::Ok);
+    const double t = k * dt;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double delta = plant.motor_position()[i] - plant.position()[i];
+      if (c.joint_resonance_hz[i] == 0.0) {
+        EXPECT_EQ(delta, 0.0) << "joint " << i + 1 << " is rigid";
+        continue;
+      }
+      const double w = 2.0 * 3.14159265358979323846 * c.joint_resonance_hz[i];
+      const double amplitude = tau[i] / (c.armature_kgm2[i] * w * w);
+      EXPECT_NEAR(delta, amplitude * (1.0 - std::cos(w * t)), 5e-3 * std::fabs(amplitude))
+          << "joint " << i + 1 << ", t = " << t;
+      // Upward crossings of the mean deflection, interpolated: whole periods between them.
+      const double now = delta / amplitude - 1.0;
+      if (k > 1 && previous[i] < 0.0 && now >= 0.0) {
+        const double at = t - dt * now / (now - previous[i]);
+        if (crossings[i]++ == 0) first[i] = at;
+        last[i] = at;
+      }
+      previous[i] = now;
+    }
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    if (c.joint_resonance_hz[i] == 0.0) continue;
+    ASSERT_GT(crossings[i], 10);
+    const double frequency = (crossings[i] - 1) / (last[i] - first[i]);
+    EXPECT_NEAR(frequency, c.joint_resonance_hz[i], 0.01 * c.joint_resonance_hz[i]) << i + 1;
+  }
+  // The drive measures the motor side; the acceleration is the link's, τ_g / J_l (a rigid joint's
+  // τ / J).
+  EXPECT_EQ(plant.measured_position(), plant.motor_position());
+  const JointVector j = plant.inertia();
+  for (std::size_t i = 0; i < kNumJoints; ++i) {
+    const double delta = plant.motor_position()[i] - plant.position()[i];
+    const double w = 2.0 * 3.14159265358979323846 * c.joint_resonance_hz[i];
+    const double jm = c.armature_kgm2[i];
+    const double jl = j[i] - jm;
+    const double expected =
+        c.joint_resonance_hz[i] == 0.0 ? tau[i] / j[i] : w * w / (1.0 / jm + 1.0 / jl) * delta / jl;
+    EXPECT_NEAR(plant.acceleration()[i], expected, 1e-9 * std::fabs(expected) + 1e-12) << i + 1;
+  }
+}
+
+// Backlash B: from rest under a constant torque the motor turns freely (θ_m = ½ τ/J_m t²) and the
+// link does not move at all until the play B/2 is taken up at t* = √(B J_m / τ); then it follows.
+TEST(JointPlant, BacklashLetsTheMotorTurnFreelyUntilThePlayIsTakenUp) {
+  PlantConfig c = double_integrator();
+  c.joint_resonance_hz.fill(20.0);
+  c.backlash_rad = 0.01;
+  JointPlant plant(bundled_model(), c);
+  ASSERT_TRUE(plant.valid());
+  plant.reset(JointVector{}, JointVector{});
+  const JointVector tau = {100.0, -200.0, 50.0, 5.0, -3.0, 1.0};
+  const double dt = 0.001;
+  for (int k = 1; k <= 400; ++k) {
+    ASSERT_EQ(plant.step(tau, dt), PlantStatus::Ok);
+    const double t = k * dt;
+    for (std::size_t i = 0; i < kNumJoints; ++i) {
+      const double jm = c.armature_kgm2[i];
+      const double contact = std::sqrt(c.backlash_rad * jm / std::fabs(tau[i]));
+      if (t < contact - dt) {
+        EXPECT_EQ(plant.position()[i], 0.0) << "joint " << i + 1 << ", t = " << t;
+        EXPECT_NEAR(plant.motor_position()[i], 0.5 * tau[i] / jm * t * t, 1e-12)
+            << "joint " << i + 1 << ", t = " << t;
+      }
+    }
+  }
+  for (std::size_t i = 0; i < kNumJoints; ++i)  // every joint has made contact and moves
+    EXPECT_GT(plant.position()[i] * tau[i], 0.0) << "joint " << i + 1;
+  PlantConfig rigid = c;
+  rigid.joint_resonance_hz = {};
+  EXPECT_FALSE(JointPlant(bundled_model(), rigid).valid());  // backlash needs the gear
+}
+
+TEST(JointPlant, ElasticJointsNeedAnArmature) {
+  PlantConfig c;
+  c.armature_kgm2 = {8.5, 0.0, 5.4, 1.7, 1.7, 0.5};
+  c.joint_resonance_hz = {20.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  EXPECT_TRUE(JointPlant(bundled_model(), c).valid());
+  c.joint_resonance_hz[1] = 20.0;
+  EXPECT_FALSE(JointPlant(bundled_model(), c).valid());
+}
+
+// A 20 Hz gear (ζ = 0.05) on every joint: the default step (h ω <= 0.25) against ten times finer.
+TEST(JointPlant, ResonantGearDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
+  PlantConfig c;
+  c.joint_resonance_hz.fill(20.0);
+  c.joint_damping_ratio = 0.05;
+  for (PlantCoupling coupling : {PlantCoupling::Decoupled, PlantCoupling::Coupled}) {
+    c.coupling = coupling;
+    c.gravity = coupling == PlantCoupling::Coupled;
+    for (double tick : {0.05, 0.01}) {
+      const double error = finer_step_error(bundled_model(), c, tick);
+      std::printf("[ accuracy ] 20 Hz gear, %s, tick %.0f ms: max |q - q_ref| %.2e rad\n",
+                  coupling == PlantCoupling::Coupled ? "coupled" : "decoupled", tick * 1e3, error);
+      EXPECT_LT(error, 1e-6) << "tick " << tick;
+    }
   }
 }
 

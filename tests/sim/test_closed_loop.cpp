@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -310,6 +311,51 @@ TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
   }
 }
 
+// An encoder of N counts: the controller gets the angle rounded to 2π/N and the rate differenced
+// from it over the plant's last step, exactly as a plain loop given those readings by injection.
+TEST_F(ClosedLoopTest, AnEncoderFeedsTheControllerQuantisedAnglesAndDifferencedRates) {
+  sim::Condition c;
+  c.effects.encoder_counts = 2048;
+  const double count = 2.0 * 3.14159265358979323846 / 2048.0;
+  std::string error;
+  auto encoded = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
+  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  ASSERT_TRUE(encoded && plain) << error;
+  robot::JointVector last{};
+  for (std::size_t i = 0; i < kJ; ++i)
+    last[i] = std::nearbyint(plain->plant().position()[i] / count) * count;
+  for (std::size_t k = 0; k + 1 < encoded->samples(); ++k) {
+    sim::TickInjection readings;
+    for (std::size_t i = 0; i < kJ; ++i) {
+      const double now = std::nearbyint(plain->plant().position()[i] / count) * count;
+      readings.measured_position_rad[i] = now;
+      readings.measured_velocity_rad_s[i] =
+          k == 0 ? plain->plant().velocity()[i] : (now - last[i]) / plain->sample(k - 1).dt_s;
+      last[i] = now;
+    }
+    const sim::TickResult a = encoded->tick(k);
+    const sim::TickResult b = plain->tick(plain->sample(k), readings);
+    for (std::size_t i = 0; i < kJ; ++i)
+      ASSERT_TRUE(same_bits(a.torque_nm[i], b.torque_nm[i]))
+          << "tick " << k << " joint " << i << ": " << a.torque_nm[i] << " " << b.torque_nm[i];
+  }
+}
+
+// A delay of one tick: the torque reaching the joint over tick k is the command of tick k - 1.
+TEST_F(ClosedLoopTest, ADelayOfOneTickAppliesThePreviousTicksCommand) {
+  sim::Condition c;
+  c.effects.delay_s = experiment_->options().tick_s;
+  std::string error;
+  auto loop = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
+  ASSERT_TRUE(loop) << error;
+  robot::JointVector previous{};
+  for (std::size_t k = 0; k + 1 < loop->samples(); ++k) {
+    const sim::TickResult r = loop->tick(k);
+    EXPECT_EQ(loop->plant().applied_torque(), previous) << "tick " << k;
+    previous = r.torque_nm;
+  }
+}
+
 TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   std::string error;
   auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
@@ -574,12 +620,49 @@ TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
   }
 }
 
+// Largest |theta - theta_fine| of the paper's PID on `c` with the default plant step against the
+// same run with every step at most `fine_step_s`.
+double finer_step_error(const sim::Experiment& ex, sim::Condition c, double fine_step_s) {
+  const sim::RunResult coarse = ex.run(c, ctl::paper_pid());
+  c.effects.plant_step_s = fine_step_s;
+  const sim::RunResult fine = ex.run(c, ctl::paper_pid());
+  EXPECT_TRUE(coarse.ok && fine.ok) << coarse.error << fine.error;
+  EXPECT_EQ(coarse.rows.size(), fine.rows.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < coarse.rows.size() && k < fine.rows.size(); ++k)
+    worst = std::fmax(worst, std::fabs(coarse.rows[k].theta - fine.rows[k].theta));
+  return worst;
+}
+
+// sim_ab --friction 100: the default step (1 ms decoupled, cut by the plant's
+// stiffness bound h·λ <= 0.25, and coupled the same bound instead of 50 ms) against steps of
+// at most 0.1 ms.
+TEST_F(ClosedLoopTest, AtHighFrictionTheDefaultStepIsWithinAMicroradianOfATenTimesFinerStep) {
+  sim::Condition c;
+  c.friction_per_s = 100.0;
+  const double decoupled = finer_step_error(*experiment_, c, 1e-4);
+  c.dynamics = robot::PlantCoupling::Coupled;
+  c.gravity = true;
+  const double coupled = finer_step_error(*experiment_, c, 1e-4);
+  std::printf(
+      "[ accuracy ] friction 100: max |theta - theta_fine| %.2e rad decoupled, %.2e rad "
+      "coupled with gravity\n",
+      decoupled, coupled);
+  EXPECT_LT(decoupled, 1e-6);
+  EXPECT_LT(coupled, 1e-6);
+}
+
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   sim::Condition bad;
   bad.payload_scale = 0.0;
   const auto r = experiment_->run(bad, ctl::paper_pid());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("payload"), std::string::npos);
+  sim::Condition step;
+  step.effects.plant_step_s = -1e-3;
+  const auto s = experiment_->run(step, ctl::paper_pid());
+  EXPECT_FALSE(s.ok);
+  EXPECT_NE(s.error.find("plant_step_ms must be within"), std::string::npos) << s.error;
 }
 
 TEST(Random, IsTheSameSequenceForTheSameSeedAndStandardNormalOnAverage) {

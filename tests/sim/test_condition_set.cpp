@@ -2,6 +2,7 @@
 // draws, scenario shorthands, and file:line:column errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -72,6 +73,50 @@ TEST(ConditionSets, MonteCarloDrawsAreSeededAndInsideTheirRanges) {
   EXPECT_NE(da[0].payload_scale, c.find("mc")->conditions[0].payload_scale);
 }
 
+// payload_kg and the keys of what real joints have are drawn from [min, max] from a stream of
+// their own: the payload-scale, friction and start-error draws stay as without them.
+TEST(ConditionSets, MonteCarloDrawsPayloadKgAndJointEffectsWithoutChangingTheOtherDraws) {
+  const std::string plain =
+      "[sets.mc.monte_carlo]\ncount = 40\nseed = 9\npayload_scale = [0.5, 2.0]\n"
+      "friction = [0.0, 2.0]\ninitial_error = [-0.08, 0.08]\n";
+  const std::string with = plain +
+                           "payload_kg = [0.0, 5.0]\ndelay_ms = [0.0, 20.0]\n"
+                           "encoder_counts = [4096, 65536]\ncoulomb_nm = [0.0, 10.0]\n"
+                           "joint_resonance_hz = [15.0, 30.0]\njoint_damping_ratio = 0.05\n";
+  ConditionFile a, b, again;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(parse_conditions(plain, "mc.toml", a, e)) << e.to_string();
+  ASSERT_TRUE(parse_conditions(with, "mc.toml", b, e)) << e.to_string();
+  ASSERT_TRUE(parse_conditions(with, "mc.toml", again, e)) << e.to_string();
+  const auto& da = a.sets[0].conditions;
+  const auto& db = b.sets[0].conditions;
+  ASSERT_EQ(db.size(), 40u);
+  double lo = 1e9, hi = -1e9;
+  for (std::size_t k = 0; k < db.size(); ++k) {
+    EXPECT_EQ(db[k].payload_scale, da[k].payload_scale);
+    EXPECT_EQ(db[k].friction_per_s, da[k].friction_per_s);
+    EXPECT_EQ(db[k].initial_error_rad, da[k].initial_error_rad);
+    EXPECT_EQ(db[k].effects, again.sets[0].conditions[k].effects);  // seeded
+    const fuzzypid::sim::JointEffects& x = db[k].effects;
+    EXPECT_GE(db[k].payload_kg, 0.0);
+    EXPECT_LE(db[k].payload_kg, 5.0);
+    EXPECT_GE(x.delay_s, 0.0);
+    EXPECT_LE(x.delay_s, 20e-3);
+    EXPECT_GE(x.encoder_counts, 4096u);
+    EXPECT_LE(x.encoder_counts, 65536u);
+    EXPECT_GE(x.coulomb_nm[0], 0.0);
+    EXPECT_LE(x.coulomb_nm[0], 10.0);
+    EXPECT_EQ(x.coulomb_nm[5], x.coulomb_nm[0]);  // one draw for every joint
+    EXPECT_GE(x.joint_resonance_hz[2], 15.0);
+    EXPECT_LE(x.joint_resonance_hz[2], 30.0);
+    EXPECT_EQ(x.joint_damping_ratio, 0.05);  // a number sets it
+    lo = std::min(lo, x.delay_s);
+    hi = std::max(hi, x.delay_s);
+  }
+  EXPECT_GT(hi - lo, 10e-3);  // the draws spread over the range
+  EXPECT_NE(db[0].payload_kg, db[1].payload_kg);
+}
+
 TEST(ConditionSets, AScenarioIsAShorthandTheOtherKeysOverride) {
   ConditionFile f;
   fuzzypid::FileError e;
@@ -112,6 +157,34 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
        "unknown scenario 'moon'"},
       {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nfriction = [2.0, 1.0]\n", 4, 12, "reversed"},
       {"[sets.s]\ndescription = \"empty\"\n", 1, 1, "has no conditions"},
+      // What real joints have: 0 (off) or within the key's range, NaN refused.
+      {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = -1.0 } ]\n", 2, 46,
+       "'plant_step_ms' must be 0 (off) or within 0.001 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", plant_step_ms = nan } ]\n", 2, 46, "NaN"},
+      {"[sets.s]\nconditions = [ { name = \"c\", delay_ms = -1.0 } ]\n", 2, 41,
+       "'delay_ms' must be 0 (off) or within 0 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", delay_ms = 3001.0 } ]\n", 2, 41,
+       "'delay_ms' must be 0 (off) or within 0 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", tick_ms = 1.0, delay_ms = 61.0 } ]\n", 2, 16,
+       "delay_ms must be at most 60 ticks (60 ms at this tick)"},
+      {"[sets.s]\nconditions = [ { name = \"c\", torque_bandwidth_hz = 0.01 } ]\n", 2, 52,
+       "'torque_bandwidth_hz' must be 0 (off) or within 0.1 .. 100000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 2 } ]\n", 2, 47,
+       "'encoder_counts' must be 0 (off) or within 4 .. 1e12"},
+      {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 1.5 } ]\n", 2, 47,
+       "non-negative integer"},
+      {"[sets.s]\nconditions = [ { name = \"c\", coulomb_nm = -1.0 } ]\n", 2, 43,
+       "'coulomb_nm' values must be within 0 .. 1e+06"},
+      {"[sets.s]\nconditions = [ { name = \"c\", coulomb_nm = [1.0, 2.0] } ]\n", 2, 43,
+       "'coulomb_nm' must be one number or list 6, found 2"},
+      {"[sets.s]\nconditions = [ { name = \"c\", stribeck_nm = [1, 2, 3, 4, 5, nan] } ]\n", 2, 60,
+       "NaN"},
+      {"[sets.s]\nconditions = [ { name = \"c\", stribeck_velocity = -0.1 } ]\n", 2, 50,
+       "'stribeck_velocity' must be 0 (off)"},
+      {"[sets.s]\nconditions = [ { name = \"c\", joint_resonance_hz = -20.0 } ]\n", 2, 51,
+       "'joint_resonance_hz' values must be within 0 .. 10000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", joint_damping_ratio = 11.0 } ]\n", 2, 52,
+       "'joint_damping_ratio' must be 0 (off) or within 0 .. 10"},
   };
   for (const Bad& b : cases) {
     ConditionFile f;
@@ -143,6 +216,36 @@ TEST(ConditionSets, AnEmptyStringIsRefusedNamingTheKey) {
     EXPECT_EQ(e.column, b.column) << b.text << e.to_string();
     EXPECT_NE(e.message.find(b.message), std::string::npos) << e.to_string();
   }
+}
+
+TEST(ConditionSets, JointEffectKeysSetTheirFieldsInSIUnitsForSetsAndScenarios) {
+  const char* text =
+      "[sets.s]\nplant_step_ms = 0.25\nconditions = [ { name = \"a\" }, { name = \"b\", "
+      "scenario = \"friction\" }, { name = \"c\", plant_step_ms = 0.0 } ]\n";
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(parse_conditions(text, "effects.toml", f, e)) << e.to_string();
+  const auto& c = f.sets[0].conditions;
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_DOUBLE_EQ(c[0].effects.plant_step_s, 0.25e-3);
+  EXPECT_DOUBLE_EQ(c[1].effects.plant_step_s, 0.25e-3);  // a scenario keeps the set's effects
+  EXPECT_EQ(c[2].effects.plant_step_s, 0.0);
+
+  const char* all =
+      "[sets.s]\nconditions = [ { name = \"a\", delay_ms = 12.5, torque_bandwidth_hz = 150.0, "
+      "encoder_counts = 131072, coulomb_nm = [1, 2, 3, 4, 5, 6], stribeck_nm = 9.0, "
+      "stribeck_velocity = 0.02, joint_resonance_hz = [20, 20, 30, 0, 0, 0], "
+      "joint_damping_ratio = 0.05 } ]\n";
+  ASSERT_TRUE(parse_conditions(all, "effects.toml", f, e)) << e.to_string();
+  const fuzzypid::sim::JointEffects& x = f.sets[0].conditions[0].effects;
+  EXPECT_DOUBLE_EQ(x.delay_s, 12.5e-3);
+  EXPECT_EQ(x.torque_bandwidth_hz, 150.0);
+  EXPECT_EQ(x.encoder_counts, 131072u);
+  EXPECT_EQ(x.coulomb_nm, (fuzzypid::robot::JointVector{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(x.stribeck_nm, (fuzzypid::robot::JointVector{9, 9, 9, 9, 9, 9}));
+  EXPECT_EQ(x.stribeck_velocity_rad_s, 0.02);
+  EXPECT_EQ(x.joint_resonance_hz, (fuzzypid::robot::JointVector{20, 20, 30, 0, 0, 0}));
+  EXPECT_EQ(x.joint_damping_ratio, 0.05);
 }
 
 // Payload and friction are independent draws: with payload_scale in [1, 2] (log-uniform) and

@@ -77,10 +77,63 @@ inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0};  // 
 inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};         // kg
 inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};            // ms
 inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // kg·m²
+// What real joints have (JointEffects); each is off at 0 and otherwise within its range.
+inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};        // ms
+inline constexpr FieldRange kDelayMsRange{"delay_ms", 0.0, 1000.0};                  // ms
+inline constexpr FieldRange kTorqueBandwidthRange{"torque_bandwidth_hz", 0.1, 1e5};  // Hz
+inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12};      // per revolution
+inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};                 // N·m
+inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};               // N·m
+inline constexpr FieldRange kJointResonanceRange{"joint_resonance_hz", 0.0, 1e4};  // Hz
+inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0};
+inline constexpr FieldRange kBacklashRange{"backlash_rad", 0.0, 1.0};                  // rad
+inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
 inline constexpr double kMaxArmatureKgm2 = kArmatureRange.hi;
+
+// What real joints have beyond the paper's rigid, delay-free, ideally sensored joint (issue 29).
+// Each field is a condition-file key and a sim_ab / rt_loop option of the same name (underscores
+// -> dashes, e.g. plant_step_ms and --plant-step-ms); each is off by default, and a default
+// JointEffects runs the plant bit for bit as without it. robot/plant.hpp gives the equations.
+struct JointEffects {
+  // plant_step_ms: the largest RK4 step of the plant, s (PlantConfig::substep_s and
+  // coupled_substep_s); the plant's stiffness and motion bounds still apply, so a run with a step
+  // ten times finer than the default checks that a result has converged. 0: the defaults (1 ms
+  // decoupled, 50 ms coupled).
+  double plant_step_s = 0.0;
+  // delay_ms: time from sampling the joint to the torque reaching it, s (fractions of a tick
+  // allowed; one tick is a digital drive's usual computation delay). At most 60 ticks.
+  double delay_s = 0.0;
+  // torque_bandwidth_hz: the current loop as a first-order lag on the applied torque, Hz
+  // (0: ideal).
+  double torque_bandwidth_hz = 0.0;
+  // encoder_counts: the controller measures the angle quantised to 2π/N and the rate as the
+  // difference of the last two readings over the tick (0: the true angle and rate).
+  std::uint64_t encoder_counts = 0;
+  // coulomb_nm, stribeck_nm (one number for every joint, or six): Coulomb friction C_i and the
+  // Stribeck peak S_i of static friction (0 or below C_i: none), N·m at the joint, opposing its
+  // velocity; stribeck_velocity: the Stribeck velocity v_s, rad/s (0: 0.01 rad/s).
+  robot::JointVector coulomb_nm{};
+  robot::JointVector stribeck_nm{};
+  double stribeck_velocity_rad_s = 0.0;
+  // joint_resonance_hz (one number for every joint, or six; 0: rigid) and joint_damping_ratio:
+  // an elastic gear as a two-mass joint, the motor side the armature (which must be > 0 there,
+  // --armature), the link side the arm, the stiffness from the resonance and the two inertias at
+  // the start. The controller measures the motor side (a motor encoder); trajectory.csv and the
+  // metrics keep the link's angle.
+  robot::JointVector joint_resonance_hz{};
+  double joint_damping_ratio = 0.0;
+  // backlash_rad: total play of the elastic gears, rad (needs joint_resonance_hz): no gear torque
+  // while the deflection is within ±B/2.
+  double backlash_rad = 0.0;
+
+  [[nodiscard]] bool operator==(const JointEffects& o) const noexcept;
+  [[nodiscard]] bool operator!=(const JointEffects& o) const noexcept { return !(*this == o); }
+  // Empty, or what is wrong, naming the key.
+  [[nodiscard]] std::string validate() const;
+};
 
 struct Condition {
   std::string name;
@@ -103,6 +156,7 @@ struct Condition {
   // files give any other URDF default_dynamics() and default_gravity() instead.
   robot::PlantCoupling dynamics = robot::PlantCoupling::Decoupled;  // the paper's model
   bool gravity = false;  // rigid-body gravity (coupled dynamics only)
+  JointEffects effects;  // what real joints have; none by default
 
   // Empty, or what is wrong (non-finite or out-of-range values).
   [[nodiscard]] std::string validate() const;

@@ -13,6 +13,11 @@
 //   payload_scale = [0.5, 2.0]                # drawn log-uniformly in [min, max]
 //   friction = [0.0, 2.0]                     # uniformly
 //   initial_error = [-0.08, 0.08]             # uniformly
+//   payload_kg = [0.0, 5.0]                   # uniformly; so are the keys of what real joints
+//   delay_ms = [0.0, 10.0]                    # have given as [min, max] (one value for every
+//   encoder_counts = [4096, 65536]            # joint; counts rounded), and a number sets them
+// The draws of payload_kg and the joint keys come from a stream of their own (one draw per key and
+// condition, in a fixed order), so adding one changes neither the others nor the three above.
 //
 // Condition keys: name, description, scenario, payload_scale, friction, torque_limit, contact,
 // noise = [SIGMA_Q, SIGMA_QD], seed, reverse, initial_error (sim_ab's options of the same names).
@@ -24,6 +29,15 @@
 //   armature = [A1, A2, A3, A4, A5, A6]                    (kg·m²; default: see RobotSetup)
 //   ik_seed = [Q1, Q2, Q3, Q4, Q5, Q6]                     (rad; first IK of a Cartesian path)
 //   dynamics = "decoupled" | "coupled"                     gravity = true (coupled only)
+// What real joints have (sim::JointEffects; sim_ab's and rt_loop's options of the same names; each
+// 0 = off):
+//   plant_step_ms = 0.1        (largest plant integration step, ms)
+//   delay_ms = 10.0            (sampling to torque, ms)    torque_bandwidth_hz = 200.0
+//   encoder_counts = 131072    (per revolution, integer)
+//   coulomb_nm = 20.0 | [C1, ..., C6]   stribeck_nm = 30.0 | [S1, ..., S6]   (N·m)
+//   stribeck_velocity = 0.01   (rad/s)
+//   joint_resonance_hz = 20.0 | [F1, ..., F6]   joint_damping_ratio = 0.05   (two-mass gear)
+//   backlash_rad = 0.001       (play of the elastic gears, rad)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
 // to `description`), they are the defaults of every condition of that set, Monte-Carlo draws
 // included; a condition's own keys override them.
