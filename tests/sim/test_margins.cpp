@@ -1,0 +1,184 @@
+// The frozen-gain margins of sim/margins.hpp against a closed form, against the closed loop's
+// eigenvalues and against a simulation of the library's pid::Pid on an exact zero-order-hold
+// joint (no sim_ab).
+#include "fuzzypid/sim/margins.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <random>
+
+#include "fuzzypid/pid/pid.hpp"
+
+namespace {
+
+using fuzzypid::pid::DerivativeSource;
+using fuzzypid::sim::JointLoop;
+using fuzzypid::sim::LoopMargins;
+
+// The gain factor at which the closed loop's spectral radius reaches 1, by bisection.
+double eigen_gain_boundary(const JointLoop& loop, double lo, double hi) {
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (fuzzypid::sim::closed_loop_spectral_radius(loop, mid) < 1.0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale, extra ticks of delay) on
+// θ̈ = c u − a θ̇ stepped exactly with u held over each tick, from θ = 0.05 rad at rest.
+double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks) {
+  fuzzypid::pid::Config<double> config;
+  config.gains = {scale * loop.gains.kp, scale * loop.gains.ki, scale * loop.gains.kd};
+  config.derivative_filter_s = loop.derivative_filter_s;
+  config.derivative_source = loop.derivative;
+  config.anti_windup = fuzzypid::pid::AntiWindup::None;
+  fuzzypid::pid::Pid<double> pid(config);
+  const double h = loop.tick_s, a = loop.damping_per_s, c = loop.plant_gain;
+  const double q = std::exp(-a * h);
+  const double p = a > 0.0 ? (1.0 - q) / a : h;
+  const double bt = a > 0.0 ? (h - p) / a : h * h / 2.0;
+  double theta = 0.05, omega = 0.0, peak = 0.0;
+  std::deque<double> line(static_cast<std::size_t>(delay_ticks), 0.0);
+  for (int k = 0; k < ticks; ++k) {
+    fuzzypid::pid::Input<double> in;
+    in.measurement = theta;
+    in.measurement_rate = omega;
+    // Only a diverging run overflows.
+    if (pid.update(in, h) != fuzzypid::Status::Ok) return INFINITY;
+    line.push_back(pid.output());
+    const double u = line.front();
+    line.pop_front();
+    theta += p * omega + c * bt * u;
+    omega = q * omega + c * p * u;
+    if (!(std::abs(theta) < 1e100)) return INFINITY;
+    if (k >= ticks - ticks / 10) peak = std::max(peak, std::abs(theta));
+  }
+  return peak;
+}
+
+TEST(Margins, PdOnDoubleIntegratorMatchesClosedForm) {
+  // z² + (Kp h²/2 + Kd h − 2) z + 1 + Kp h²/2 − Kd h: with Kp h < 2 Kd, the Jury conditions fail
+  // first at z = −1, for the gain factor 2 / (Kd h); L(−1) = −Kd h / 2.
+  JointLoop loop;
+  loop.tick_s = 0.01;
+  loop.plant_gain = 1.0;
+  loop.gains = {400.0, 0.0, 30.0};
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  const double closed_form = 2.0 / (loop.gains.kd * loop.tick_s);
+  ASSERT_TRUE(m.stable);
+  EXPECT_NEAR(m.gain_margin_db, 20.0 * std::log10(closed_form), 1e-9);
+  EXPECT_NEAR(m.phase_crossover_rad_s, M_PI / loop.tick_s, 1e-9);
+  EXPECT_EQ(m.gain_margin_low_db, -INFINITY);
+  EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 100.0), closed_form, 1e-6 * closed_form);
+  // Phase margin: at the crossover |L| = 1 and 180° + ∠L is the margin (checked on L itself).
+  const auto l = fuzzypid::sim::loop_response(loop, m.gain_crossover_rad_s);
+  EXPECT_NEAR(std::abs(l), 1.0, 1e-9);
+  EXPECT_NEAR(m.phase_margin_deg, 180.0 + std::arg(l) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(m.delay_margin_s, m.phase_margin_deg * M_PI / 180.0 / m.gain_crossover_rad_s, 1e-12);
+  // The disk holds the gain margin's ends inside it: α / 2 < the distance to either boundary.
+  EXPECT_GT(m.disk_margin, 0.0);
+  EXPECT_LT(m.disk_gain_high, closed_form);
+}
+
+TEST(Margins, GainMarginEqualsEigenvalueBoundaryForFullPid) {
+  for (const DerivativeSource source : {DerivativeSource::Rates, DerivativeSource::Difference}) {
+    JointLoop loop;
+    loop.tick_s = 0.005;
+    loop.plant_gain = 0.8;
+    loop.damping_per_s = 0.7;
+    loop.gains = {900.0, 1500.0, 40.0};
+    loop.derivative_filter_s = 0.002;
+    loop.derivative = source;
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    ASSERT_TRUE(m.stable);
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 1e3), gm, 1e-6 * gm);
+  }
+}
+
+TEST(Margins, ScalingByGainMarginIsTheSimulatedStabilityBoundary) {
+  JointLoop loop;
+  loop.tick_s = 0.01;
+  loop.plant_gain = 1.3;
+  loop.damping_per_s = 0.2;
+  loop.gains = {300.0, 200.0, 25.0};
+  loop.derivative_filter_s = 0.005;
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+  EXPECT_LT(simulate(loop, 0.95 * gm, 0, 40000), 1e-6);
+  EXPECT_GT(simulate(loop, 1.05 * gm, 0, 40000), 1.0);
+}
+
+TEST(Margins, DelayMarginIsTheSimulatedStabilityBoundary) {
+  // A fine tick so that whole ticks resolve the delay margin to better than 5 %.
+  JointLoop loop;
+  loop.tick_s = 0.001;
+  loop.plant_gain = 1.0;
+  loop.gains = {100.0, 20.0, 15.0};
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  ASSERT_GT(m.delay_margin_s, 40 * loop.tick_s);
+  const int below = static_cast<int>(std::floor(0.95 * m.delay_margin_s / loop.tick_s));
+  const int above = static_cast<int>(std::ceil(1.05 * m.delay_margin_s / loop.tick_s));
+  EXPECT_LT(simulate(loop, 1.0, below, 200000), 1e-6);
+  EXPECT_GT(simulate(loop, 1.0, above, 200000), 1.0);
+  // The discrete count lies between them, and the eigenvalues agree with it.
+  EXPECT_GT(m.delay_margin_ticks, below);
+  EXPECT_LE(m.delay_margin_ticks, above);
+  EXPECT_LT(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks - 1), 1.0);
+  EXPECT_GE(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks), 1.0);
+}
+
+TEST(Margins, RandomJointsStableBelowAndDivergentAboveGainMargin) {
+  const std::uint64_t seed = 20261203;
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    JointLoop loop;
+    loop.tick_s = 0.001 * std::pow(50.0, unit(rng));   // 1 .. 50 ms
+    loop.plant_gain = 0.5 * std::pow(4.0, unit(rng));  // J^ / J in 0.5 .. 2
+    loop.damping_per_s = 2.0 * unit(rng);
+    const double wb = (0.05 + 0.25 * unit(rng)) * M_PI / loop.tick_s;
+    loop.gains = {wb * wb, 0.1 * wb * wb * wb, (1.0 + unit(rng)) * wb};
+    loop.derivative_filter_s = 0.2 * unit(rng) * loop.tick_s;
+    loop.derivative = unit(rng) < 0.5 ? DerivativeSource::Rates : DerivativeSource::Difference;
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    if (!m.stable || !std::isfinite(m.gain_margin_db)) continue;
+    ++checked;
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    EXPECT_LT(simulate(loop, 0.95 * gm, 0, 40000), 1e-3) << "trial " << trial;
+    EXPECT_GT(simulate(loop, 1.05 * gm, 0, 40000), 1.0) << "trial " << trial;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+TEST(Margins, UnstableLoopHasNoDiskMargin) {
+  JointLoop loop;
+  loop.tick_s = 0.05;
+  loop.gains = {4.0, 0.0, 100.0 * 0.05};  // Kd h = 0.25 ... times 10: beyond 2 / (Kd h)
+  loop.gains.kd *= 10.0;
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  EXPECT_FALSE(m.stable);
+  EXPECT_EQ(m.disk_margin, 0.0);
+  EXPECT_LT(m.gain_margin_low_db, 0.0);
+}
+
+TEST(Margins, InvalidLoopIsUnstable) {
+  JointLoop loop;
+  loop.tick_s = 0.0;
+  EXPECT_FALSE(fuzzypid::sim::margins(loop).stable);
+  loop.tick_s = 0.01;
+  loop.gains.kp = NAN;
+  EXPECT_FALSE(fuzzypid::sim::margins(loop).stable);
+}
+
+}  // namespace
