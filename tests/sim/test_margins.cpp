@@ -9,8 +9,13 @@
 #include <cstdio>
 #include <deque>
 #include <random>
+#include <string>
+#include <vector>
 
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/sim/certify.hpp"
+#include "fuzzypid/sim/experiment.hpp"
 
 namespace {
 
@@ -179,6 +184,89 @@ TEST(Margins, InvalidLoopIsUnstable) {
   loop.tick_s = 0.01;
   loop.gains.kp = NAN;
   EXPECT_FALSE(fuzzypid::sim::margins(loop).stable);
+}
+
+// The ER50-C20's default condition (the section 6 line) with a shipped controller file.
+struct Er50 {
+  std::vector<fuzzypid::sim::Condition> conditions{fuzzypid::sim::Condition{}};
+  std::optional<fuzzypid::sim::ExperimentSet> experiments;
+  Er50() {
+    std::string error;
+    experiments =
+        fuzzypid::sim::ExperimentSet::create(conditions, fuzzypid::sim::ExperimentOptions{}, error);
+    EXPECT_TRUE(experiments) << error;
+  }
+  fuzzypid::sim::Certificate certify(const std::string& file, double delay_s = 0.0) const {
+    fuzzypid::controller::ControllerSpec spec;
+    fuzzypid::FileError err;
+    EXPECT_TRUE(
+        fuzzypid::controller_file::load(std::string(FUZZYPID_SOURCE_DIR) + "/" + file, spec, err))
+        << err.to_string();
+    fuzzypid::sim::CertifyOptions options;
+    options.delay_s = delay_s;
+    options.grid_points = 5;
+    std::string error;
+    const auto cert = fuzzypid::sim::certify(spec, conditions, *experiments, options, error);
+    EXPECT_TRUE(cert) << error;
+    return cert.value_or(fuzzypid::sim::Certificate{});
+  }
+};
+
+TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml");
+  EXPECT_TRUE(cert.certified);
+  EXPECT_EQ(cert.verdict, "certified (linear, no saturation)");
+  for (const auto& joint : cert.joints) {
+    EXPECT_LE(joint.inertia_min_kgm2, joint.nominal_inertia_kgm2);
+    EXPECT_GE(joint.inertia_max_kgm2, joint.nominal_inertia_kgm2);
+    // The worst case's loop, simulated with pid::Pid: stable below its margin, divergent above.
+    const fuzzypid::sim::MarginCase& w = joint.worst_gain;
+    const double gm = std::pow(10.0, w.margins.gain_margin_db / 20.0);
+    EXPECT_LT(simulate(w.loop, 0.95 * gm, 0, 20000), 1e-6);
+    EXPECT_GT(simulate(w.loop, 1.05 * gm, 0, 20000), 1.0);
+    // And with its whole-tick delay margin.
+    const int ticks = joint.worst_delay.margins.delay_margin_ticks;
+    ASSERT_GE(ticks, 1);
+    EXPECT_LT(simulate(joint.worst_delay.loop, 1.0, ticks - 1, 20000), 1e-6);
+    EXPECT_GT(simulate(joint.worst_delay.loop, 1.0, ticks, 20000), 1.0);
+  }
+}
+
+TEST(Certify, MovingGainsAreNotCertifiedAndTheirGainSetIsSearched) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_scheduled.toml");
+  EXPECT_TRUE(cert.moving_gains);
+  EXPECT_FALSE(cert.certified);
+  EXPECT_EQ(cert.verdict, "not certified (frozen-gain margins only)");
+  for (const auto& joint : cert.joints)
+    EXPECT_GT(joint.gain_triples, 1u);
+}
+
+TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml");
+  for (std::size_t i = 0; i < a.joints.size(); ++i) {
+    EXPECT_EQ(a.joints[i].worst_disk.margins.disk_margin,
+              b.joints[i].worst_disk.margins.disk_margin);
+    EXPECT_EQ(a.joints[i].worst_gain.margins.gain_margin_db,
+              b.joints[i].worst_gain.margins.gain_margin_db);
+  }
+  // tuned_pid's delay margin is under one 50 ms tick.
+  const fuzzypid::sim::Certificate late = er50.certify("controllers/tuned_pid.toml", 0.05);
+  EXPECT_FALSE(late.certified);
+  EXPECT_EQ(late.verdict, "not certified (unstable at frozen gains)");
+}
+
+TEST(Certify, RefusesADelayThatIsNotAWholeNumberOfTicks) {
+  const Er50 er50;
+  fuzzypid::controller::ControllerSpec spec;
+  fuzzypid::sim::CertifyOptions options;
+  options.delay_s = 0.012;
+  std::string error;
+  EXPECT_FALSE(fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error));
+  EXPECT_EQ(error, "delay 12 ms is not a whole number of ticks of 50 ms");
 }
 
 }  // namespace
