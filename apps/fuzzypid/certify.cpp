@@ -72,7 +72,9 @@ void print_json(const CertifyCli& o, const sim::Certificate& cert) {
     std::printf("      \"phase_margin_deg\": %s,\n      \"delay_margin_ms\": %s,\n",
                 num(j.worst_phase.margins.phase_margin_deg).c_str(),
                 num(j.worst_delay.margins.delay_margin_s * 1e3).c_str());
-    std::printf("      \"delay_margin_ticks\": %d,\n", j.worst_delay.margins.delay_margin_ticks);
+    std::printf("      \"delay_margin_exact_ms\": %s,\n      \"delay_margin_ticks\": %d,\n",
+                num(j.worst_delay.margins.delay_margin_exact_s * 1e3).c_str(),
+                j.worst_delay.margins.delay_margin_ticks);
     std::printf(
         "      \"disk_margin\": %s,\n      \"disk_gain_db\": [%s, %s],\n"
         "      \"disk_phase_deg\": %s,\n",
@@ -93,17 +95,19 @@ void print_table(const CertifyCli& o, const sim::Certificate& cert) {
   std::printf("controller %s (%s), %zu condition(s), extra delay %g ms: frozen-gain margins\n",
               o.controller.c_str(), controller::to_string(cert.family), cert.conditions,
               cert.delay_s * 1e3);
-  std::printf("%-5s %-21s %9s %9s %10s %9s %9s %5s %7s %8s %7s %6s\n", "joint", "J kg·m²", "J^",
-              "GM dB", "GM low dB", "PM deg", "DM ms", "ticks", "disk α", "±dB", "±deg", "stable");
+  std::printf("%-5s %-21s %9s %9s %10s %9s %9s %9s %5s %7s %8s %7s %6s\n", "joint", "J kg·m²", "J^",
+              "GM dB", "GM low dB", "PM deg", "DM ms", "exact ms", "ticks", "disk α", "±dB", "±deg",
+              "stable");
   for (std::size_t i = 0; i < cert.joints.size(); ++i) {
     const sim::JointCertificate& j = cert.joints[i];
     const sim::LoopMargins& disk = j.worst_disk.margins;
     char range[48];
     std::snprintf(range, sizeof range, "%.4g..%.4g", j.inertia_min_kgm2, j.inertia_max_kgm2);
-    std::printf("%-5zu %-21s %9.4g %9.3f %10.3f %9.2f %9.2f %5d %7.3f %8.2f %7.2f %6s\n", i + 1,
-                range, j.nominal_inertia_kgm2, j.worst_gain.margins.gain_margin_db,
+    std::printf("%-5zu %-21s %9.4g %9.3f %10.3f %9.2f %9.2f %9.2f %5d %7.3f %8.2f %7.2f %6s\n",
+                i + 1, range, j.nominal_inertia_kgm2, j.worst_gain.margins.gain_margin_db,
                 j.worst_gain_low.margins.gain_margin_low_db, j.worst_phase.margins.phase_margin_deg,
                 j.worst_delay.margins.delay_margin_s * 1e3,
+                j.worst_delay.margins.delay_margin_exact_s * 1e3,
                 j.worst_delay.margins.delay_margin_ticks, disk.disk_margin,
                 sim::to_db(disk.disk_gain_high), disk.disk_phase_deg, j.stable ? "yes" : "NO");
   }
@@ -189,8 +193,7 @@ void add_certify_command(CLI::App& app, std::function<int()>& run) {
   CLI::Option* set = cmd->add_option("--set", o->set, "the set of --conditions (default held-out)")
                          ->option_text("NAME");
   cmd->add_option("--delay-ms", o->delay_ms,
-                  "extra delay between the controller's output and the plant, ms: a whole number "
-                  "of ticks (default 0)")
+                  "extra delay between the controller's output and the plant, ms (default 0)")
       ->check(finite_in(0.0, 1e4))
       ->option_text("D");
   cmd->add_option("--grid", o->grid,

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <tuple>
 
@@ -120,14 +119,6 @@ std::optional<Certificate> certify(const ControllerSpec& controller,
     const robot::JointPathResult* path = ex.path(c, error);
     if (path == nullptr) return std::nullopt;
     const double h = ex.options().tick_s;
-    const double ticks = options.delay_s / h;
-    if (std::abs(ticks - std::round(ticks)) > 1e-6) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "delay %g ms is not a whole number of ticks of %g ms",
-                    options.delay_s * 1e3, h * 1e3);
-      error = buf;
-      return std::nullopt;
-    }
     const robot::RobotModel model = ex.plant_model(c);
     const robot::PlantConfig plant = ex.plant_config(c);
     for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
@@ -187,7 +178,7 @@ std::optional<Certificate> certify(const ControllerSpec& controller,
             loop.gains = p.gains;
             loop.derivative_filter_s = controller.pid.derivative_filter_s;
             loop.derivative = controller.pid.derivative;
-            loop.delay_ticks = static_cast<int>(std::lround(options.delay_s / g.tick_s));
+            set_delay(loop, options.delay_s);
             MarginCase mc{margins(loop, bulk), loop, j, b, g.tick_s, p.gains, p.x, p.y};
             ++jc.cases;
             jc.stable = jc.stable && mc.margins.stable;

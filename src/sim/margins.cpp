@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -34,11 +35,41 @@ Zoh zoh(double a, double h) {
   return z;
 }
 
+// A delay of (m + f) ticks: over each tick the plant sees u_{k−m−1} for f h, then u_{k−m}, so
+// x_{k+1} = Ad x_k + g1 u_{k−m} + g0 u_{k−m−1} (per unit of c).
+struct DelayedInput {
+  int m = 0;
+  double g1t = 0.0, g1w = 0.0;  // of u_{k−m}: ∫ over the last (1 − f) h
+  double g0t = 0.0, g0w = 0.0;  // of u_{k−m−1}: over the first f h, carried to the tick's end
+};
+
+DelayedInput delayed_input(double a, double h, int m, double f) {
+  const Zoh last = zoh(a, (1.0 - f) * h), first = zoh(a, f * h);
+  DelayedInput d;
+  d.m = m;
+  d.g1t = last.bt;
+  d.g1w = last.bw;
+  d.g0t = first.bt + last.p * first.bw;
+  d.g0w = last.q * first.bw;
+  return d;
+}
+
+// m whole ticks and a fraction f in [0, 1) of `delay_s` at tick h (a fraction within 1e-9 of a
+// whole tick is that tick).
+std::pair<int, double> split_delay(double delay_s, double h) {
+  const double ticks = delay_s / h;
+  const double whole = std::round(ticks);
+  if (std::abs(ticks - whole) < 1e-9) return {static_cast<int>(whole), 0.0};
+  const double m = std::floor(ticks);
+  return {static_cast<int>(m), ticks - m};
+}
+
 bool valid(const JointLoop& l) {
   const auto finite = [](double x) { return std::isfinite(x); };
   return finite(l.tick_s) && l.tick_s > 0.0 && finite(l.plant_gain) && l.plant_gain > 0.0 &&
          finite(l.damping_per_s) && l.damping_per_s >= 0.0 && l.gains.finite() &&
-         finite(l.derivative_filter_s) && l.derivative_filter_s >= 0.0 && l.delay_ticks >= 0;
+         finite(l.derivative_filter_s) && l.derivative_filter_s >= 0.0 && l.delay_ticks >= 0 &&
+         l.delay_fraction >= 0.0 && l.delay_fraction < 1.0;
 }
 
 // |S − 1/2| = |(1 − L) / (2 (1 + L))|.
@@ -74,8 +105,11 @@ Complex loop_response(const JointLoop& loop, double omega_rad_s) {
   const Complex z = std::polar(1.0, omega_rad_s * h);
   const Zoh d = zoh(loop.damping_per_s, h);
   const double c = loop.plant_gain;
-  const Complex p_theta = c * ((z - d.q) * d.bt + d.p * d.bw) / ((z - 1.0) * (z - d.q));
-  const Complex p_omega = c * d.bw / (z - d.q);
+  // The input vector of the delayed plant: g1 + g0 / z, then z^−m.
+  const DelayedInput in = delayed_input(loop.damping_per_s, h, 0, loop.delay_fraction);
+  const Complex gt = in.g1t + in.g0t / z, gw = in.g1w + in.g0w / z;
+  const Complex p_theta = c * ((z - d.q) * gt + d.p * gw) / ((z - 1.0) * (z - d.q));
+  const Complex p_omega = c * gw / (z - d.q);
   const double beta = h / (loop.derivative_filter_s + h);
   const Complex filter = beta * z / (z - 1.0 + beta);
   const Complex integral = loop.gains.ki * h * z / (z - 1.0);
@@ -85,13 +119,16 @@ Complex loop_response(const JointLoop& loop, double omega_rad_s) {
   return l * std::polar(1.0, -omega_rad_s * h * loop.delay_ticks);
 }
 
-double closed_loop_spectral_radius(const JointLoop& loop, double gain_scale,
-                                   int extra_delay_ticks) {
+namespace {
+
+// Spectral radius with the loop's gains scaled and a total delay of m + f ticks.
+double spectral_radius(const JointLoop& loop, double gain_scale, int m, double f) {
   const double h = loop.tick_s;
-  const int delay = loop.delay_ticks + std::max(0, extra_delay_ticks);
-  // State: θ, θ̇, I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−delay}.
-  const int n = 5 + delay;
+  // State: θ, θ̇, I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−len}.
+  const int len = f > 0.0 ? m + 1 : m;
+  const int n = 5 + len;
   const Zoh z = zoh(loop.damping_per_s, h);
+  const DelayedInput in = delayed_input(loop.damping_per_s, h, m, f);
   const double s = gain_scale;
   const double beta = h / (loop.derivative_filter_s + h);
   Eigen::RowVectorXd d_raw = Eigen::RowVectorXd::Zero(n);
@@ -110,24 +147,28 @@ double closed_loop_spectral_radius(const JointLoop& loop, double gain_scale,
   integral(0) = -s * loop.gains.ki * h;
   Eigen::RowVectorXd u = integral + s * loop.gains.kd * filtered;
   u(0) += -s * loop.gains.kp;
-  Eigen::RowVectorXd v = Eigen::RowVectorXd::Zero(n);
-  if (delay == 0)
-    v = u;
-  else
-    v(5 + delay - 1) = 1.0;
+  // u_{k−j} as a row of the state (j = 0: this tick's output).
+  const auto past = [&](int j) {
+    if (j == 0) return u;
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
+    r(5 + j - 1) = 1.0;
+    return r;
+  };
+  const Eigen::RowVectorXd v1 = past(m);
+  const Eigen::RowVectorXd v0 = f > 0.0 ? past(m + 1) : Eigen::RowVectorXd::Zero(n);
 
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
   a(0, 0) = 1.0;
   a(0, 1) = z.p;
   a(1, 1) = z.q;
-  a.row(0) += loop.plant_gain * z.bt * v;
-  a.row(1) += loop.plant_gain * z.bw * v;
+  a.row(0) += loop.plant_gain * (in.g1t * v1 + in.g0t * v0);
+  a.row(1) += loop.plant_gain * (in.g1w * v1 + in.g0w * v0);
   a.row(2) = integral;
   a.row(3) = filtered;
   a(4, 0) = 1.0;
-  if (delay > 0) {
+  if (len > 0) {
     a.row(5) = u;
-    for (int j = 1; j < delay; ++j)
+    for (int j = 1; j < len; ++j)
       a(5 + j, 5 + j - 1) = 1.0;
   }
   const Eigen::VectorXcd lambda = a.eigenvalues();
@@ -135,6 +176,27 @@ double closed_loop_spectral_radius(const JointLoop& loop, double gain_scale,
   for (int k = 0; k < lambda.size(); ++k)
     rho = std::max(rho, std::abs(lambda(k)));
   return rho;
+}
+
+}  // namespace
+
+double closed_loop_spectral_radius(const JointLoop& loop, double gain_scale,
+                                   int extra_delay_ticks) {
+  return spectral_radius(loop, gain_scale, loop.delay_ticks + std::max(0, extra_delay_ticks),
+                         loop.delay_fraction);
+}
+
+double closed_loop_spectral_radius_at_delay(const JointLoop& loop, double extra_delay_s) {
+  const auto [m, f] = split_delay(
+      (loop.delay_ticks + loop.delay_fraction) * loop.tick_s + std::max(0.0, extra_delay_s),
+      loop.tick_s);
+  return spectral_radius(loop, 1.0, m, f);
+}
+
+void set_delay(JointLoop& loop, double delay_s) {
+  const auto [m, f] = split_delay(delay_s, loop.tick_s);
+  loop.delay_ticks = m;
+  loop.delay_fraction = f;
 }
 
 LoopMargins margins(const JointLoop& loop, const MarginOptions& options) {
@@ -229,6 +291,30 @@ LoopMargins margins(const JointLoop& loop, const MarginOptions& options) {
           m.delay_margin_ticks = extra;
           break;
         }
+    }
+    // The exact extra delay (through the sampled-data model): the first unstable step of h / 16
+    // below the whole-tick count, then bisection.
+    if (m.delay_margin_ticks > 0) {
+      const double h = loop.tick_s;
+      const int n_ticks = m.delay_margin_ticks;
+      const double step = h / 16.0;
+      double lo = n_ticks <= 16 ? 0.0 : (n_ticks - 2) * h;
+      double hi = n_ticks * h;
+      for (double t = lo + step; t <= hi + 0.5 * step; t += step) {
+        if (closed_loop_spectral_radius_at_delay(loop, t) >= 1.0) {
+          hi = t;
+          break;
+        }
+        lo = t;
+      }
+      for (int k = 0; k < 50; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        if (closed_loop_spectral_radius_at_delay(loop, mid) < 1.0)
+          lo = mid;
+        else
+          hi = mid;
+      }
+      m.delay_margin_exact_s = 0.5 * (lo + hi);
     }
   }
   return m;

@@ -60,6 +60,16 @@ for ja, jd in zip(a["joints"], d["joints"]):
     assert abs(ja["delay_margin_ms"] - jd["delay_margin_ms"] - 50.0) < 1e-6, (ja, jd)
 assert d["delay_ms"] == 50.0
 PY
+# A fractional delay (12 ms at a 50 ms tick) uses up as much of the exact delay margin.
+"$fuzzypid" certify "$pid" --json --delay-ms 12 >"$work/f.json" || fail "json with 12 ms"
+"$python" - "$work/a.json" "$work/f.json" <<'PY' || fail "fractional delay"
+import json, sys
+a = json.load(open(sys.argv[1]))
+f = json.load(open(sys.argv[2]))
+for ja, jf in zip(a["joints"], f["joints"]):
+    assert abs(ja["delay_margin_exact_ms"] - jf["delay_margin_exact_ms"] - 12.0) < 1e-6, (ja, jf)
+    assert 0 < ja["delay_margin_exact_ms"] <= 50.0 * ja["delay_margin_ticks"]
+PY
 
 # Condition sets: the held-out set's inertia range covers the default condition's.
 "$fuzzypid" certify "$src/controllers/tuned_pid.toml" --json \
@@ -68,7 +78,6 @@ PY
 grep -q '"conditions": 14' "$work/set.json" || fail "training set has 14 conditions"
 
 # Usage errors: exit 2 naming the option or file.
-expect 2 "not a whole number of ticks" -- "$fuzzypid" certify "$pid" --delay-ms 12
 expect 2 "^--set: " -- "$fuzzypid" certify "$pid" --set held-out
 expect 2 "has no set 'nope'" -- "$fuzzypid" certify "$pid" --conditions "$src/tuning/robust.toml" \
   --set nope

@@ -35,9 +35,19 @@ double eigen_gain_boundary(const JointLoop& loop, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
-// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale, extra ticks of delay) on
-// θ̈ = c u − a θ̇ stepped exactly with u held over each tick, from θ = 0.05 rad at rest.
-double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks) {
+// Exact motion of θ̈ = c u − a θ̇ over τ seconds with u constant.
+void advance(double& theta, double& omega, double u, double a, double c, double tau) {
+  const double q = std::exp(-a * tau);
+  const double p = a > 0.0 ? (1.0 - q) / a : tau;
+  const double bt = a > 0.0 ? (tau - p) / a : tau * tau / 2.0;
+  theta += p * omega + c * bt * u;
+  omega = q * omega + c * p * u;
+}
+
+// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale) on θ̈ = c u − a θ̇ with its
+// output reaching the plant delay_s later (held from then on until the next one arrives), stepped
+// exactly, from θ = 0.05 rad at rest.
+double simulate_delay(const JointLoop& loop, double scale, double delay_s, int ticks) {
   fuzzypid::pid::Config<double> config;
   config.gains = {scale * loop.gains.kp, scale * loop.gains.ki, scale * loop.gains.kd};
   config.derivative_filter_s = loop.derivative_filter_s;
@@ -45,11 +55,14 @@ double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks)
   config.anti_windup = fuzzypid::pid::AntiWindup::None;
   fuzzypid::pid::Pid<double> pid(config);
   const double h = loop.tick_s, a = loop.damping_per_s, c = loop.plant_gain;
-  const double q = std::exp(-a * h);
-  const double p = a > 0.0 ? (1.0 - q) / a : h;
-  const double bt = a > 0.0 ? (h - p) / a : h * h / 2.0;
+  // delay_s = (m + f) h: over tick k the plant sees u_{k-m-1} for f h, then u_{k-m}.
+  const double ticks_delay = delay_s / h;
+  const double near = std::round(ticks_delay);
+  const int m = std::abs(ticks_delay - near) < 1e-9 ? static_cast<int>(near)
+                                                    : static_cast<int>(std::floor(ticks_delay));
+  const double f = std::abs(ticks_delay - near) < 1e-9 ? 0.0 : ticks_delay - m;
   double theta = 0.05, omega = 0.0, peak = 0.0;
-  std::deque<double> line(static_cast<std::size_t>(delay_ticks), 0.0);
+  std::deque<double> line(static_cast<std::size_t>(m + 1), 0.0);  // u_{k-m-1} .. u_{k-1}
   for (int k = 0; k < ticks; ++k) {
     fuzzypid::pid::Input<double> in;
     in.measurement = theta;
@@ -57,14 +70,20 @@ double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks)
     // Only a diverging run overflows.
     if (pid.update(in, h) != fuzzypid::Status::Ok) return INFINITY;
     line.push_back(pid.output());
-    const double u = line.front();
+    const double older = line.front();  // u_{k-m-1}
     line.pop_front();
-    theta += p * omega + c * bt * u;
-    omega = q * omega + c * p * u;
+    const double newer = line.front();  // u_{k-m}
+    if (f > 0.0) advance(theta, omega, older, a, c, f * h);
+    advance(theta, omega, newer, a, c, (1.0 - f) * h);
     if (!(std::abs(theta) < 1e100)) return INFINITY;
     if (k >= ticks - ticks / 10) peak = std::max(peak, std::abs(theta));
   }
   return peak;
+}
+
+// The same with a whole number of ticks of delay.
+double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks) {
+  return simulate_delay(loop, scale, delay_ticks * loop.tick_s, ticks);
 }
 
 TEST(Margins, PdOnDoubleIntegratorMatchesClosedForm) {
@@ -139,6 +158,32 @@ TEST(Margins, DelayMarginIsTheSimulatedStabilityBoundary) {
   EXPECT_LE(m.delay_margin_ticks, above);
   EXPECT_LT(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks - 1), 1.0);
   EXPECT_GE(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks), 1.0);
+}
+
+TEST(Margins, FractionalDelayMarginIsTheSimulatedStabilityBoundary) {
+  // A coarse tick: the delay margin is a fraction of a tick, which whole ticks cannot resolve.
+  JointLoop loop;
+  loop.tick_s = 0.05;
+  loop.plant_gain = 1.0;
+  loop.gains = {172.5, 0.00045, 21.35};  // tuned_pid's gains, continuous
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  ASSERT_EQ(m.delay_margin_ticks, 1);
+  const double exact = m.delay_margin_exact_s;
+  ASSERT_GT(exact, 0.0);
+  ASSERT_LT(exact, loop.tick_s);
+  EXPECT_LT(simulate_delay(loop, 1.0, 0.95 * exact, 20000), 1e-6);
+  EXPECT_GT(simulate_delay(loop, 1.0, 1.05 * exact, 20000), 1.0);
+  // With half that delay in the loop, the frequency response (modified z-transform) and the
+  // eigenvalues agree on the gain margin.
+  JointLoop late = loop;
+  fuzzypid::sim::set_delay(late, 0.5 * exact);
+  EXPECT_EQ(late.delay_ticks, 0);
+  EXPECT_GT(late.delay_fraction, 0.0);
+  const LoopMargins ml = fuzzypid::sim::margins(late);
+  ASSERT_TRUE(ml.stable);
+  const double gm = std::pow(10.0, ml.gain_margin_db / 20.0);
+  EXPECT_NEAR(eigen_gain_boundary(late, 1.0, 100.0), gm, 1e-6 * gm);
 }
 
 TEST(Margins, RandomJointsStableBelowAndDivergentAboveGainMargin) {
@@ -259,14 +304,20 @@ TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
   EXPECT_EQ(late.verdict, "not certified (unstable at frozen gains)");
 }
 
-TEST(Certify, RefusesADelayThatIsNotAWholeNumberOfTicks) {
+TEST(Certify, AFractionalDelayUsesUpTheExactDelayMargin) {
   const Er50 er50;
+  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml", 0.012);
+  EXPECT_TRUE(b.certified);
+  for (std::size_t i = 0; i < a.joints.size(); ++i)
+    EXPECT_NEAR(a.joints[i].worst_delay.margins.delay_margin_exact_s - 0.012,
+                b.joints[i].worst_delay.margins.delay_margin_exact_s, 1e-9);
   fuzzypid::controller::ControllerSpec spec;
   fuzzypid::sim::CertifyOptions options;
-  options.delay_s = 0.012;
+  options.delay_s = -0.001;
   std::string error;
   EXPECT_FALSE(fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error));
-  EXPECT_EQ(error, "delay 12 ms is not a whole number of ticks of 50 ms");
+  EXPECT_EQ(error, "the delay must be finite and >= 0");
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 //     matrix of the condition's plant model, payload at the flange included; J_motor the armature),
 //     evaluated at J_min, their geometric mean and J_max;
 //   - the viscous friction range [b_min, b_max], b_i = friction_per_s J^_i of each condition;
-//   - every controller tick the conditions run at, and the extra delay of the options;
+//   - every controller tick the conditions run at, and the extra delay of the options (any
+//     value: whole ticks and a fraction, margins.hpp);
 //   - the gain triples the controller can produce: its gains for a PID; for a moving-gain family
 //     (scheduled, fuzzy, fuzzy-rules) the gains its own supervisor returns over a grid of the scaled
 //     inputs (x, y) = (Ke e, Kec ec) in [−8, 8]² (denser within [−1, 1]), computed by
@@ -36,7 +37,7 @@
 namespace fuzzypid::sim {
 
 struct CertifyOptions {
-  double delay_s = 0.0;          // extra delay, a whole number of every condition's tick, >= 0
+  double delay_s = 0.0;          // extra delay, s, >= 0 (whole ticks and a fraction)
   std::size_t grid_points = 25;  // per axis of the (x, y) grid of moving-gain families, >= 3
   MarginOptions margin{};
 };
@@ -75,7 +76,7 @@ struct Certificate {
 };
 
 // Certifies `controller` on `conditions` (each run by `experiments.of(k)`). Returns nullopt with
-// `error` set when a path cannot be planned, the delay is not a whole number of ticks or the
+// `error` set when a path cannot be planned, the delay is negative or not finite, or the
 // controller cannot be built.
 [[nodiscard]] std::optional<Certificate> certify(const ControllerSpec& controller,
                                                  const std::vector<Condition>& conditions,
