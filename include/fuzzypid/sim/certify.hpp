@@ -61,7 +61,9 @@ struct JointCertificate {
   std::size_t cases = 0;         // loops evaluated
   bool stable = false;           // every evaluated loop stable
   // The worst case of each margin (lowest upper gain margin, highest lower gain margin, lowest
-  // phase, delay and disk margins).
+  // phase, delay and disk margins). Only worst_delay has delay_margin_ticks and
+  // delay_margin_exact_s (they take eigenvalues of growing loops): those of the case with the
+  // lowest allmargin delay margin.
   MarginCase worst_gain, worst_gain_low, worst_phase, worst_delay, worst_disk;
 };
 
