@@ -161,6 +161,15 @@ int run_certify(const CertifyCli& o) {
     std::fprintf(stderr, "%s: %s\n", tool, error.c_str());
     return kExitUsage;
   }
+  for (std::size_t k = 0; k < experiments->size(); ++k) {
+    const double tick = experiments->experiment(k).options().tick_s;
+    if (spec.units.form == controller::PidForm::PerTick &&
+        std::fabs(spec.units.tick_s - tick) > 1e-12)
+      std::fprintf(stderr,
+                   "%s: note: %s's per-tick gains refer to a %g s tick; they are converted to "
+                   "continuous gains and run at a %g s tick (as sim_ab runs them)\n",
+                   tool, o.controller.c_str(), spec.units.tick_s, tick);
+  }
   sim::CertifyOptions options;
   options.delay_s = o.delay_ms * 1e-3;
   options.grid_points = o.grid;
