@@ -87,7 +87,7 @@ expect 2 "no-such.toml" -- "$fuzzypid" certify "$work/no-such.toml"
 expect 2 "delay-ms" -- "$fuzzypid" certify "$pid" --delay-ms -5
 expect 2 "grid" -- "$fuzzypid" certify "$pid" --grid 2
 expect 2 "controller is required" -- "$fuzzypid" certify
-# Per-tick gains run at another tick are converted, and the table says so.
+# Per-tick gains run at another tick are converted, and standard error says so.
 expect 0 "note: .*paper_pid.toml's per-tick gains refer to a 0.05 s tick" -- \
   "$fuzzypid" certify "$pid" --tick-ms 10
 echo "certify: ok"
