@@ -20,6 +20,7 @@ void add_ik_command(CLI::App& app, std::function<int()>& run);
 void add_tune_command(CLI::App& app, std::function<int()>& run);           // tune.cpp
 void add_export_header_command(CLI::App& app, std::function<int()>& run);  // tune.cpp
 void add_export_rules_command(CLI::App& app, std::function<int()>& run);   // export_rules.cpp
+void add_certify_command(CLI::App& app, std::function<int()>& run);        // certify.cpp
 #endif
 
 }  // namespace fuzzypid::cli

@@ -22,6 +22,7 @@ int run(int argc, char** argv) {
   fuzzypid::cli::add_tune_command(app, run);
   fuzzypid::cli::add_export_header_command(app, run);
   fuzzypid::cli::add_export_rules_command(app, run);
+  fuzzypid::cli::add_certify_command(app, run);
 #endif
   if (const auto code = fuzzypid::cli::parse(app, argc, argv)) return *code;
   const int code = run();

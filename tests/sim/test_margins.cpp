@@ -1,0 +1,324 @@
+// The frozen-gain margins of sim/margins.hpp against a closed form, against the closed loop's
+// eigenvalues and against a simulation of the library's pid::Pid on an exact zero-order-hold
+// joint (no sim_ab).
+#include "fuzzypid/sim/margins.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fuzzypid/controller_file/controller_file.hpp"
+#include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/sim/certify.hpp"
+#include "fuzzypid/sim/experiment.hpp"
+
+namespace {
+
+using fuzzypid::pid::DerivativeSource;
+using fuzzypid::sim::JointLoop;
+using fuzzypid::sim::LoopMargins;
+
+// The gain factor at which the closed loop's spectral radius reaches 1, by bisection.
+double eigen_gain_boundary(const JointLoop& loop, double lo, double hi) {
+  for (int k = 0; k < 200; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (fuzzypid::sim::closed_loop_spectral_radius(loop, mid) < 1.0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Exact motion of θ̈ = c u − a θ̇ over τ seconds with u constant.
+void advance(double& theta, double& omega, double u, double a, double c, double tau) {
+  const double q = std::exp(-a * tau);
+  const double p = a > 0.0 ? (1.0 - q) / a : tau;
+  const double bt = a > 0.0 ? (tau - p) / a : tau * tau / 2.0;
+  theta += p * omega + c * bt * u;
+  omega = q * omega + c * p * u;
+}
+
+// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale) on θ̈ = c u − a θ̇ with its
+// output reaching the plant delay_s later (held from then on until the next one arrives), stepped
+// exactly, from θ = 0.05 rad at rest.
+double simulate_delay(const JointLoop& loop, double scale, double delay_s, int ticks) {
+  fuzzypid::pid::Config<double> config;
+  config.gains = {scale * loop.gains.kp, scale * loop.gains.ki, scale * loop.gains.kd};
+  config.derivative_filter_s = loop.derivative_filter_s;
+  config.derivative_source = loop.derivative;
+  config.anti_windup = fuzzypid::pid::AntiWindup::None;
+  fuzzypid::pid::Pid<double> pid(config);
+  const double h = loop.tick_s, a = loop.damping_per_s, c = loop.plant_gain;
+  // delay_s = (m + f) h: over tick k the plant sees u_{k-m-1} for f h, then u_{k-m}.
+  const double ticks_delay = delay_s / h;
+  const double near = std::round(ticks_delay);
+  const int m = std::abs(ticks_delay - near) < 1e-9 ? static_cast<int>(near)
+                                                    : static_cast<int>(std::floor(ticks_delay));
+  const double f = std::abs(ticks_delay - near) < 1e-9 ? 0.0 : ticks_delay - m;
+  double theta = 0.05, omega = 0.0, peak = 0.0;
+  std::deque<double> line(static_cast<std::size_t>(m + 1), 0.0);  // u_{k-m-1} .. u_{k-1}
+  for (int k = 0; k < ticks; ++k) {
+    fuzzypid::pid::Input<double> in;
+    in.measurement = theta;
+    in.measurement_rate = omega;
+    // Only a diverging run overflows.
+    if (pid.update(in, h) != fuzzypid::Status::Ok) return INFINITY;
+    line.push_back(pid.output());
+    const double older = line.front();  // u_{k-m-1}
+    line.pop_front();
+    const double newer = line.front();  // u_{k-m}
+    if (f > 0.0) advance(theta, omega, older, a, c, f * h);
+    advance(theta, omega, newer, a, c, (1.0 - f) * h);
+    if (!(std::abs(theta) < 1e100)) return INFINITY;
+    if (k >= ticks - ticks / 10) peak = std::max(peak, std::abs(theta));
+  }
+  return peak;
+}
+
+// The same with a whole number of ticks of delay.
+double simulate(const JointLoop& loop, double scale, int delay_ticks, int ticks) {
+  return simulate_delay(loop, scale, delay_ticks * loop.tick_s, ticks);
+}
+
+TEST(Margins, PdOnDoubleIntegratorMatchesClosedForm) {
+  // z² + (Kp h²/2 + Kd h − 2) z + 1 + Kp h²/2 − Kd h: with Kp h < 2 Kd, the Jury conditions fail
+  // first at z = −1, for the gain factor 2 / (Kd h); L(−1) = −Kd h / 2.
+  JointLoop loop;
+  loop.tick_s = 0.01;
+  loop.plant_gain = 1.0;
+  loop.gains = {400.0, 0.0, 30.0};
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  const double closed_form = 2.0 / (loop.gains.kd * loop.tick_s);
+  ASSERT_TRUE(m.stable);
+  EXPECT_NEAR(m.gain_margin_db, 20.0 * std::log10(closed_form), 1e-9);
+  EXPECT_NEAR(m.phase_crossover_rad_s, M_PI / loop.tick_s, 1e-9);
+  EXPECT_EQ(m.gain_margin_low_db, -INFINITY);
+  EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 100.0), closed_form, 1e-6 * closed_form);
+  // Phase margin: at the crossover |L| = 1 and 180° + ∠L is the margin (checked on L itself).
+  const auto l = fuzzypid::sim::loop_response(loop, m.gain_crossover_rad_s);
+  EXPECT_NEAR(std::abs(l), 1.0, 1e-9);
+  EXPECT_NEAR(m.phase_margin_deg, 180.0 + std::arg(l) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(m.delay_margin_s, m.phase_margin_deg * M_PI / 180.0 / m.gain_crossover_rad_s, 1e-12);
+  // The disk holds the gain margin's ends inside it: α / 2 < the distance to either boundary.
+  EXPECT_GT(m.disk_margin, 0.0);
+  EXPECT_LT(m.disk_gain_high, closed_form);
+}
+
+TEST(Margins, GainMarginEqualsEigenvalueBoundaryForFullPid) {
+  for (const DerivativeSource source : {DerivativeSource::Rates, DerivativeSource::Difference}) {
+    JointLoop loop;
+    loop.tick_s = 0.005;
+    loop.plant_gain = 0.8;
+    loop.damping_per_s = 0.7;
+    loop.gains = {900.0, 1500.0, 40.0};
+    loop.derivative_filter_s = 0.002;
+    loop.derivative = source;
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    ASSERT_TRUE(m.stable);
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 1e3), gm, 1e-6 * gm);
+  }
+}
+
+TEST(Margins, ScalingByGainMarginIsTheSimulatedStabilityBoundary) {
+  JointLoop loop;
+  loop.tick_s = 0.01;
+  loop.plant_gain = 1.3;
+  loop.damping_per_s = 0.2;
+  loop.gains = {300.0, 200.0, 25.0};
+  loop.derivative_filter_s = 0.005;
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+  EXPECT_LT(simulate(loop, 0.95 * gm, 0, 40000), 1e-6);
+  EXPECT_GT(simulate(loop, 1.05 * gm, 0, 40000), 1.0);
+}
+
+TEST(Margins, DelayMarginIsTheSimulatedStabilityBoundary) {
+  // A fine tick so that whole ticks resolve the delay margin to better than 5 %.
+  JointLoop loop;
+  loop.tick_s = 0.001;
+  loop.plant_gain = 1.0;
+  loop.gains = {100.0, 20.0, 15.0};
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  ASSERT_GT(m.delay_margin_s, 40 * loop.tick_s);
+  const int below = static_cast<int>(std::floor(0.95 * m.delay_margin_s / loop.tick_s));
+  const int above = static_cast<int>(std::ceil(1.05 * m.delay_margin_s / loop.tick_s));
+  EXPECT_LT(simulate(loop, 1.0, below, 200000), 1e-6);
+  EXPECT_GT(simulate(loop, 1.0, above, 200000), 1.0);
+  // The discrete count lies between them, and the eigenvalues agree with it.
+  EXPECT_GT(m.delay_margin_ticks, below);
+  EXPECT_LE(m.delay_margin_ticks, above);
+  EXPECT_LT(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks - 1), 1.0);
+  EXPECT_GE(fuzzypid::sim::closed_loop_spectral_radius(loop, 1.0, m.delay_margin_ticks), 1.0);
+}
+
+TEST(Margins, FractionalDelayMarginIsTheSimulatedStabilityBoundary) {
+  // A coarse tick: the delay margin is a fraction of a tick, which whole ticks cannot resolve.
+  JointLoop loop;
+  loop.tick_s = 0.05;
+  loop.plant_gain = 1.0;
+  loop.gains = {172.5, 0.00045, 21.35};  // tuned_pid's gains, continuous
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  ASSERT_TRUE(m.stable);
+  ASSERT_EQ(m.delay_margin_ticks, 1);
+  const double exact = m.delay_margin_exact_s;
+  ASSERT_GT(exact, 0.0);
+  ASSERT_LT(exact, loop.tick_s);
+  EXPECT_LT(simulate_delay(loop, 1.0, 0.95 * exact, 20000), 1e-6);
+  EXPECT_GT(simulate_delay(loop, 1.0, 1.05 * exact, 20000), 1.0);
+  // With half that delay in the loop, the frequency response (modified z-transform) and the
+  // eigenvalues agree on the gain margin.
+  JointLoop late = loop;
+  fuzzypid::sim::set_delay(late, 0.5 * exact);
+  EXPECT_EQ(late.delay_ticks, 0);
+  EXPECT_GT(late.delay_fraction, 0.0);
+  const LoopMargins ml = fuzzypid::sim::margins(late);
+  ASSERT_TRUE(ml.stable);
+  const double gm = std::pow(10.0, ml.gain_margin_db / 20.0);
+  EXPECT_NEAR(eigen_gain_boundary(late, 1.0, 100.0), gm, 1e-6 * gm);
+}
+
+TEST(Margins, RandomJointsStableBelowAndDivergentAboveGainMargin) {
+  const std::uint64_t seed = 20261203;
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    JointLoop loop;
+    loop.tick_s = 0.001 * std::pow(50.0, unit(rng));   // 1 .. 50 ms
+    loop.plant_gain = 0.5 * std::pow(4.0, unit(rng));  // J^ / J in 0.5 .. 2
+    loop.damping_per_s = 2.0 * unit(rng);
+    const double wb = (0.05 + 0.25 * unit(rng)) * M_PI / loop.tick_s;
+    loop.gains = {wb * wb, 0.1 * wb * wb * wb, (1.0 + unit(rng)) * wb};
+    loop.derivative_filter_s = 0.2 * unit(rng) * loop.tick_s;
+    loop.derivative = unit(rng) < 0.5 ? DerivativeSource::Rates : DerivativeSource::Difference;
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    if (!m.stable || !std::isfinite(m.gain_margin_db)) continue;
+    ++checked;
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    EXPECT_LT(simulate(loop, 0.95 * gm, 0, 40000), 1e-3) << "trial " << trial;
+    EXPECT_GT(simulate(loop, 1.05 * gm, 0, 40000), 1.0) << "trial " << trial;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+TEST(Margins, UnstableLoopHasNoDiskMargin) {
+  JointLoop loop;
+  loop.tick_s = 0.05;
+  loop.gains = {4.0, 0.0, 100.0 * 0.05};  // Kd h = 0.25 ... times 10: beyond 2 / (Kd h)
+  loop.gains.kd *= 10.0;
+  const LoopMargins m = fuzzypid::sim::margins(loop);
+  EXPECT_FALSE(m.stable);
+  EXPECT_EQ(m.disk_margin, 0.0);
+  EXPECT_LT(m.gain_margin_low_db, 0.0);
+}
+
+TEST(Margins, InvalidLoopIsUnstable) {
+  JointLoop loop;
+  loop.tick_s = 0.0;
+  EXPECT_FALSE(fuzzypid::sim::margins(loop).stable);
+  loop.tick_s = 0.01;
+  loop.gains.kp = NAN;
+  EXPECT_FALSE(fuzzypid::sim::margins(loop).stable);
+}
+
+// The ER50-C20's default condition (the section 6 line) with a shipped controller file.
+struct Er50 {
+  std::vector<fuzzypid::sim::Condition> conditions{fuzzypid::sim::Condition{}};
+  std::optional<fuzzypid::sim::ExperimentSet> experiments;
+  Er50() {
+    std::string error;
+    experiments =
+        fuzzypid::sim::ExperimentSet::create(conditions, fuzzypid::sim::ExperimentOptions{}, error);
+    EXPECT_TRUE(experiments) << error;
+  }
+  fuzzypid::sim::Certificate certify(const std::string& file, double delay_s = 0.0) const {
+    fuzzypid::controller::ControllerSpec spec;
+    fuzzypid::FileError err;
+    EXPECT_TRUE(
+        fuzzypid::controller_file::load(std::string(FUZZYPID_SOURCE_DIR) + "/" + file, spec, err))
+        << err.to_string();
+    fuzzypid::sim::CertifyOptions options;
+    options.delay_s = delay_s;
+    options.grid_points = 5;
+    std::string error;
+    const auto cert = fuzzypid::sim::certify(spec, conditions, *experiments, options, error);
+    EXPECT_TRUE(cert) << error;
+    return cert.value_or(fuzzypid::sim::Certificate{});
+  }
+};
+
+TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml");
+  EXPECT_TRUE(cert.certified);
+  EXPECT_EQ(cert.verdict, "certified (linear, no saturation)");
+  for (const auto& joint : cert.joints) {
+    EXPECT_LE(joint.inertia_min_kgm2, joint.nominal_inertia_kgm2);
+    EXPECT_GE(joint.inertia_max_kgm2, joint.nominal_inertia_kgm2);
+    // The worst case's loop, simulated with pid::Pid: stable below its margin, divergent above.
+    const fuzzypid::sim::MarginCase& w = joint.worst_gain;
+    const double gm = std::pow(10.0, w.margins.gain_margin_db / 20.0);
+    EXPECT_LT(simulate(w.loop, 0.95 * gm, 0, 20000), 1e-6);
+    EXPECT_GT(simulate(w.loop, 1.05 * gm, 0, 20000), 1.0);
+    // And with its whole-tick delay margin.
+    const int ticks = joint.worst_delay.margins.delay_margin_ticks;
+    ASSERT_GE(ticks, 1);
+    EXPECT_LT(simulate(joint.worst_delay.loop, 1.0, ticks - 1, 20000), 1e-6);
+    EXPECT_GT(simulate(joint.worst_delay.loop, 1.0, ticks, 20000), 1.0);
+  }
+}
+
+TEST(Certify, MovingGainsAreNotCertifiedAndTheirGainSetIsSearched) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_scheduled.toml");
+  EXPECT_TRUE(cert.moving_gains);
+  EXPECT_FALSE(cert.certified);
+  EXPECT_EQ(cert.verdict, "not certified (frozen-gain margins only)");
+  for (const auto& joint : cert.joints)
+    EXPECT_GT(joint.gain_triples, 1u);
+}
+
+TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml");
+  for (std::size_t i = 0; i < a.joints.size(); ++i) {
+    EXPECT_EQ(a.joints[i].worst_disk.margins.disk_margin,
+              b.joints[i].worst_disk.margins.disk_margin);
+    EXPECT_EQ(a.joints[i].worst_gain.margins.gain_margin_db,
+              b.joints[i].worst_gain.margins.gain_margin_db);
+  }
+  // tuned_pid's delay margin is under one 50 ms tick.
+  const fuzzypid::sim::Certificate late = er50.certify("controllers/tuned_pid.toml", 0.05);
+  EXPECT_FALSE(late.certified);
+  EXPECT_EQ(late.verdict, "not certified (unstable at frozen gains)");
+}
+
+TEST(Certify, AFractionalDelayUsesUpTheExactDelayMargin) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml", 0.012);
+  EXPECT_TRUE(b.certified);
+  for (std::size_t i = 0; i < a.joints.size(); ++i)
+    EXPECT_NEAR(a.joints[i].worst_delay.margins.delay_margin_exact_s - 0.012,
+                b.joints[i].worst_delay.margins.delay_margin_exact_s, 1e-9);
+  fuzzypid::controller::ControllerSpec spec;
+  fuzzypid::sim::CertifyOptions options;
+  options.delay_s = -0.001;
+  std::string error;
+  EXPECT_FALSE(fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error));
+  EXPECT_EQ(error, "the delay must be finite and >= 0");
+}
+
+}  // namespace
