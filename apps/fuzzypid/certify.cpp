@@ -1,6 +1,7 @@
 // `fuzzypid certify CONTROLLER`: the frozen-gain margins of each joint's linear loop over the
 // inertia range of the conditions (sim/certify.hpp, docs/margins.md), as a table or JSON.
 // Exit 0 certified, 1 not certified, 2 bad usage or an input that cannot be read.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -27,7 +28,6 @@ struct CertifyCli {
   std::string conditions;
   std::string set = "held-out";
   bool set_given = false;
-  double delay_ms = 0.0;
   std::size_t grid = 25;
   bool json = false;
   RobotOptions robot;
@@ -171,7 +171,11 @@ int run_certify(const CertifyCli& o) {
                    tool, o.controller.c_str(), spec.units.tick_s, tick);
   }
   sim::CertifyOptions options;
-  options.delay_s = o.delay_ms * 1e-3;
+  // The delay of the plant (--delay-ms, shared with sim_ab, or the conditions' delay_ms): the
+  // largest the conditions have, as the worst case.
+  options.delay_s = 0.0;
+  for (const sim::Condition& c : conditions)
+    options.delay_s = std::max(options.delay_s, c.effects.delay_s);
   options.grid_points = o.grid;
   const auto cert = sim::certify(spec, conditions, *experiments, options, error);
   if (!cert) {
@@ -201,10 +205,6 @@ void add_certify_command(CLI::App& app, std::function<int()>& run) {
           ->option_text("FILE");
   CLI::Option* set = cmd->add_option("--set", o->set, "the set of --conditions (default held-out)")
                          ->option_text("NAME");
-  cmd->add_option("--delay-ms", o->delay_ms,
-                  "extra delay between the controller's output and the plant, ms (default 0)")
-      ->check(finite_in(0.0, 1e4))
-      ->option_text("D");
   cmd->add_option("--grid", o->grid,
                   "points per axis of the (Ke e, Kec ec) grid over [-1, 1] for moving-gain "
                   "families (default 25)")

@@ -625,6 +625,14 @@ void add_export_header_command(CLI::App& app, std::function<int()>& run) {
   cmd->callback([&run, o, out] {
     if (const std::string bad = check_robot_options(o->robot); !bad.empty())
       throw CLI::ValidationError(bad);
+    // The header's J^ and torque limits are the nominal model's: the plant's payload, dynamics,
+    // gravity and joint effects change neither, so those options would do nothing.
+    if (o->robot.payload_kg || o->robot.dynamics || o->robot.gravity ||
+        o->robot.effects != sim::JointEffects{})
+      throw CLI::ValidationError(
+          "export-header takes only the robot options that choose the nominal model (--urdf, "
+          "--base-link, --tip-link, --path, --tick-ms, --armature, --ik-seed): the payload, the "
+          "dynamics, gravity and the joint effects change neither J^ nor the torque limits");
     o->out_given = out->count() > 0;
     run = [o] { return run_export_header(*o); };
   });
