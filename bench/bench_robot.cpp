@@ -179,8 +179,10 @@ void BM_ConditionCost(benchmark::State& state) {
   }
   const double tick_s = static_cast<double>(state.range(0)) * 1e-3;
   const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
-  robot::JointPlant decoupled(*m);
-  robot::PlantConfig coupled_config;
+  robot::PlantConfig decoupled_config;
+  decoupled_config.armature_kgm2 = robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's motors
+  robot::JointPlant decoupled(*m, decoupled_config);
+  robot::PlantConfig coupled_config = decoupled_config;
   coupled_config.coupling = robot::PlantCoupling::Coupled;
   coupled_config.gravity = true;
   robot::JointPlant coupled(*m, coupled_config);
@@ -217,6 +219,7 @@ void BM_CoupledStepCost(benchmark::State& state) {
   const double tick_s = static_cast<double>(state.range(0)) * 1e-3;
   const int ticks = static_cast<int>(std::lround(5.0 / tick_s));
   robot::PlantConfig config;
+  config.armature_kgm2 = robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's motors
   config.coupling = robot::PlantCoupling::Coupled;
   config.gravity = true;
   config.coupled_substep_s = static_cast<double>(state.range(1)) * 1e-3;

@@ -120,7 +120,7 @@ std::optional<Experiment> Experiment::create(const RobotSetup& setup,
   } else if (!is_bundled_urdf(urdf)) {
     o.plant.armature_kgm2 = robot::JointVector{};
   } else {
-    o.plant.armature_kgm2 = robot::PlantConfig{}.armature_kgm2;
+    o.plant.armature_kgm2 = robot::kEr50ArmatureKgm2;
   }
   std::optional<Experiment> ex;
   if (setup.path.empty()) {

@@ -440,6 +440,7 @@ PlantConfig coupled_step(PlantConfig c, double substep_s, double step_rad, doubl
 
 double coupled_run_error(double tick_s, double substep_s, double step_rad) {
   PlantConfig c;
+  c.armature_kgm2 = kEr50ArmatureKgm2;  // the bundled ER50-C20 with its motors
   c.coupling = PlantCoupling::Coupled;
   c.gravity = true;
   c.damping_nms = {20.0, 30.0, 10.0, 1.0, 1.0, 0.2};
@@ -587,6 +588,7 @@ TEST(JointPlant, HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerS
 // to rounding.
 PlantConfig double_integrator() {
   PlantConfig c;
+  c.armature_kgm2 = kEr50ArmatureKgm2;  // the bundled ER50-C20's motors (a gear needs them)
   c.inertia_update = InertiaUpdate::Fixed;
   c.torque_limit_nm = JointVector{1e6, 1e6, 1e6, 1e6, 1e6, 1e6};
   return c;

@@ -50,7 +50,9 @@ class ClosedLoopTest : public ::testing::Test {
     ASSERT_TRUE(loaded.model) << loaded.error;
     model_ = std::move(loaded.model);
     std::string error;
-    experiment_ = sim::Experiment::create(*model_, robot::paper_path_spec(), {}, error);
+    sim::ExperimentOptions options;
+    options.plant.armature_kgm2 = robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's motors
+    experiment_ = sim::Experiment::create(*model_, robot::paper_path_spec(), options, error);
     ASSERT_TRUE(experiment_) << error;
   }
   std::optional<robot::RobotModel> model_;
@@ -98,6 +100,7 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
   control::JointController<double, kJ, control::FuzzyPid<double, control::GainSchedule<double>>>
       controller(joints);
   robot::PlantConfig pc;
+  pc.armature_kgm2 = robot::kEr50ArmatureKgm2;  // as the experiment gives the bundled ER50-C20
   pc.inertia_scale.fill(1.3);
   for (std::size_t i = 0; i < kJ; ++i)
     pc.damping_nms[i] = 0.5 * J[i];

@@ -39,11 +39,12 @@ TEST(RobotSetup, TheDefaultIsTheBundledEr50OnTheSection6LineWithItsArmature) {
   const auto ex = Experiment::create(RobotSetup{}, ExperimentOptions{}, error);
   ASSERT_TRUE(ex) << error;
   EXPECT_EQ(ex->ticks(), 101u);
-  EXPECT_EQ(ex->armature_kgm2(), robot::PlantConfig{}.armature_kgm2);
+  EXPECT_EQ(ex->armature_kgm2(), robot::kEr50ArmatureKgm2);
   // The same experiment as the one built from the model and the path spec.
   const auto model = robot::RobotModel::load(robot::default_urdf_path());
-  const auto direct =
-      Experiment::create(*model.model, robot::paper_path_spec(), ExperimentOptions{}, error);
+  ExperimentOptions options;
+  options.plant.armature_kgm2 = robot::kEr50ArmatureKgm2;
+  const auto direct = Experiment::create(*model.model, robot::paper_path_spec(), options, error);
   ASSERT_TRUE(direct);
   EXPECT_EQ(ex->path().position_rad, direct->path().position_rad);
   EXPECT_EQ(ex->nominal_inertia(), direct->nominal_inertia());

@@ -28,7 +28,9 @@ std::optional<sim::Experiment> paper_experiment(const std::string& urdf, std::st
     error = loaded.error;
     return std::nullopt;
   }
-  return sim::Experiment::create(*loaded.model, robot::paper_path_spec(), {}, error);
+  sim::ExperimentOptions options;
+  options.plant.armature_kgm2 = robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's motors
+  return sim::Experiment::create(*loaded.model, robot::paper_path_spec(), options, error);
 }
 
 // The paper's PID with its gains times `scale`.

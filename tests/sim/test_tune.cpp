@@ -187,8 +187,10 @@ class TuneOnTheRobot : public ::testing::Test {
     ASSERT_TRUE(loaded.model) << loaded.error;
     model_ = std::move(loaded.model);
     std::string error;
-    experiment_ =
-        fuzzypid::sim::Experiment::create(*model_, fuzzypid::robot::paper_path_spec(), {}, error);
+    fuzzypid::sim::ExperimentOptions options;
+    options.plant.armature_kgm2 = fuzzypid::robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's
+    experiment_ = fuzzypid::sim::Experiment::create(*model_, fuzzypid::robot::paper_path_spec(),
+                                                    options, error);
     ASSERT_TRUE(experiment_) << error;
     fuzzypid::sim::Condition behind, ahead;
     behind.name = "behind";

@@ -141,6 +141,7 @@ struct Soak {
 std::optional<sim::Experiment> make_experiment(const robot::RobotModel& model, std::string& error) {
   sim::ExperimentOptions options;  // the A/B simulation's defaults: per-tick paper gains
   options.tick_s = kTickS;
+  options.plant.armature_kgm2 = robot::kEr50ArmatureKgm2;  // the bundled ER50-C20's motors
   return sim::Experiment::create(model, robot::paper_path_spec(), options, error);
 }
 

@@ -87,9 +87,10 @@ struct PlantConfig {
   InertiaUpdate inertia_update = InertiaUpdate::EveryTick;
   // Configuration at which a Fixed inertia is evaluated; nullopt = the configuration of reset().
   std::optional<JointVector> fixed_configuration_rad;
-  // Reflected motor inertia (rotor inertia × gear ratio²), kg·m². Estimates from catalogue rotor
-  // inertias of 50 kg-class arms (docs/robot.md), each uncertain by a factor of two.
-  JointVector armature_kgm2 = {8.5, 16.0, 5.4, 1.7, 1.7, 0.5};
+  // Reflected motor inertia (rotor inertia × gear ratio²), kg·m². None by default: a URDF has no
+  // armature field, and no robot's estimate fits another (the bundled ER50-C20's is
+  // kEr50ArmatureKgm2, which sim::Experiment gives that robot).
+  JointVector armature_kgm2 = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   // Multiplies the link inertia (payload scenarios); the armature is not scaled.
   JointVector inertia_scale = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   // Viscous damping b_i, N·m·s/rad. Zero: a pure double integrator.

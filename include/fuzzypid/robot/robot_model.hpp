@@ -23,6 +23,11 @@ struct LoadResult;
 // urdf/er50_c20.urdf if it exists, else the installed <datadir>/fuzzypid/urdf/er50_c20.urdf.
 [[nodiscard]] std::string default_urdf_path();
 
+// The bundled ER50-C20's reflected motor inertia (rotor inertia x gear ratio²), kg·m²: estimates
+// from catalogue rotor inertias of 50 kg-class arms (docs/robot.md), each uncertain by a factor of
+// two. A URDF has no armature field; this is the bundled robot's, no other's.
+inline constexpr JointVector kEr50ArmatureKgm2 = {8.5, 16.0, 5.4, 1.7, 1.7, 0.5};
+
 class RobotModel {
  public:
   // Parses urdf_path and extracts the chain root_link -> tip_link. An empty root_link means the
