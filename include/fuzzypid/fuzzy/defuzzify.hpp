@@ -118,8 +118,10 @@ Scalar bisector_sampled(const Set& set, Scalar min, Scalar max, int resolution) 
 
 enum class MaximumKind : std::uint8_t { Smallest, Mean, Largest };
 
-// Smallest, mean or largest of maximum (fuzzylite semantics: the mean is taken over the first
-// plateau holding the maximum; ties keep the first (smallest) or last (largest) sample).
+// Smallest, mean or largest of maximum over ALL the samples where the set is largest (MATLAB,
+// Octave and fuzzylite 8: the mean is sum(x_i) / n over every maximising sample, so two equal
+// plateaus give the mean of both; fuzzylite 6 took the middle of the first plateau). NaN when the
+// set is 0 at every sample.
 template <class Scalar, class Set>
 Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar max,
                           int resolution) noexcept {
@@ -127,35 +129,21 @@ Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar m
   Scalar y_max = Scalar(-1);
   Scalar x_smallest = min;
   Scalar x_largest = max;
-  bool same_plateau = false;
+  Scalar x_sum = Scalar(0);
+  int count = 0;
   for (int i = 0; i < resolution; ++i) {
     const Scalar x = min + (Scalar(i) + Scalar(0.5)) * dx;
     const Scalar y = set(x);
-    switch (kind) {
-      case MaximumKind::Smallest:
-        if (y > y_max) {
-          y_max = y;
-          x_smallest = x;
-        }
-        break;
-      case MaximumKind::Largest:
-        if (y >= y_max) {
-          y_max = y;
-          x_largest = x;
-        }
-        break;
-      case MaximumKind::Mean:
-        if (y > y_max) {
-          y_max = y;
-          x_smallest = x;
-          x_largest = x;
-          same_plateau = true;
-        } else if (y == y_max && same_plateau) {
-          x_largest = x;
-        } else if (y < y_max) {
-          same_plateau = false;
-        }
-        break;
+    if (y > y_max) {
+      y_max = y;
+      x_smallest = x;
+      x_largest = x;
+      x_sum = x;
+      count = 1;
+    } else if (y == y_max) {
+      x_largest = x;
+      x_sum += x;
+      ++count;
     }
   }
   if (!(y_max > Scalar(0))) return std::numeric_limits<Scalar>::quiet_NaN();
@@ -167,7 +155,7 @@ Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar m
     case MaximumKind::Mean:
       break;
   }
-  return (x_largest + x_smallest) / Scalar(2);
+  return x_sum / Scalar(count);
 }
 
 // ---------------------------------------------------------------------------------------------
