@@ -158,6 +158,8 @@ struct Comparison {
 //  - a mean of maximum whose maximising samples are not one run (two or more plateaus at the
 //    maximum): fuzzylite 6 takes the middle of the first plateau, fuzzylite 8 and MATLAB the
 //    mean of all of them.
+//  - a Bisector: fuzzylite 8 takes the sample where the running area is nearest half, fuzzylite 6
+//    interpolates between two fronts swept from both ends (they agree only by chance).
 bool fuzzylite6_tsukamoto_differs(const Model& model, std::size_t o) {
   using fuzzypid::fuzzy::OutputTermKind;
   using fuzzypid::fuzzy::Shape;
@@ -221,6 +223,7 @@ Comparison compare(const Model& model, fl::Engine& oracle, int n, std::uint64_t 
     for (std::size_t o = 0; o < model.num_outputs; ++o) {
       const double expected = oracle.getOutputVariable(o)->getValue();
       if (fuzzylite6_tsukamoto_differs(model, o) ||
+          model.outputs[o].defuzzifier == fuzzypid::fuzzy::Defuzzifier::Bisector ||
           fuzzylite6_mean_of_maximum_differs(model, o, oracle)) {
         ++c.skipped;
         continue;

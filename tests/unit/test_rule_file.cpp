@@ -129,7 +129,11 @@ double compare_with_fuzzylite(Format f, const std::string& text, int points, std
         EXPECT_EQ(out[o], 0.0);
         continue;
       }
-      if (several_maximum_plateaus(*model, o, *oracle)) continue;
+      // fuzzylite 8's Bisector (the sample nearest half the area), not fuzzylite 6's (two fronts
+      // interpolated): fuzzylite 6 is no oracle for it (docs/rule_files.md).
+      if (several_maximum_plateaus(*model, o, *oracle) ||
+          model->outputs[o].defuzzifier == fuzzypid::fuzzy::Defuzzifier::Bisector)
+        continue;
       const double diff = std::fabs(out[o] - expected);
       max_diff = std::max(max_diff, diff);
       if (diff > 1e-9) {

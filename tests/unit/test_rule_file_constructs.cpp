@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
@@ -555,6 +557,30 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
     EXPECT_EQ(z, shape == Shape::ZShape ? 2.0 : shape == Shape::Sigmoid ? hi : 6.0);
   }
   std::printf("Tsukamoto: %d inverses, max |mu(z(w)) - w| = %.3g\n", cases, worst);
+}
+
+// Bisector as fuzzylite 8 computes it: the sample where the running area is nearest half the
+// total (the mean of such samples when the area stops growing there). On the two plateaus, cut
+// at one degree, 60 equal samples: the running area is half after the 30th, x = 3.95, and stays
+// so over the zeros up to the 40th sample before `right` starts: (3.95 + ... + 5.95) / 21 = 4.95.
+TEST(RuleFileFll, BisectorIsTheSampleNearestHalfTheArea) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  std::string text;
+  {
+    std::ifstream in(FUZZYPID_RULEFILES_DIR "/corpus/handmade_mom_two_plateaus.fll");
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  text = replace(text, "defuzzifier: MeanOfMaximum 100", "defuzzifier: Bisector 100");
+  ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "bisector.fll", *model, error))
+      << error.to_string();
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.5;
+  double y[3] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  EXPECT_NEAR(y[0], 4.95, 1e-12);
 }
 
 // Two equal plateaus: the mean of maximum over all maximising samples (MATLAB, Octave,
