@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <string>
 
+#include "fuzzypid/control/engine_supervisor.hpp"
+
 namespace fuzzypid::codegen {
 
 namespace {
@@ -191,7 +193,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
        "rule\n"
        "// base at (e, ec) gives (dKp, dKi, dKd), as control::EngineSupervisor with a fixed\n"
        "// workspace per joint.\n";
-  h += R"(template <class Scalar>
+  std::string supervisor = R"(template <class Scalar>
 class Supervisor {
  public:
   using Workspace = fuzzypid::fuzzy::EngineWorkspace<Scalar, RuleBaseCapacity>;
@@ -200,9 +202,20 @@ class Supervisor {
 
   [[nodiscard]] fuzzypid::Status infer(Scalar e, Scalar ec, Workspace& ws,
                                        std::array<Scalar, 3>& delta) const noexcept {
-    const Scalar in[2] = {e, ec};
-    return fuzzypid::fuzzy::evaluate(kRuleBase<Scalar>, ws.view(), in, delta.data());
+    Scalar in[2] = {};
+    in[kInputOf[0]] = e;
+    in[kInputOf[1]] = ec;
+    Scalar out[3] = {};
+    const fuzzypid::Status s = fuzzypid::fuzzy::evaluate(kRuleBase<Scalar>, ws.view(), in, out);
+    for (std::size_t g = 0; g < 3; ++g)
+      delta[g] = out[kOutputOf[g]];
+    return s;
   }
+
+ private:
+  // The rule base's index of e, ec and of dKp, dKi, dKd (bound by name at export).
+  static constexpr std::size_t kInputOf[2] = {@IN@};
+  static constexpr std::size_t kOutputOf[3] = {@OUT@};
 };
 
 // The shared, immutable supervisor the joints point to.
@@ -210,6 +223,19 @@ template <class Scalar>
 inline constexpr Supervisor<Scalar> kSupervisor{};
 
 )";
+  // `m` is a valid supervisor (export-header checked it), so every name is found once.
+  const auto index = [&](const auto& vars, std::size_t n, const char* name) {
+    return num(static_cast<std::size_t>(control::supervisor_detail::index_named(vars, n, name)));
+  };
+  const std::string in = index(m.inputs, m.num_inputs, control::kSupervisorInputNames[0]) + ", " +
+                         index(m.inputs, m.num_inputs, control::kSupervisorInputNames[1]);
+  std::string out;
+  for (std::size_t g = 0; g < 3; ++g)
+    out +=
+        (g > 0 ? ", " : "") + index(m.outputs, m.num_outputs, control::kSupervisorOutputNames[g]);
+  supervisor.replace(supervisor.find("@IN@"), 4, in);
+  supervisor.replace(supervisor.find("@OUT@"), 5, out);
+  h += supervisor;
   return h;
 }
 

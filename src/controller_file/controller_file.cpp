@@ -65,11 +65,15 @@ std::shared_ptr<const fuzzy::EngineModel<double>> load_rule_model(const TableRea
   rulefile::LoadError error;
   if (!rulefile::load_rule_file(resolved.string(), *model, error))
     where.fail(node, "cannot load the rule file: " + error.to_string());
+  // Bound by name (control/engine_supervisor.hpp), so the order of the blocks does not matter;
+  // a term name used twice in a variable would make a rule's meaning depend on the reader's
+  // resolution rule, so a rule file that drives gains may not have one.
+  if (const std::string bad = control::supervisor_binding_error(*model); !bad.empty())
+    where.fail(node, "the rule file cannot supervise the gains: " + resolved.string() + ": " + bad);
+  if (!error.warnings.empty())
+    where.fail(node, "the rule file cannot supervise the gains: " + error.warnings.front());
   if (!control::EngineSupervisor<double>(model.get()).valid())
-    where.fail(node,
-               "the rule file must have two inputs (e, ec) and three outputs (dKp, dKi, "
-               "dKd): " +
-                   resolved.string());
+    where.fail(node, "the rule file cannot supervise the gains: " + resolved.string());
   return model;
 }
 

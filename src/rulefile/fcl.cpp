@@ -92,7 +92,7 @@ class FclParser {
  public:
   FclParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
-    error_ = LoadError{source, 0, {}};
+    error_ = LoadError{source, 0, {}, {}};
   }
 
   bool parse(std::string_view text) {
@@ -119,6 +119,9 @@ class FclParser {
   bool fail_at(int line, const std::string& message) {
     line_ = line;
     return fail(message);
+  }
+  void warn(const std::string& message) {
+    error_.warnings.push_back(LoadError{error_.file, line_, message, {}}.to_string());
   }
 
   static std::string first_word(const std::string& s) {
@@ -368,6 +371,12 @@ class FclParser {
     auto& names = input ? model_.inputs[current_].term_names : model_.outputs[current_].term_names;
     // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
     // the first, as fuzzylite's Variable::getTerm resolves it.
+    for (std::size_t t = 0; t < count; ++t)
+      if (text::name_of(names[t]) == name) {
+        warn("term '" + name + "' repeats the name of an earlier term of the variable; rules " +
+             "naming it mean the first");
+        break;
+      }
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     std::string type;

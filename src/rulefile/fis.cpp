@@ -115,7 +115,7 @@ class FisParser {
  public:
   FisParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
-    error_ = LoadError{source, 0, {}};
+    error_ = LoadError{source, 0, {}, {}};
   }
 
   bool parse(std::string_view text) {

@@ -29,7 +29,7 @@ class FllParser {
  public:
   FllParser(const std::string& source, Builder& model, LoadError& error, const LoadOptions& options)
       : model_(model), error_(error), options_(options) {
-    error_ = LoadError{source, 0, {}};
+    error_ = LoadError{source, 0, {}, {}};
   }
 
   bool parse(std::string_view text) {
@@ -60,6 +60,9 @@ class FllParser {
   bool fail_at(int line, const std::string& message) {
     line_ = line;
     return fail(message);
+  }
+  void warn(const std::string& message) {
+    error_.warnings.push_back(LoadError{error_.file, line_, message, {}}.to_string());
   }
 
   // Drops the rules of a disabled block (fuzzylite skips it).
@@ -269,6 +272,12 @@ class FllParser {
                         : model_.outputs[model_.num_outputs - 1].term_names;
     // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
     // the first, as fuzzylite's Variable::getTerm resolves it.
+    for (std::size_t t = 0; t < count; ++t)
+      if (text::name_of(names[t]) == name) {
+        warn("term '" + name + "' repeats the name of an earlier term of the variable; rules " +
+             "naming it mean the first");
+        break;
+      }
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
     if (input) {

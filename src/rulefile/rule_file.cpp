@@ -68,7 +68,7 @@ constexpr std::size_t kMaxRuleFileBytes = std::size_t{16} << 20;
 bool read_file(const std::string& path, std::string& text, LoadError& error) {
   std::string reason;
   if (!support::read_file_bounded(path, kMaxRuleFileBytes, text, reason)) {
-    error = LoadError{path, 0, reason};
+    error = LoadError{path, 0, reason, {}};
     return false;
   }
   return true;
@@ -101,7 +101,7 @@ bool load_rule_file(const std::string& path, Model& model, LoadError& error,
   if (has_extension(path, ".fis")) return load_fis(path, model, error, options);
   if (has_extension(path, ".fll")) return load_fll(path, model, error, options);
   if (has_extension(path, ".fcl")) return load_fcl(path, model, error, options);
-  error = LoadError{path, 0, "unknown rule file extension (expected .fis, .fll or .fcl)"};
+  error = LoadError{path, 0, "unknown rule file extension (expected .fis, .fll or .fcl)", {}};
   return false;
 }
 

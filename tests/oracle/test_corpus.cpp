@@ -148,9 +148,54 @@ struct Comparison {
   double max_diff = 0;
   std::size_t points = 0;
   std::size_t allocations = 0;
+  std::size_t skipped = 0;  // output values not compared: fuzzylite 6's known defects
 };
 
-// Our model and fuzzylite's engine on `n` sampled input vectors.
+// Where fuzzylite 6 and fuzzylite 8 disagree we follow fuzzylite 8 (and MATLAB), so fuzzylite 6 is
+// no oracle there (docs/rule_files.md, "fuzzylite 6 and fuzzylite 8"); these cases are skipped:
+//  - a Tsukamoto output (weighted defuzzifier over membership terms) with a Concave, SShape or
+//    ZShape term or a term of height other than 1: fuzzylite 6's inverses miss mu(z) = w there;
+//  - a mean of maximum whose maximising samples are not one run (two or more plateaus at the
+//    maximum): fuzzylite 6 takes the middle of the first plateau, fuzzylite 8 and MATLAB the
+//    mean of all of them.
+//  - a Bisector: fuzzylite 8 takes the sample where the running area is nearest half, fuzzylite 6
+//    interpolates between two fronts swept from both ends (they agree only by chance).
+bool fuzzylite6_tsukamoto_differs(const Model& model, std::size_t o) {
+  using fuzzypid::fuzzy::OutputTermKind;
+  using fuzzypid::fuzzy::Shape;
+  const auto& out = model.outputs[o];
+  if (!fuzzypid::fuzzy::is_sugeno(out.defuzzifier)) return false;
+  for (std::size_t t = 0; t < out.num_terms; ++t) {
+    const auto& term = out.terms[t];
+    if (term.kind != OutputTermKind::Membership) continue;
+    const Shape s = term.membership.shape;
+    if (s == Shape::Concave || s == Shape::SShape || s == Shape::ZShape ||
+        term.membership.height != 1.0)
+      return true;
+  }
+  return false;
+}
+
+bool fuzzylite6_mean_of_maximum_differs(const Model& model, std::size_t o, fl::Engine& oracle) {
+  const auto& out = model.outputs[o];
+  if (out.defuzzifier != fuzzypid::fuzzy::Defuzzifier::MeanOfMaximum) return false;
+  const fl::OutputVariable* v = oracle.getOutputVariable(o);
+  const double dx = (out.max - out.min) / out.resolution;
+  double y_max = 0.0;
+  for (int i = 0; i < out.resolution; ++i)
+    y_max = std::max(y_max, v->fuzzyOutput()->membership(out.min + (i + 0.5) * dx));
+  int runs = 0;
+  bool in_run = false;
+  for (int i = 0; i < out.resolution; ++i) {
+    const bool at_max = v->fuzzyOutput()->membership(out.min + (i + 0.5) * dx) == y_max;
+    runs += at_max && !in_run;
+    in_run = at_max;
+  }
+  return runs > 1;
+}
+
+// Our model and fuzzylite's engine on `n` sampled input vectors (fuzzylite 6's known defects
+// skipped, above).
 Comparison compare(const Model& model, fl::Engine& oracle, int n, std::uint64_t seed) {
   Comparison c;
   fuzzypid::fuzzy::Engine<double>* engine = new fuzzypid::fuzzy::Engine<double>(model);
@@ -177,6 +222,12 @@ Comparison compare(const Model& model, fl::Engine& oracle, int n, std::uint64_t 
     ++c.points;
     for (std::size_t o = 0; o < model.num_outputs; ++o) {
       const double expected = oracle.getOutputVariable(o)->getValue();
+      if (fuzzylite6_tsukamoto_differs(model, o) ||
+          model.outputs[o].defuzzifier == fuzzypid::fuzzy::Defuzzifier::Bisector ||
+          fuzzylite6_mean_of_maximum_differs(model, o, oracle)) {
+        ++c.skipped;
+        continue;
+      }
       if (std::isnan(expected)) {
         EXPECT_EQ(s, Status::NoRuleFired);
         EXPECT_EQ(out[o], 0.0);
@@ -224,7 +275,7 @@ TEST(RuleFileCorpus, LoadsAndEqualsFuzzyliteOnEveryFile) {
     files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   ASSERT_GE(files.size(), 40u);
-  std::size_t loaded = 0, refused = 0, points = 0, allocations = 0;
+  std::size_t loaded = 0, refused = 0, points = 0, allocations = 0, skipped = 0;
   double worst = 0;
   std::string worst_file;
   std::uint64_t seed = 1;
@@ -251,12 +302,15 @@ TEST(RuleFileCorpus, LoadsAndEqualsFuzzyliteOnEveryFile) {
     const Comparison c = compare(*model, *oracle, 2000, seed++);
     points += c.points;
     allocations += c.allocations;
+    skipped += c.skipped;
     if (c.max_diff > worst) {
       worst = c.max_diff;
       worst_file = name;
     }
     std::cout << "  loaded   " << name << ": " << c.points
-              << " points, max |ours - fuzzylite| = " << c.max_diff << "\n";
+              << " points, max |ours - fuzzylite| = " << c.max_diff;
+    if (c.skipped > 0) std::cout << " (" << c.skipped << " values skipped: fuzzylite 6's defects)";
+    std::cout << "\n";
 
     // Round trips through our three writers, and fuzzylite reading our .fll.
     std::string fll, fcl, fis, why;
@@ -291,7 +345,8 @@ TEST(RuleFileCorpus, LoadsAndEqualsFuzzyliteOnEveryFile) {
             << 100.0 * static_cast<double>(loaded) / static_cast<double>(files.size()) << " %), "
             << refused << " refused with a message; " << points
             << " points, largest |ours - fuzzylite| = " << worst << " (" << worst_file << "); "
-            << allocations << " allocations in our evaluations\n";
+            << allocations << " allocations in our evaluations; " << skipped
+            << " output values skipped where fuzzylite 6 and 8 disagree\n";
   EXPECT_EQ(allocations, 0u);
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -14,6 +15,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
@@ -599,6 +601,146 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     std::printf("max |command difference| %.3g (relative above 1)\n", worst);
     EXPECT_LE(worst, 1e-9);
   }
+}
+
+// The blocks of a .fll text (its header, then each InputVariable, OutputVariable and RuleBlock
+// with its lines), in file order.
+std::vector<std::string> fll_blocks(const std::string& text) {
+  std::vector<std::string> blocks(1);
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("InputVariable:", 0) == 0 || line.rfind("OutputVariable:", 0) == 0 ||
+        line.rfind("RuleBlock:", 0) == 0)
+      blocks.emplace_back();
+    blocks.back() += line + "\n";
+  }
+  return blocks;
+}
+
+// A folder under the temporary directory holding `fll` as t.fll and a fuzzy controller file
+// ctl.toml that names it; returns the controller file's path.
+std::string write_controller_with_rule_file(const std::string& folder, const std::string& fll,
+                                            const ctl::ControllerSpec& spec) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / folder;
+  fs::create_directories(dir);
+  std::ofstream((dir / "t.fll").string()) << fll;
+  std::ofstream((dir / "ctl.toml").string()) << cf::to_toml(spec);
+  return (dir / "ctl.toml").string();
+}
+
+// A supervisor's rule file is bound by name: an exported .fll whose input and output blocks are
+// reordered (the same system to fuzzylite) gives the same controller, bit for bit; names that do
+// not bind are refused at load, naming the names the file has and the names it needs.
+TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks) {
+  const ctl::ControllerSpec rules = fuzzy_rules_example(ctl::PidForm::PerTick);
+  std::string fll, error;
+  ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(ctl::rule_table(rules), fll, error)) << error;
+  const std::vector<std::string> b = fll_blocks(fll);
+  ASSERT_GE(b.size(), 7u);  // header, e, ec, dKp, dKi, dKd, the rule blocks
+  ASSERT_EQ(b[1].rfind("InputVariable: e\n", 0), 0u);
+  ASSERT_EQ(b[3].rfind("OutputVariable: dKp\n", 0), 0u);
+  // ec before e; dKd, dKp, dKi; the rule blocks as they were.
+  std::string reordered = b[0] + b[2] + b[1] + b[5] + b[3] + b[4];
+  for (std::size_t k = 6; k < b.size(); ++k)
+    reordered += b[k];
+  const ctl::ControllerSpec spec = ctl::fuzzy_from_rule_table(rules, "t.fll", nullptr, "exported");
+
+  ctl::ControllerSpec original, shuffled;
+  fuzzypid::FileError file_error;
+  ASSERT_TRUE(cf::load(write_controller_with_rule_file("fuzzypid_by_name_a", fll, spec), original,
+                       file_error))
+      << file_error.to_string();
+  ASSERT_TRUE(cf::load(write_controller_with_rule_file("fuzzypid_by_name_b", reordered, spec),
+                       shuffled, file_error))
+      << file_error.to_string();
+  EXPECT_STREQ(shuffled.supervisor.rule_model->inputs[0].name.data(), "ec");
+  EXPECT_STREQ(shuffled.supervisor.rule_model->outputs[0].name.data(), "dKd");
+
+  ctl::Vector limit;
+  limit.fill(5.0);
+  auto a = ctl::JointControllers::create(original, limit, error);
+  ASSERT_TRUE(a) << error;
+  auto c = ctl::JointControllers::create(shuffled, limit, error);
+  ASSERT_TRUE(c) << error;
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> e(-0.035, 0.035), ec(-1.2, 1.2);
+  int differing = 0;
+  for (int tick = 0; tick < 2000; ++tick) {
+    ctl::Input in;
+    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      in.desired_position_rad[j] = 0.1 * static_cast<double>(j);
+      in.measured_position_rad[j] = in.desired_position_rad[j] - e(rng);
+      in.measured_velocity_rad_s[j] = ec(rng);
+    }
+    const ctl::Command ca = a->step(in, rules.units.tick_s);
+    const ctl::Command cc = c->step(in, rules.units.tick_s);
+    ASSERT_EQ(ca.status, cc.status) << "tick " << tick;
+    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      differing += ca.torque_nm[j] != cc.torque_nm[j];
+      const auto ga = a->gains(j), gc = c->gains(j);
+      differing += ga.kp != gc.kp || ga.ki != gc.ki || ga.kd != gc.kd;
+    }
+  }
+  EXPECT_EQ(differing, 0);
+
+  // Names that do not bind: an input and an output swapped, a gain under another name.
+  struct Bad {
+    std::string from, to, has;
+  };
+  for (const Bad& bad :
+       {Bad{"InputVariable: ec\n", "InputVariable: dKi\n", "inputs (e, dKi) and outputs (dKp, ec"},
+        Bad{"OutputVariable: dKp\n", "OutputVariable: Kp\n", "outputs (Kp, dKi, dKd)"}}) {
+    std::string text = fll;
+    text.replace(text.find(bad.from), bad.from.size(), bad.to);
+    if (bad.to.find("dKi") != std::string::npos) {
+      const std::string out = "OutputVariable: dKi\n";
+      text.replace(text.find(out), out.size(), "OutputVariable: ec\n");
+      // The rules name the variables too: rename them so that the file itself is valid.
+      std::string::size_type k = 0;
+      while ((k = text.find("ec is", k)) != std::string::npos)
+        text.replace(k, 5, "@@ is");
+      while ((k = text.find("dKi is")) != std::string::npos)
+        text.replace(k, 6, "ec is");
+      while ((k = text.find("@@ is")) != std::string::npos)
+        text.replace(k, 5, "dKi is");
+    } else {
+      std::string::size_type k = 0;
+      while ((k = text.find("dKp is", k)) != std::string::npos)
+        text.replace(k, 6, "Kp is");
+    }
+    fuzzypid::rulefile::Model model;
+    fuzzypid::rulefile::LoadError load_error;
+    ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "t.fll", model, load_error))
+        << load_error.to_string();
+    ctl::ControllerSpec refused;
+    const std::string path = write_controller_with_rule_file("fuzzypid_by_name_bad", text, spec);
+    ASSERT_FALSE(cf::load(path, refused, file_error));
+    EXPECT_EQ(file_error.file, path);
+    EXPECT_GT(file_error.line, 0);
+    EXPECT_NE(file_error.message.find(bad.has), std::string::npos) << file_error.to_string();
+    EXPECT_NE(file_error.message.find("needs inputs (e, ec) and outputs (dKp, dKi, dKd)"),
+              std::string::npos)
+        << file_error.to_string();
+  }
+
+  // A term name used twice in a variable: the rules' meaning would rest on the reader's rule.
+  std::string twice = fll;
+  const std::string first_term = "  term: ";
+  const std::size_t at = twice.find(first_term, twice.find("InputVariable: ec\n"));
+  const std::size_t end = twice.find('\n', at);
+  const std::string line = twice.substr(at, end - at + 1);  // ec's first term
+  twice.insert(end + 1, line);
+  fuzzypid::rulefile::Model model;
+  fuzzypid::rulefile::LoadError load_error;
+  ASSERT_TRUE(fuzzypid::rulefile::parse_fll(twice, "t.fll", model, load_error));
+  ASSERT_EQ(load_error.warnings.size(), 1u);
+  ctl::ControllerSpec refused;
+  const std::string path = write_controller_with_rule_file("fuzzypid_by_name_twice", twice, spec);
+  ASSERT_FALSE(cf::load(path, refused, file_error));
+  EXPECT_NE(file_error.message.find("t.fll:"), std::string::npos) << file_error.to_string();
+  EXPECT_NE(file_error.message.find("repeats the name of an earlier term"), std::string::npos)
+      << file_error.to_string();
 }
 
 }  // namespace

@@ -7,7 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <memory>
+#include <random>
+#include <sstream>
 #include <string>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
@@ -491,7 +495,7 @@ TEST(RuleFileFis, HybridConstantsUnderAnIntegralDefuzzifierAreFuzzylitesConstant
   EXPECT_NEAR(y, 4.0, 1e-9);
 }
 
-TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithFuzzylitesInverse) {
+TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithTheirExactInverse) {
   std::string fis = replace(kSugenoFis, "Type='sugeno'", "Type='tsukamoto'");
   fis = replace(fis, "Range=[0 0]", "Range=[0 1]");
   fis = replace(fis, "MF1='c':'constant',[4]", "MF1='c':'concavemf',[0.2 0.6]");
@@ -501,8 +505,122 @@ TEST(RuleFileFis, TsukamotoTypeReadsConcaveTermsWithFuzzylitesInverse) {
   const double x[2] = {0.5, 1.0};  // rule 1 fires with w = 0.5 (rule 2: z is lo = 0)
   double y = 0;
   ASSERT_EQ(engine->evaluate(x, &y), Status::Ok);
-  // z = (i - e) / mu(w) + 2e - i with mu(0.5) = (0.6 - 0.2) / (1.2 - 0.2 - 0.5) = 0.8.
-  EXPECT_DOUBLE_EQ(y, (0.2 - 0.6) / 0.8 + 1.2 - 0.2);
+  // z = h (i - e) / w + 2e - i, where mu(z) = (e - i) / (2e - i - z) = 0.5 (fuzzylite 8;
+  // fuzzylite 6 divides by mu(w) instead of w, giving 0.5 here).
+  const double z = (0.2 - 0.6) / 0.5 + 1.2 - 0.2;
+  EXPECT_DOUBLE_EQ(model->outputs[0].terms[0].membership(z, nullptr), 0.5);
+  EXPECT_DOUBLE_EQ(y, z);
+}
+
+// Tsukamoto's z(w) inverts every monotonic term kind, of any height h: mu(z(w)) = w for w in
+// (0, h], and z lies within the term's rising (falling) stretch; a degree above h gives the
+// point where the term reaches h, a sigmoid's saturation the output range's end.
+TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRange) {
+  using fuzzypid::fuzzy::Shape;
+  using fuzzypid::fuzzy::Term;
+  std::mt19937_64 rng(20261203);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double lo = -100.0, hi = 100.0;  // the output range
+  double worst = 0.0;
+  int cases = 0;
+  for (const Shape shape :
+       {Shape::Ramp, Shape::Sigmoid, Shape::SShape, Shape::ZShape, Shape::Concave}) {
+    for (int k = 0; k < 20000; ++k) {
+      Term<double> t{};
+      t.shape = shape;
+      const double a = -10.0 + 20.0 * u(rng);
+      double b = -10.0 + 20.0 * u(rng);
+      // Widths of at least 0.1: a narrower term amplifies the rounding of z (|dmu/dz| ~ h / width).
+      if (std::fabs(b - a) < 0.1) b = a + (b < a ? -0.1 : 0.1);
+      t.p = {a, b, 0.0, 0.0};
+      if (shape == Shape::SShape || shape == Shape::ZShape)  // start < end
+        t.p = {std::fmin(a, b), std::fmax(a, b), 0.0, 0.0};
+      if (shape == Shape::Sigmoid) t.p[1] = (u(rng) < 0.5 ? -1.0 : 1.0) * (0.1 + 5.0 * u(rng));
+      t.height = k % 4 == 0 ? 1.0 : 0.05 + 0.95 * u(rng);
+      ASSERT_TRUE(t.valid());
+      const double h = t.height;
+      const double w = k % 50 == 0 ? h : h * (1.0 - u(rng));  // (0, h], h itself now and then
+      if (!(w > 0.0)) continue;
+      const double z = fuzzypid::fuzzy::engine_detail::tsukamoto<double>(t, w, lo, hi, nullptr);
+      ASSERT_TRUE(std::isfinite(z)) << static_cast<int>(shape) << " w " << w;
+      if (shape == Shape::Sigmoid && w == h) {
+        EXPECT_EQ(z, t.p[1] > 0 ? hi : lo);  // saturated: the end it tends to
+        continue;
+      }
+      const double d = std::fabs(t(z, nullptr) - w);
+      worst = std::fmax(worst, d);
+      ++cases;
+      ASSERT_LE(d, 1e-12) << "shape " << static_cast<int>(shape) << " p " << t.p[0] << " " << t.p[1]
+                          << " h " << h << " w " << w << " z " << z;
+      if (shape == Shape::Ramp || shape == Shape::SShape || shape == Shape::ZShape) {
+        EXPECT_GE(z, std::fmin(t.p[0], t.p[1]));
+        EXPECT_LE(z, std::fmax(t.p[0], t.p[1]));
+      }
+      if (shape == Shape::Concave) {  // the stretch that rises (falls) towards the end e
+        if (t.p[0] <= t.p[1])
+          EXPECT_LE(z, t.p[1]);
+        else
+          EXPECT_GE(z, t.p[1]);
+      }
+    }
+    // Above the height: where the term reaches it.
+    Term<double> t{};
+    t.shape = shape;
+    t.p = {2.0, 6.0, 0, 0};
+    t.height = 0.5;
+    const double z = fuzzypid::fuzzy::engine_detail::tsukamoto<double>(t, 0.9, lo, hi, nullptr);
+    EXPECT_EQ(z, shape == Shape::ZShape ? 2.0 : shape == Shape::Sigmoid ? hi : 6.0);
+  }
+  std::printf("Tsukamoto: %d inverses, max |mu(z(w)) - w| = %.3g\n", cases, worst);
+}
+
+// Bisector as fuzzylite 8 computes it: the sample where the running area is nearest half the
+// total (the mean of such samples when the area stops growing there). On the two plateaus, cut
+// at one degree, 60 equal samples: the running area is half after the 30th, x = 3.95, and stays
+// so over the zeros up to the 40th sample before `right` starts: (3.95 + ... + 5.95) / 21 = 4.95.
+TEST(RuleFileFll, BisectorIsTheSampleNearestHalfTheArea) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  std::string text;
+  {
+    std::ifstream in(FUZZYPID_RULEFILES_DIR "/corpus/handmade_mom_two_plateaus.fll");
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  text = replace(text, "defuzzifier: MeanOfMaximum 100", "defuzzifier: Bisector 100");
+  ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "bisector.fll", *model, error))
+      << error.to_string();
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.5;
+  double y[3] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  EXPECT_NEAR(y[0], 4.95, 1e-12);
+}
+
+// Two equal plateaus: the mean of maximum over all maximising samples (MATLAB, Octave,
+// fuzzylite 8) is their common middle, 5.0 (fuzzylite 6: 2.5, the first plateau's middle);
+// smallest and largest of maximum are the first and last maximising samples.
+TEST(RuleFileFll, MeanOfMaximumIsTheMeanOfEveryMaximisingSampleAcrossPlateaus) {
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_TRUE(fuzzypid::rulefile::load_fll(
+      FUZZYPID_RULEFILES_DIR "/corpus/handmade_mom_two_plateaus.fll", *model, error))
+      << error.to_string();
+  auto engine = std::make_unique<Engine<double>>(*model);
+  for (const double x : {0.4, 0.5, 0.9}) {
+    SCOPED_TRACE(x);
+    double y[3] = {};
+    ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+    // Samples 0.05 + 0.1 k: 30 in (1, 4) and 30 in (6, 9), mean (sum 75 + 225) / 60.
+    EXPECT_NEAR(y[0], 5.0, 1e-12);
+    EXPECT_NEAR(y[1], 1.05, 1e-12);
+    EXPECT_NEAR(y[2], 8.95, 1e-12);
+  }
+  const double x = 0.2;  // `right` alone is highest (0.4 > 0.2): one plateau, its middle
+  double y[3] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  EXPECT_NEAR(y[0], 7.5, 1e-12);
 }
 
 // Tsukamoto outputs are weighted averages of the terms' inverses (fuzzylite's Tsukamoto): an

@@ -89,37 +89,43 @@ Scalar centroid_sampled(const Set& set, Scalar min, Scalar max, int resolution) 
   return area > Scalar(0) ? moment / area : std::numeric_limits<Scalar>::quiet_NaN();
 }
 
-// Bisector: the abscissa splitting the area in two, by fuzzylite's two-sided sweep (each step
-// adds the next sample to the smaller side) and its inverse-weighted average of the two fronts.
+// Bisector: the sample where the running area is nearest half the total, as fuzzylite 8 computes
+// it: with c_i = y_0 + ... + y_i over the samples x_i and C = c_{n-1}, the mean of the x_i whose
+// |c_i / C - 1/2| is least (several when the area stops growing there). fuzzylite 6 swept from
+// both ends and interpolated between the two fronts (docs/rule_files.md). NaN without area.
 template <class Scalar, class Set>
 Scalar bisector_sampled(const Set& set, Scalar min, Scalar max, int resolution) noexcept {
   const Scalar dx = (max - min) / Scalar(resolution);
-  int left = 0;
-  int right = 0;
-  Scalar left_area = Scalar(0);
-  Scalar right_area = Scalar(0);
-  Scalar x_left = min;
-  Scalar x_right = max;
-  for (int counter = resolution; counter-- > 0;) {
-    if (left_area <= right_area) {
-      x_left = min + (Scalar(left) + Scalar(0.5)) * dx;
-      left_area += set(x_left);
-      ++left;
-    } else {
-      x_right = max - (Scalar(right) + Scalar(0.5)) * dx;
-      right_area += set(x_right);
-      ++right;
+  Scalar total = Scalar(0);
+  for (int i = 0; i < resolution; ++i)
+    total += set(min + (Scalar(i) + Scalar(0.5)) * dx);
+  if (!(total > Scalar(0))) return std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar running = Scalar(0);
+  Scalar nearest = std::numeric_limits<Scalar>::infinity();
+  Scalar x_sum = Scalar(0);
+  int count = 0;
+  for (int i = 0; i < resolution; ++i) {
+    const Scalar x = min + (Scalar(i) + Scalar(0.5)) * dx;
+    running += set(x);
+    const Scalar d = detail::abs(running / total - Scalar(0.5));
+    if (d < nearest) {
+      nearest = d;
+      x_sum = x;
+      count = 1;
+    } else if (d == nearest) {
+      x_sum += x;
+      ++count;
     }
   }
-  const Scalar total = left_area + right_area;
-  if (!(total > Scalar(0))) return std::numeric_limits<Scalar>::quiet_NaN();
-  return (left_area * x_right + right_area * x_left) / total;
+  return x_sum / Scalar(count);
 }
 
 enum class MaximumKind : std::uint8_t { Smallest, Mean, Largest };
 
-// Smallest, mean or largest of maximum (fuzzylite semantics: the mean is taken over the first
-// plateau holding the maximum; ties keep the first (smallest) or last (largest) sample).
+// Smallest, mean or largest of maximum over ALL the samples where the set is largest (MATLAB,
+// Octave and fuzzylite 8: the mean is sum(x_i) / n over every maximising sample, so two equal
+// plateaus give the mean of both; fuzzylite 6 took the middle of the first plateau). NaN when the
+// set is 0 at every sample.
 template <class Scalar, class Set>
 Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar max,
                           int resolution) noexcept {
@@ -127,35 +133,21 @@ Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar m
   Scalar y_max = Scalar(-1);
   Scalar x_smallest = min;
   Scalar x_largest = max;
-  bool same_plateau = false;
+  Scalar x_sum = Scalar(0);
+  int count = 0;
   for (int i = 0; i < resolution; ++i) {
     const Scalar x = min + (Scalar(i) + Scalar(0.5)) * dx;
     const Scalar y = set(x);
-    switch (kind) {
-      case MaximumKind::Smallest:
-        if (y > y_max) {
-          y_max = y;
-          x_smallest = x;
-        }
-        break;
-      case MaximumKind::Largest:
-        if (y >= y_max) {
-          y_max = y;
-          x_largest = x;
-        }
-        break;
-      case MaximumKind::Mean:
-        if (y > y_max) {
-          y_max = y;
-          x_smallest = x;
-          x_largest = x;
-          same_plateau = true;
-        } else if (y == y_max && same_plateau) {
-          x_largest = x;
-        } else if (y < y_max) {
-          same_plateau = false;
-        }
-        break;
+    if (y > y_max) {
+      y_max = y;
+      x_smallest = x;
+      x_largest = x;
+      x_sum = x;
+      count = 1;
+    } else if (y == y_max) {
+      x_largest = x;
+      x_sum += x;
+      ++count;
     }
   }
   if (!(y_max > Scalar(0))) return std::numeric_limits<Scalar>::quiet_NaN();
@@ -167,7 +159,7 @@ Scalar of_maximum_sampled(MaximumKind kind, const Set& set, Scalar min, Scalar m
     case MaximumKind::Mean:
       break;
   }
-  return (x_largest + x_smallest) / Scalar(2);
+  return x_sum / Scalar(count);
 }
 
 // ---------------------------------------------------------------------------------------------

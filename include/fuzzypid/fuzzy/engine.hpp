@@ -31,7 +31,7 @@
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
 //     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave terms): z_r
-//     is the abscissa where the term reaches w_r (fuzzylite's inverses), then as Sugeno.
+//     is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
 // and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
@@ -120,31 +120,48 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
   }
 }
 
-// The crisp value z with mu(z) = w of a monotonic term (fuzzylite's
-// WeightedDefuzzifier::tsukamoto, in its operation order).
+// The crisp value z with mu(z) = w of a monotonic term of height h (fuzzylite 8's
+// Term::tsukamoto; fuzzylite 6's inverses miss mu(z) = w for Concave, SShape, ZShape and a height
+// other than 1 -- docs/rule_files.md). For 0 < w <= h:
+//   Ramp(s, e)       z = s + (e - s) w / h                                 (z in [s, e])
+//   Sigmoid(i, k)    z = i + ln(h / w - 1) / -k
+//   SShape(s, e)     z = s + (e - s) sqrt(w / 2h)        if w <= h / 2      (z in [s, e])
+//                    z = e - (e - s) sqrt((h - w) / 2h)  otherwise
+//   ZShape(s, e)     z = e - (e - s) sqrt(w / 2h)        if w <= h / 2      (z in [s, e])
+//                    z = s + (e - s) sqrt((h - w) / 2h)  otherwise
+//   Concave(i, e)    z = h (i - e) / w + 2e - i                            (z = e at w = h)
+// A degree above the term's height (no z reaches it) is taken as h: the point where the term
+// reaches its height (fuzzylite 8 extrapolates Ramp and Concave there and gives NaN for the
+// others). A sigmoid reaches h only at infinity: at w >= h (and at w <= 0, where it reaches 0)
+// z is the end of the output range [min, max] the sigmoid tends to, a finite value where
+// fuzzylite 8 gives +-inf.
 template <class Scalar>
 Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
                  const Scalar* points) noexcept {
   const auto& p = t.p;
+  const Scalar h = t.height;
+  if (w > h) w = h;
+  // Rounding may step an ulp past the term's stretch: keep z on it.
+  const auto within = [&](Scalar z) {
+    return detail::clamp(z, detail::min(p[0], p[1]), detail::max(p[0], p[1]));
+  };
   switch (t.shape) {
     case Shape::Ramp:
-      return (p[1] - p[0]) / (Scalar(1) - Scalar(0)) * (w - Scalar(0)) + p[0];
+      return within(p[0] + (p[1] - p[0]) * w / h);
     case Shape::Sigmoid:
-      if (w == Scalar(1)) return p[1] >= Scalar(0) ? max : min;
-      if (w == Scalar(0)) return p[1] >= Scalar(0) ? min : max;
-      return p[0] + (std::log(Scalar(1) / w - Scalar(1)) / -p[1]);
+      if (w >= h) return p[1] >= Scalar(0) ? max : min;
+      if (w <= Scalar(0)) return p[1] >= Scalar(0) ? min : max;
+      return p[0] + std::log(h / w - Scalar(1)) / -p[1];
     case Shape::SShape:
-    case Shape::ZShape: {
-      const Scalar difference = p[1] - p[0];
-      const Scalar rising = std::sqrt(w * difference * difference / Scalar(2));
-      const Scalar falling = std::sqrt(difference * difference * (w - Scalar(1)) / Scalar(-2));
-      const bool s = t.shape == Shape::SShape;
-      const Scalar a = p[0] + (s ? rising : falling);
-      const Scalar b = p[1] + (s ? falling : rising);
-      return std::fabs(w - t(a, points)) < std::fabs(w - t(b, points)) ? a : b;
+      if (w <= h / Scalar(2)) return within(p[0] + (p[1] - p[0]) * std::sqrt(w / (Scalar(2) * h)));
+      return within(p[1] - (p[1] - p[0]) * std::sqrt((h - w) / (Scalar(2) * h)));
+    case Shape::ZShape:
+      if (w <= h / Scalar(2)) return within(p[1] - (p[1] - p[0]) * std::sqrt(w / (Scalar(2) * h)));
+      return within(p[0] + (p[1] - p[0]) * std::sqrt((h - w) / (Scalar(2) * h)));
+    case Shape::Concave: {
+      const Scalar z = h * (p[0] - p[1]) / w + Scalar(2) * p[1] - p[0];
+      return p[0] <= p[1] ? detail::min(z, p[1]) : detail::max(z, p[1]);
     }
-    case Shape::Concave:
-      return (p[0] - p[1]) / t(w, points) + Scalar(2) * p[1] - p[0];
     default:
       return t(w, points);
   }

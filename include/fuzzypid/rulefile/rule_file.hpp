@@ -10,6 +10,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fuzzypid/fuzzy/engine.hpp"
 
@@ -21,6 +22,10 @@ struct LoadError {
   std::string file;     // the path or source name given to the loader
   int line = 0;         // 1-based; 0 when the problem concerns the whole file
   std::string message;  // what is wrong, naming the unsupported or malformed item
+  // Set on success too: "file:line: ..." for what loads by a documented rule but may not mean
+  // what the author meant (a term name repeated in a .fll or .fcl variable: rules naming it mean
+  // the first such term, as fuzzylite's Variable::getTerm resolves it).
+  std::vector<std::string> warnings;
 
   // "file:line: message" (or "file: message" when line is 0).
   std::string to_string() const;
