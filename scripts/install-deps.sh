@@ -10,7 +10,7 @@ packages=(
   libpagmo-dev libtbb-dev libtomlplusplus-dev libcli11-dev
   clang clang-format clang-tidy cppcheck libclang-rt-14-dev
   gcc-arm-none-eabi libstdc++-arm-none-eabi-newlib libnewlib-arm-none-eabi qemu-system-arm
-  python3-matplotlib python3-numpy
+  python3-matplotlib python3-numpy python3-venv
 )
 
 missing=()

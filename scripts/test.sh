@@ -4,6 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
+# The fuzzylite 8 oracle (pyfuzzylite from PyPI, in a virtual environment of its own) that
+# ctest oracle.fuzzylite8_corpus compares every .fll of the corpus with.
+[ -x build/oracle-venv/bin/python ] || sh scripts/oracle-venv.sh build/oracle-venv
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-}
 cmake --build build -j "$(nproc)"
