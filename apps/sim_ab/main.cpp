@@ -231,8 +231,37 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
   }
 }
 
-// What each condition ran on: robot, path, tick, payload, dynamics, gravity and armature, one
-// line per condition (conditions[k] runs on experiments.of(k)).
+// `text` cut at every '|'.
+std::vector<std::string> split_fields(const std::string& text) {
+  std::vector<std::string> out(1);
+  for (const char ch : text)
+    if (ch == '|')
+      out.emplace_back();
+    else
+      out.back() += ch;
+  return out;
+}
+
+// What real joints have (sim::JointEffects), as the condition keys name them, in their units:
+// `separator` between the fields, `list` between a per-joint key's six values.
+std::string effects_text(const sim::JointEffects& e, const char* separator, const char* list) {
+  const std::string sep(separator);
+  std::string t;
+  t += "plant_step_ms=" + fmt(e.plant_step_s * 1e3) + sep;
+  t += "delay_ms=" + fmt(e.delay_s * 1e3) + sep;
+  t += "torque_bandwidth_hz=" + fmt(e.torque_bandwidth_hz) + sep;
+  t += "encoder_counts=" + std::to_string(e.encoder_counts) + sep;
+  t += "coulomb_nm=" + joined(e.coulomb_nm, list) + sep;
+  t += "stribeck_nm=" + joined(e.stribeck_nm, list) + sep;
+  t += "stribeck_velocity=" + fmt(e.stribeck_velocity_rad_s) + sep;
+  t += "joint_resonance_hz=" + joined(e.joint_resonance_hz, list) + sep;
+  t += "joint_damping_ratio=" + fmt(e.joint_damping_ratio) + sep;
+  t += "backlash_rad=" + fmt(e.backlash_rad);
+  return t;
+}
+
+// What each condition ran on: robot, path, tick, payload, dynamics, gravity, armature and what
+// real joints have, one line per condition (conditions[k] runs on experiments.of(k)).
 void write_condition_settings(std::FILE* f, const std::vector<Run>& runs,
                               const sim::ExperimentSet& experiments) {
   for (std::size_t k = 0; k < runs.size(); ++k) {
@@ -240,12 +269,13 @@ void write_condition_settings(std::FILE* f, const std::vector<Run>& runs,
     const sim::Experiment& ex = experiments.of(k);
     std::fprintf(f,
                  "condition.%s=set=%s urdf=%s path=%s tick_s=%s payload_kg=%s dynamics=%s "
-                 "gravity=%d armature_kgm2=%s\n",
+                 "gravity=%d armature_kgm2=%s %s\n",
                  c.name.c_str(), runs[k].set.c_str(), ex.urdf_file().c_str(),
                  ex.setup().path.empty() ? "line" : ex.setup().path.c_str(),
                  fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
                  fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
-                 joined(ex.armature_kgm2(), ",").c_str());
+                 joined(ex.armature_kgm2(), ",").c_str(),
+                 effects_text(c.effects, " ", ",").c_str());
   }
 }
 
@@ -550,22 +580,29 @@ int main(int argc, char** argv) {
   // values separated by ';'.
   std::fputs(
       "scenario,set,payload_scale,friction,torque_limit,contact,noise_q,noise_qd,seed,reverse,"
-      "initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2\n",
+      "initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2,plant_step_ms,"
+      "delay_ms,torque_bandwidth_hz,encoder_counts,coulomb_nm,stribeck_nm,stribeck_velocity,"
+      "joint_resonance_hz,joint_damping_ratio,backlash_rad\n",
       conds);
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& r = runs[k];
     const auto& c = r.condition;
     const sim::Experiment& ex = experiments->of(k);
-    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s,%s,%s,%s,%s,%s,%d,%s\n", c.name.c_str(),
-                 r.set.c_str(), fmt(c.payload_scale).c_str(), fmt(c.friction_per_s).c_str(),
-                 fmt(c.torque_limit_rad_s2).c_str(), fmt(c.contact_rad_s2).c_str(),
-                 fmt(c.noise_position_rad).c_str(), fmt(c.noise_velocity_rad_s).c_str(),
-                 static_cast<unsigned long long>(c.seed), c.reverse ? 1 : 0,
-                 fmt(c.initial_error_rad).c_str(), csv_field(ex.urdf_file()).c_str(),
+    // The effects' values only, in the header's order.
+    std::string effects;
+    for (const std::string& field : split_fields(effects_text(c.effects, "|", ";")))
+      effects += "," + field.substr(field.find('=') + 1);
+    std::fprintf(conds, "%s,%s,%s,%s,%s,%s,%s,%s,%llu,%d,%s,%s,%s,%s,%s,%s,%d,%s%s\n",
+                 c.name.c_str(), r.set.c_str(), fmt(c.payload_scale).c_str(),
+                 fmt(c.friction_per_s).c_str(), fmt(c.torque_limit_rad_s2).c_str(),
+                 fmt(c.contact_rad_s2).c_str(), fmt(c.noise_position_rad).c_str(),
+                 fmt(c.noise_velocity_rad_s).c_str(), static_cast<unsigned long long>(c.seed),
+                 c.reverse ? 1 : 0, fmt(c.initial_error_rad).c_str(),
+                 csv_field(ex.urdf_file()).c_str(),
                  csv_field(ex.setup().path.empty() ? "line" : ex.setup().path).c_str(),
                  fmt(ex.options().tick_s).c_str(), fmt(c.payload_kg).c_str(),
                  fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? 1 : 0,
-                 joined(ex.armature_kgm2(), ";").c_str());
+                 joined(ex.armature_kgm2(), ";").c_str(), effects.c_str());
   }
 
   if (!o.quiet)

@@ -20,7 +20,7 @@ fail() {
 cmp -s "$work/paper/conditions.csv" "$work/coupled/conditions.csv" &&
   fail "conditions.csv identical for two plants"
 head -1 "$work/paper/conditions.csv" |
-  grep -q ",initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2$" ||
+  grep -q ",initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2,plant_step_ms,delay_ms,torque_bandwidth_hz,encoder_counts,coulomb_nm,stribeck_nm,stribeck_velocity,joint_resonance_hz,joint_damping_ratio,backlash_rad$" ||
   fail "conditions.csv header: $(head -1 "$work/paper/conditions.csv")"
 grep -q "^paper,scenario,.*/er50_c20.urdf,line,0.050000000000000003,0,decoupled,0,8.5;16;" \
   "$work/paper/conditions.csv" || fail "paper row: $(tail -1 "$work/paper/conditions.csv")"
@@ -30,4 +30,12 @@ grep -q "^condition.paper=set=scenario urdf=.*/er50_c20.urdf path=line tick_s=0.
   "$work/coupled/settings.txt" || fail "settings.txt: $(grep '^condition' "$work/coupled/settings.txt")"
 grep -q "^sim_ab: plant dynamics coupled, gravity on, payload 2 kg (1 condition)$" "$work/err" ||
   fail "banner: $(cat "$work/err")"
+# What real joints have is on record too, in the keys' units.
+"$sim_ab" --quiet --delay-ms 10 --encoder-counts 4096 --coulomb-nm 1,2,3,4,5,6 --out "$work/effects" \
+  2>"$work/err" || fail "effects: $(cat "$work/err")"
+grep -q ",0,10,0,4096,1;2;3;4;5;6,0;0;0;0;0;0,0,0;0;0;0;0;0,0,0$" "$work/effects/conditions.csv" ||
+  fail "effects row: $(tail -1 "$work/effects/conditions.csv")"
+grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 " \
+  "$work/effects/settings.txt" || fail "effects settings: $(grep '^condition' "$work/effects/settings.txt")"
 echo "plant records: conditions.csv, settings.txt and the banner name the plant"
+
