@@ -377,9 +377,7 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
   return faults_exit(o, faulted_runs);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_sim_ab(int argc, char** argv) {
   sim_ab::Options o;
   switch (sim_ab::parse(argc, argv, o)) {
     case sim_ab::ParseResult::Exit:
@@ -704,4 +702,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+// A run whose messages on standard error did not all reach it (a lost fault or warning) exits 1.
+int main(int argc, char** argv) {
+  return fuzzypid::cli::run_main("sim_ab", [&] { return run_sim_ab(argc, argv); });
 }

@@ -37,5 +37,7 @@ grep -q ",0,10,0,4096,1;2;3;4;5;6,0;0;0;0;0;0,0,0;0;0;0;0;0,0,0$" "$work/effects
   fail "effects row: $(tail -1 "$work/effects/conditions.csv")"
 grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 " \
   "$work/effects/settings.txt" || fail "effects settings: $(grep '^condition' "$work/effects/settings.txt")"
+# The banner is a record too: a run whose standard error cannot be written exits 1.
+"$sim_ab" --out "$work/lost" >/dev/null 2>/dev/full && fail "sim_ab exits 0 with its banner lost"
 echo "plant records: conditions.csv, settings.txt and the banner name the plant"
 
