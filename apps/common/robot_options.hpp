@@ -268,7 +268,30 @@ inline std::string plant_note(const sim::Condition& c) {
   std::snprintf(buf, sizeof buf, "dynamics %s, gravity %s, payload %g kg",
                 fuzzypid::name_of(sim::kDynamicsNames, c.dynamics), c.gravity ? "on" : "off",
                 c.payload_kg);
-  return buf;
+  std::string note = buf;
+  // What real joints have, where set (the largest joint's value for the per-joint keys).
+  const sim::JointEffects& e = c.effects;
+  const auto add = [&note](const char* what, double v, const char* unit) {
+    if (v == 0.0) return;
+    char b[96];
+    std::snprintf(b, sizeof b, ", %s %g%s", what, v, unit);
+    note += b;
+  };
+  const auto largest = [](const robot::JointVector& v) {
+    double m = 0.0;
+    for (double x : v)
+      m = x > m ? x : m;
+    return m;
+  };
+  add("plant step", e.plant_step_s * 1e3, " ms");
+  add("delay", e.delay_s * 1e3, " ms");
+  add("current loop", e.torque_bandwidth_hz, " Hz");
+  add("encoder", static_cast<double>(e.encoder_counts), " counts");
+  add("Coulomb up to", largest(e.coulomb_nm), " N·m");
+  add("Stribeck up to", largest(e.stribeck_nm), " N·m");
+  add("gear resonance up to", largest(e.joint_resonance_hz), " Hz");
+  add("backlash", e.backlash_rad, " rad");
+  return note;
 }
 
 // Says `text` on stderr as "TOOL: KIND: text" once per process (a tool meets the same robot in

@@ -35,6 +35,10 @@ grep -q "^sim_ab: plant dynamics coupled, gravity on, payload 2 kg (1 condition)
   2>"$work/err" || fail "effects: $(cat "$work/err")"
 grep -q ",0,10,0,4096,1;2;3;4;5;6,0;0;0;0;0;0,0,0;0;0;0;0;0,0,0$" "$work/effects/conditions.csv" ||
   fail "effects row: $(tail -1 "$work/effects/conditions.csv")"
+"$sim_ab" --delay-ms 10 --encoder-counts 4096 --coulomb-nm 1,2,3,4,5,6 --out "$work/banner" \
+  >/dev/null 2>"$work/err" || fail "effects banner run: $(cat "$work/err")"
+grep -q "^sim_ab: plant dynamics decoupled, gravity off, payload 0 kg, delay 10 ms, encoder 4096 counts, Coulomb up to 6 N·m (1 condition)$" \
+  "$work/err" || fail "effects banner: $(cat "$work/err")"
 grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 " \
   "$work/effects/settings.txt" || fail "effects settings: $(grep '^condition' "$work/effects/settings.txt")"
 # The banner is a record too: a run whose standard error cannot be written exits 1.
