@@ -43,7 +43,7 @@ void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::Joint
       u[k] = rows[k * robot::kNumJoints + j].u;
       sum_sq += u[k] * u[k];
     }
-    chatter += reversal_share(u);
+    chatter += sim::reversals_pct(u) / 100.0;
     if (ticks > 0 && limit[j] > 0.0 && std::isfinite(limit[j]))
       effort += std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
   }
@@ -152,24 +152,6 @@ struct Problem {
 };
 
 }  // namespace
-
-double reversal_share(const std::vector<double>& u) noexcept {
-  const std::size_t n = u.size();
-  if (n < 3) return 0.0;
-  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
-  const double threshold = 0.01 * (*hi - *lo);
-  if (!(threshold > 0.0)) return 0.0;
-  int last = 0;  // sign of the previous counted change
-  std::size_t reversals = 0;
-  for (std::size_t k = 1; k < n; ++k) {
-    const double d = u[k] - u[k - 1];
-    if (!(std::fabs(d) > threshold)) continue;
-    const int sign = d > 0.0 ? 1 : -1;
-    if (last != 0 && sign != last) ++reversals;
-    last = sign;
-  }
-  return static_cast<double>(reversals) / static_cast<double>(n - 2);
-}
 
 Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Condition>& conditions,
               const ControllerSpec& controller, const Objective& objective, unsigned threads) {

@@ -14,6 +14,7 @@
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/metrics.hpp"
 #include "fuzzypid/tune/tune.hpp"
 
 namespace {
@@ -67,26 +68,6 @@ TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
   EXPECT_TRUE(tune::on_bound({2.0, -1.0, 2.0, 2.0}, box).empty());
 }
 
-TEST(ReversalShare, RingingAtTheNyquistRateIsOneASineOnlyItsExtremaAnOffsetNothing) {
-  std::vector<double> ringing(101), sine(101), offset(101);
-  for (std::size_t k = 0; k < ringing.size(); ++k) {
-    ringing[k] = k % 2 == 0 ? 1.0 : -1.0;
-    sine[k] = std::sin(2.0 * 3.14159265358979 * static_cast<double>(k) / 50.0);  // two periods
-    offset[k] = 150.0 + 0.5 * ringing[k];  // gravity's offset with a ringing half as large
-  }
-  EXPECT_DOUBLE_EQ(tune::reversal_share(ringing), 1.0);
-  EXPECT_DOUBLE_EQ(tune::reversal_share(offset), 1.0);
-  // Two periods: the changes reverse at the four extrema (two maxima, two minima).
-  EXPECT_DOUBLE_EQ(tune::reversal_share(sine), 4.0 / 99.0);
-  EXPECT_EQ(tune::reversal_share(std::vector<double>(50, 2.0)), 0.0);
-  EXPECT_EQ(tune::reversal_share({1.0, -1.0}), 0.0);
-  // Changes below 1 % of the range do not count: a ramp with tiny dither never reverses.
-  std::vector<double> ramp(100);
-  for (std::size_t k = 0; k < ramp.size(); ++k)
-    ramp[k] = static_cast<double>(k) + (k % 2 == 0 ? 0.0 : 0.3);
-  EXPECT_EQ(tune::reversal_share(ramp), 0.0);
-}
-
 TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByDefault) {
   std::string error;
   const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
@@ -117,7 +98,7 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
       u[k] = run.rows[k * 6 + j].u;
       sq += u[k] * u[k];
     }
-    chatter += tune::reversal_share(u);
+    chatter += fuzzypid::sim::reversals_pct(u) / 100.0;
     effort += std::sqrt(sq / static_cast<double>(ticks)) / limit[j];
   }
   EXPECT_GT(effort, 0.0);

@@ -5,17 +5,17 @@
 //
 //   cost = sum ITAE (six joints)
 //        + overshoot_weight x sum_joints max(0, overshoot_pct - overshoot_bound_pct)
-//        + chatter_weight x sum_joints reversal_share(u)
+//        + chatter_weight x sum_joints reversals_pct(u) / 100
 //        + effort_weight x sum_joints rms(u) / u_limit
 //        + fault_cost per run that faults, diverges (|e| > divergence_rad) or gives a non-finite
 //          ITAE (such a run adds only fault_cost),
 //
 // with u a joint's command over the run and u_limit its output limit (the torque limit over J^
-// in acceleration units). reversal_share is the share of ticks on which the command's change
-// reverses direction, counting only changes larger than 1 % of the command's range in the run
-// (see reversal_share): ringing at the Nyquist rate scores 1, a smooth command nearly 0. ITAE
-// alone rewards that ringing, which costs nothing on a rigid, delay-free plant and excites the
-// first resonance of a real joint.
+// in acceleration units). reversals_pct (sim/metrics.hpp, as metrics.csv reports it) is the
+// share of ticks on which the command's change reverses direction, counting only changes larger
+// than 1 % of the command's range in the run: ringing at the Nyquist rate scores 100 %, a smooth
+// command nearly 0. ITAE alone rewards that ringing, which costs nothing on a rigid, delay-free
+// plant and excites the first resonance of a real joint.
 //
 // minimised by pagmo2's self-adaptive differential evolution (pagmo::sade, jDE adaptation) under a
 // hard budget of objective evaluations. The conditions of one evaluation run in parallel on
@@ -48,13 +48,6 @@ struct Cost {
   double effort_penalty = 0.0;     // weighted
   std::size_t faulted_runs = 0;
 };
-
-// The share (0..1) of the ticks 2 .. K-1 of a command series u_1 .. u_K on which its change
-// reverses direction: with d_k = u_k - u_{k-1}, only changes |d_k| > 1 % of max(u) - min(u)
-// count, and a reversal is a counted change of the other sign than the previous counted one.
-// A command flipping every tick scores 1, a sine only at its extrema, a constant 0; an offset
-// (gravity) changes nothing. Fewer than 3 samples score 0.
-[[nodiscard]] double reversal_share(const std::vector<double>& u) noexcept;
 
 // The objective of one controller on a set of conditions (threads: 1 = serial).
 [[nodiscard]] Cost evaluate(const sim::Experiment& experiment,
