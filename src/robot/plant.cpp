@@ -325,9 +325,9 @@ class JointPlant::Impl {
       const Vec6 u = to_vec(command);
       // The drive at offset s into the segment: the command (after the current loop's first-order
       // lag, exact: τ(s) = u + (τ(0) − u) e^(−ω_c s)) plus the disturbance.
-      const Vec6 held = u + dist;
+      const Vec6 held_drive = u + dist;
       const auto drive_at = [&](double s_in) -> Vec6 {
-        if (wc == 0.0) return held;
+        if (wc == 0.0) return Vec6(held_drive);
         return u + (lag - u) * std::exp(-wc * s_in) + dist;
       };
       if (length > 0.0 && elastic) {
