@@ -336,4 +336,32 @@ conditions = [ { name = "bundled" }, { name = "bundled-coupled", dynamics = "cou
   EXPECT_FALSE(paper[1].gravity);
 }
 
+// tuning/robust_drive.toml: robust.toml's sets with what real joints have; every training
+// condition has one tick of delay or less, a current loop, a gear and an encoder, and the stress
+// set goes beyond one tick.
+TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", f, e))
+      << e.to_string();
+  ASSERT_NE(f.find("training"), nullptr);
+  ASSERT_NE(f.find("held-out"), nullptr);
+  ASSERT_NE(f.find("stress"), nullptr);
+  const auto& training = f.find("training")->conditions;
+  ASSERT_EQ(training.size(), 14u);
+  int coulomb = 0;
+  for (const auto& c : training) {
+    EXPECT_LE(c.effects.delay_s, 0.05 + 1e-12) << c.name;
+    EXPECT_GE(c.effects.torque_bandwidth_hz, 20.0) << c.name;
+    EXPECT_GE(c.effects.joint_resonance_hz[0], 8.0) << c.name;
+    EXPECT_EQ(c.effects.encoder_counts, 131072u) << c.name;
+    coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(coulomb, 2);
+  double longest = 0.0;
+  for (const auto& c : f.find("stress")->conditions)
+    longest = std::max(longest, c.effects.delay_s);
+  EXPECT_GT(longest, 0.05);
+}
+
 }  // namespace
