@@ -149,6 +149,21 @@ class JointPlant::Impl {
     }
   }
 
+  // M_eff = S^½ M(x) S^½ + diag(armature) (the fixed configuration's with InertiaUpdate::Fixed)
+  // and the bias C(x, v) v + g(x) of the coupled model.
+  void effective_mass_and_bias(const Vec6& x, const Vec6& v, Mat6& m, Vec6& bias) const noexcept {
+    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
+    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
+    if (config.inertia_update == InertiaUpdate::Fixed) {
+      m = fixed_mass;
+      bias = dynamics.bias(x, v, g);
+      return;
+    }
+    dynamics.mass_and_bias(x, v, g, m, bias);
+    m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
+    m.diagonal() += to_vec(config.armature_kgm2);
+  }
+
   // The link-side acceleration of the two-mass joint (coupled or decoupled) for the link force
   // `f` (gear torque and disturbance on elastic joints; the drive, friction and disturbance on
   // rigid ones, whose armature stays on the link side). `j_link` is the decoupled link inertia.
@@ -158,18 +173,9 @@ class JointPlant::Impl {
       a = f.cwiseQuotient(j_link);
       return true;
     }
-    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
-    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
     Mat6 m;
     Vec6 bias;
-    if (config.inertia_update == InertiaUpdate::Fixed) {
-      m = fixed_mass;
-      bias = dynamics.bias(x, v, g);
-    } else {
-      dynamics.mass_and_bias(x, v, g, m, bias);
-      m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
-      m.diagonal() += to_vec(config.armature_kgm2);
-    }
+    effective_mass_and_bias(x, v, m, bias);
     m.diagonal() -= to_vec(config.armature_kgm2).cwiseProduct(elastic_mask);
     const Eigen::LLT<Mat6> llt(m);
     if (llt.info() != Eigen::Success) return false;
@@ -215,18 +221,9 @@ class JointPlant::Impl {
   // false if M_eff is not positive definite. `diagonal`, when given, receives diag(M_eff).
   bool coupled_acceleration(const Vec6& x, const Vec6& v, const Vec6& drive, Vec6& a,
                             Vec6* diagonal = nullptr, Mat6* mass = nullptr) const noexcept {
-    const detail::RigidBodyDynamics& dynamics = detail::dynamics_of(model);
-    const double g = config.gravity ? config.gravity_m_s2 : 0.0;
     Mat6 m;
     Vec6 bias;
-    if (config.inertia_update == InertiaUpdate::Fixed) {
-      m = fixed_mass;
-      bias = dynamics.bias(x, v, g);
-    } else {
-      dynamics.mass_and_bias(x, v, g, m, bias);
-      m = sqrt_scale.asDiagonal() * m * sqrt_scale.asDiagonal();
-      m.diagonal() += to_vec(config.armature_kgm2);
-    }
+    effective_mass_and_bias(x, v, m, bias);
     if (diagonal != nullptr) *diagonal = m.diagonal();
     if (mass != nullptr) *mass = m;
     Vec6 rhs = drive - to_vec(config.damping_nms).cwiseProduct(v) - bias;
