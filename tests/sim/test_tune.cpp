@@ -73,7 +73,10 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
   const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
                                                     fuzzypid::sim::ExperimentOptions{}, error);
   ASSERT_TRUE(ex) << error;
-  const std::vector<fuzzypid::sim::Condition> conditions(1);
+  // Measurement noise makes the command reverse on many ticks, so both terms are non-zero.
+  std::vector<fuzzypid::sim::Condition> conditions(1);
+  conditions[0].noise_position_rad = 1e-4;
+  conditions[0].noise_velocity_rad_s = 1e-3;
   const ctl::ControllerSpec pid = ctl::paper_pid();
   tune::Objective plain;
   EXPECT_EQ(plain.chatter_weight, 0.1);  // the default (docs/tuning.md, "Chatter")
@@ -102,6 +105,7 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
     effort += std::sqrt(sq / static_cast<double>(ticks)) / limit[j];
   }
   EXPECT_GT(effort, 0.0);
+  EXPECT_GT(chatter, 0.1);
   EXPECT_DOUBLE_EQ(c.chatter_penalty, 2.0 * chatter);
   EXPECT_DOUBLE_EQ(c.effort_penalty, 3.0 * effort);
   EXPECT_DOUBLE_EQ(c.total, base.total + c.chatter_penalty + c.effort_penalty);
