@@ -338,16 +338,23 @@ TEST_F(StagedTuning, AStartFromAFamilyWithoutAnExactFormIsRefused) {
   EXPECT_NE(error.find("no training conditions"), std::string::npos);
 }
 
-// Each training condition runs on its own robot: a set of two arms tunes, and its cost is the
-// sum of each arm's own cost.
-TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
+// The default condition on the ER50-C20 and on the UR5-class arm following its contour.
+std::vector<fuzzypid::sim::Condition> er50_and_ur5() {
   fuzzypid::sim::Condition er50, ur5;
   er50.name = "er50";
   ur5.name = "ur5";
   ur5.robot.urdf = FUZZYPID_SOURCE_DIR "/urdf/ur5_class.urdf";
   ur5.robot.path = FUZZYPID_SOURCE_DIR "/paths/ur5_deburring_contour.csv";
   ur5.robot.armature_kgm2 = fuzzypid::robot::JointVector{0.4, 0.4, 0.4, 0.1, 0.1, 0.1};
-  const std::vector<fuzzypid::sim::Condition> both = {er50, ur5};
+  return {er50, ur5};
+}
+
+// Each training condition runs on its own robot: a set of two arms tunes, and its cost is the
+// sum of each arm's own cost.
+TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
+  const std::vector<fuzzypid::sim::Condition> both = er50_and_ur5();
+  const fuzzypid::sim::Condition& er50 = both[0];
+  const fuzzypid::sim::Condition& ur5 = both[1];
   std::string error;
   const auto set = fuzzypid::sim::ExperimentSet::create(both, {}, error);
   ASSERT_TRUE(set) << error;
@@ -365,13 +372,9 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
 // the UR5-class arm, the recorded validation cost is the result's cost on the UR5 (a split that
 // paired the validation conditions with the training experiments would score it on the ER50).
 TEST(TuneOnTwoRobots, ValidationConditionsRunOnTheirOwnExperiment) {
-  fuzzypid::sim::Condition er50, ur5;
-  er50.name = "er50";
-  ur5.name = "ur5";
-  ur5.robot.urdf = FUZZYPID_SOURCE_DIR "/urdf/ur5_class.urdf";
-  ur5.robot.path = FUZZYPID_SOURCE_DIR "/paths/ur5_deburring_contour.csv";
-  ur5.robot.armature_kgm2 = fuzzypid::robot::JointVector{0.4, 0.4, 0.4, 0.1, 0.1, 0.1};
-  const std::vector<fuzzypid::sim::Condition> both = {er50, ur5};
+  const std::vector<fuzzypid::sim::Condition> both = er50_and_ur5();
+  const fuzzypid::sim::Condition& er50 = both[0];
+  const fuzzypid::sim::Condition& ur5 = both[1];
   std::string error;
   const auto set = fuzzypid::sim::ExperimentSet::create(both, {}, error);
   ASSERT_TRUE(set) << error;
