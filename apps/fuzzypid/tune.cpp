@@ -87,6 +87,7 @@ struct TuneOptions {
   ctl::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
+  bool search_filter = false;
   GivenOptions given;
 };
 
@@ -192,6 +193,13 @@ int run_tune(const TuneOptions& t) {
     return kExitUsage;
   }
   if (const std::string bad =
+          t.given.refuse_unused({"--chatter-limit"}, t.objective.chatter_weight > 0.0,
+                                "a chatter weight above 0", "--chatter-weight is 0");
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", bad.c_str());
+    return kExitUsage;
+  }
+  if (const std::string bad =
           t.given.refuse_unused({"--visit-threshold"}, t.unvisited == "seed", "--unvisited seed",
                                 "--unvisited free searches every cell, visited or not");
       !bad.empty()) {
@@ -204,6 +212,7 @@ int run_tune(const TuneOptions& t) {
   opt.table.unvisited = *fuzzypid::parse_enum(tune::kUnvisitedNames, t.unvisited);
   opt.table.partition = t.partition == "tuned";
   opt.validation = t.validation;
+  opt.search_filter = t.search_filter;
   opt.family = family;
   opt.budget = t.budget;
   opt.seed = t.seed;
@@ -592,6 +601,10 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "cost per unit of each joint's command reversal share (0..1: the share of ticks "
                   "on which the command's change reverses; docs/tuning.md) (default 0.1)")
       ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--chatter-limit", t->objective.chatter_limit_pct,
+                  "reversal share per joint and run, %, that costs nothing: the chatter term "
+                  "counts only the share above it (default 0: every reversal costs)")
+      ->check(finite_in(0.0, 100.0));
   cmd->add_option("--effort-weight", t->objective.effort_weight,
                   "cost per unit of each joint's RMS command over its limit (0..1) (default 0)")
       ->check(finite_in(0.0, 1e9));
@@ -601,6 +614,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--box", t->boxes,
                   "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
                   "docs/tuning.md)");
+  cmd->add_flag("--search-filter", t->search_filter,
+                "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
+                "[-3, 0] at a 50 ms tick; default: keep the start's Tf)");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
   cmd->callback([&run, t, budget, cmd] {
     t->budget_given = budget->count() > 0;

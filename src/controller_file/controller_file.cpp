@@ -234,9 +234,13 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     tu.objective.divergence_rad = o->number("divergence_rad");
     tu.objective.chatter_weight = o->number("chatter_weight", 0.0);
     tu.objective.effort_weight = o->number("effort_weight", 0.0);
+    tu.objective.chatter_limit_pct = o->number("chatter_limit_pct", 0.0);
     for (const char* key : {"chatter_weight", "effort_weight"})
       if (o->has(key) && !(o->number(key) >= 0.0))
         o->fail(*o->raw().get(key), std::string(key) + " must be >= 0");
+    if (o->has("chatter_limit_pct") &&
+        !(tu.objective.chatter_limit_pct >= 0.0 && tu.objective.chatter_limit_pct <= 100.0))
+      o->fail(*o->raw().get("chatter_limit_pct"), "chatter_limit_pct must be within 0 .. 100");
     o->finish();
     const toml::array* box = t->array("box", true);
     for (const toml::node& entry : *box) {
@@ -536,6 +540,8 @@ std::string to_toml(const ControllerSpec& s) {
     o += "divergence_rad = " + format_double(t.objective.divergence_rad) + "\n";
     if (t.objective.chatter_weight != 0.0)
       o += "chatter_weight = " + format_double(t.objective.chatter_weight) + "\n";
+    if (t.objective.chatter_limit_pct != 0.0)
+      o += "chatter_limit_pct = " + format_double(t.objective.chatter_limit_pct) + "\n";
     if (t.objective.effort_weight != 0.0)
       o += "effort_weight = " + format_double(t.objective.effort_weight) + "\n";
   }

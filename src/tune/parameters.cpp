@@ -17,6 +17,8 @@ constexpr double kPidBox[3][2] = {{-1.0, 4.0}, {-6.0, 1.0}, {0.0, 4.0}};
 constexpr double kScaleBox[2][2] = {{-1.0, 4.0}, {-3.0, 2.0}};               // ke, kec
 constexpr double kRatioBox[2] = {-2.0, 2.0};                                 // rp, ri, rd
 constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
+// The derivative filter's time constant, s: 1 ms (no filter to speak of at a 50 ms tick) .. 1 s.
+constexpr double kFilterBox[2] = {-3.0, 0.0};
 // An inner centre as a fraction of the next one out: 0.1 .. 0.955.
 constexpr double kFractionBox[2] = {-1.0, -0.02};
 
@@ -68,7 +70,7 @@ std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, d
     if (b.name == "kp" || (family == Family::Fuzzy && b.name == "sp")) exponent = 2.0;
     if (b.name == "ki" || (family == Family::Fuzzy && b.name == "si")) exponent = 3.0;
     if (b.name == "kd" || (family == Family::Fuzzy && b.name == "sd")) exponent = 1.0;
-    if (b.name == "kec") exponent = -1.0;
+    if (b.name == "kec" || b.name == "tf") exponent = -1.0;
     b.log10_min += exponent * decades;
     b.log10_max += exponent * decades;
   }
@@ -77,15 +79,21 @@ std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, d
 
 std::optional<ParameterSpace> ParameterSpace::create(Family family, const ControllerSpec& start,
                                                      const TableOptions& options,
-                                                     const VisitMap* visits, std::string& error) {
+                                                     const VisitMap* visits, std::string& error,
+                                                     bool search_filter) {
   ParameterSpace p;
+  p.search_filter_ = search_filter;
   p.family_ = family;
   p.start_ = start;
   p.start_.family = family;
   p.start_.tuning.reset();
   p.options_ = options;
   p.box_ = fixed_box(family);
-  if (family != Family::FuzzyRules) return p;
+  const auto with_filter = [&p]() -> std::optional<ParameterSpace> {
+    if (p.search_filter_) p.box_.push_back({"tf", kFilterBox[0], kFilterBox[1]});
+    return p;
+  };
+  if (family != Family::FuzzyRules) return with_filter();
 
   if (start.family != Family::FuzzyRules) {
     error = "the fuzzy-rules family starts from a fuzzy-rules controller (tune::convert)";
@@ -153,13 +161,14 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
     }
   }
   if (options.symmetry == Symmetry::Odd) p.held_cells_ += 3;  // the centre cells
-  return p;
+  return with_filter();
 }
 
 ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   ControllerSpec s = start_;
   const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
   s.gains = {p(0), p(1), p(2)};
+  if (search_filter_) s.pid.derivative_filter_s = p(box_.size() - 1);
   if (family_ != Family::Pid) {
     s.supervisor.error_scale = p(3);
     s.supervisor.error_rate_scale = p(4);
@@ -194,6 +203,12 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
 }
 
 std::vector<double> ParameterSpace::from_spec(const ControllerSpec& s) const {
+  std::vector<double> x = from_spec_without_filter(s);
+  if (search_filter_) x.push_back(std::log10(std::fmax(s.pid.derivative_filter_s, 1e-3)));
+  return x;
+}
+
+std::vector<double> ParameterSpace::from_spec_without_filter(const ControllerSpec& s) const {
   std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki), std::log10(s.gains.kd)};
   if (family_ != Family::Pid) {
     x.push_back(std::log10(s.supervisor.error_scale));

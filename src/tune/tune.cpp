@@ -32,7 +32,7 @@ struct RunCost {
 
 // The chatter and effort terms of a run's rows (tick-major, joints 1..6), unweighted.
 void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::JointVector& limit,
-                 double& chatter, double& effort) {
+                 double chatter_limit_pct, double& chatter, double& effort) {
   const std::size_t ticks = rows.size() / robot::kNumJoints;
   std::vector<double> u(ticks);
   chatter = 0.0;
@@ -43,7 +43,7 @@ void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::Joint
       u[k] = rows[k * robot::kNumJoints + j].u;
       sum_sq += u[k] * u[k];
     }
-    chatter += sim::reversals_pct(u) / 100.0;
+    chatter += std::max(0.0, sim::reversals_pct(u) - chatter_limit_pct) / 100.0;
     if (ticks > 0 && limit[j] > 0.0 && std::isfinite(limit[j]))
       effort += std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
   }
@@ -65,7 +65,8 @@ RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const Contr
     }
     if (o.chatter_weight != 0.0 || o.effort_weight != 0.0) {
       double chatter = 0.0, effort = 0.0;
-      drive_terms(r.rows, ex.output_limit(c, spec.units.gains), chatter, effort);
+      drive_terms(r.rows, ex.output_limit(c, spec.units.gains), o.chatter_limit_pct, chatter,
+                  effort);
       out.chatter = o.chatter_weight * chatter;
       out.effort = o.effort_weight * effort;
     }
@@ -303,8 +304,11 @@ bool check_options(const Options& options, std::size_t conditions, std::string& 
       !std::isfinite(o.overshoot_weight) || o.overshoot_weight < 0 ||
       !std::isfinite(o.fault_cost) || o.fault_cost < 0 || !(o.divergence_rad > 0) ||
       !(o.chatter_weight >= 0.0 && std::isfinite(o.chatter_weight)) ||
-      !(o.effort_weight >= 0.0 && std::isfinite(o.effort_weight))) {
-    error = "objective weights must be finite and >= 0, the divergence bound > 0";
+      !(o.effort_weight >= 0.0 && std::isfinite(o.effort_weight)) ||
+      !(o.chatter_limit_pct >= 0.0 && o.chatter_limit_pct <= 100.0)) {
+    error =
+        "objective weights must be finite and >= 0, the divergence bound > 0, the chatter limit "
+        "within 0 .. 100 %";
     return false;
   }
   return true;
@@ -377,7 +381,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   VisitMap visit_map{};
   if (options.family == Family::FuzzyRules && options.table.unvisited == Unvisited::Seed)
     visit_map = visits_in(arena.get(), data.training_ex, data.training, *start);
-  auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error);
+  auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error,
+                                      options.search_filter);
   if (!space) return std::nullopt;
 
   // The default box moves with the training tick when all training conditions share one.

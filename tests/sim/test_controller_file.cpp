@@ -61,6 +61,7 @@ ctl::ControllerSpec tuned_example() {
            {"kec", -3.0, 2.0}, {"sp", 0.0, 6.0},  {"si", -4.0, 3.0}, {"sd", -2.0, 5.0}};
   t.on_bound = {{"kp", true, 3.9987654321}, {"ki", false, -6.0}};
   t.objective.chatter_weight = 0.25;
+  t.objective.chatter_limit_pct = 7.5;
   t.objective.effort_weight = 1.0 / 3.0;
   t.trained_on = {{"urdf", "../urdf/ur5_class.urdf", "0123456789abcdef"},
                   {"path", "../paths/contour.csv", "fedcba9876543210"}};
@@ -98,6 +99,7 @@ void expect_same(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
       EXPECT_EQ(a.tuning->on_bound[k].log10, b.tuning->on_bound[k].log10);
     }
     EXPECT_EQ(a.tuning->objective.chatter_weight, b.tuning->objective.chatter_weight);
+    EXPECT_EQ(a.tuning->objective.chatter_limit_pct, b.tuning->objective.chatter_limit_pct);
     EXPECT_EQ(a.tuning->objective.effort_weight, b.tuning->objective.effort_weight);
     EXPECT_EQ(a.tuning->training_cost, b.tuning->training_cost);
     EXPECT_EQ(a.tuning->evaluations, b.tuning->evaluations);

@@ -312,3 +312,50 @@ TEST(ParameterSpace, MonotoneTakesARatioOfOneAsNeverDown) {
 }
 
 }  // namespace
+
+// --search-filter: every family gains "tf", the last parameter, log10 of the derivative filter's
+// time constant (s), which to_spec writes into the PID options and from_spec reads back; the
+// family's own parameters keep their places (the partition and cells are read by index).
+TEST(SearchFilter, TfIsTheLastParameterOfEveryFamilyAndRoundTrips) {
+  for (const ctl::Family family :
+       {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy, ctl::Family::FuzzyRules}) {
+    const ctl::ControllerSpec start = family == ctl::Family::FuzzyRules
+                                          ? converted(schedule(), ctl::Family::FuzzyRules)
+                                          : ctl::paper_pid();
+    tune::TableOptions o;
+    o.unvisited = tune::Unvisited::Free;
+    std::string error;
+    const auto plain = tune::ParameterSpace::create(family, start, o, nullptr, error);
+    const auto filtered = tune::ParameterSpace::create(family, start, o, nullptr, error, true);
+    ASSERT_TRUE(plain && filtered) << error;
+    ASSERT_EQ(filtered->box().size(), plain->box().size() + 1);
+    for (std::size_t k = 0; k < plain->box().size(); ++k)
+      EXPECT_EQ(filtered->box()[k].name, plain->box()[k].name);
+    EXPECT_EQ(filtered->box().back().name, "tf");
+    EXPECT_EQ(filtered->box().back().log10_min, -3.0);
+    EXPECT_EQ(filtered->box().back().log10_max, 0.0);
+
+    std::vector<double> x = plain->from_spec(start);
+    x.push_back(std::log10(0.08));
+    const ctl::ControllerSpec s = filtered->to_spec(x);
+    EXPECT_NEAR(s.pid.derivative_filter_s, 0.08, 1e-15);
+    EXPECT_NEAR(s.gains.kd, plain->to_spec(plain->from_spec(start)).gains.kd,
+                1e-9 * start.gains.kd);
+    const std::vector<double> back = filtered->from_spec(s);
+    ASSERT_EQ(back.size(), x.size());
+    EXPECT_NEAR(back.back(), std::log10(0.08), 1e-12);
+    // Without the option the start's filter is kept.
+    EXPECT_EQ(plain->to_spec(plain->from_spec(start)).pid.derivative_filter_s,
+              start.pid.derivative_filter_s);
+    // A start without a filter enters the space at 1 ms, the box's lower end.
+    EXPECT_EQ(filtered->from_spec(start).back(), -3.0);
+  }
+}
+
+// tf is a time: at a 10 ms tick its box moves down by log10(5), like 1 / omega.
+TEST(SearchFilter, TfsBoxMovesWithTheTick) {
+  const std::vector<tune::SearchBox> box = {{"tf", -3.0, 0.0}};
+  const auto moved = tune::box_for_tick(box, ctl::Family::Pid, 0.05, 0.01);
+  EXPECT_NEAR(moved[0].log10_min, -3.0 - std::log10(5.0), 1e-12);
+  EXPECT_NEAR(moved[0].log10_max, -std::log10(5.0), 1e-12);
+}

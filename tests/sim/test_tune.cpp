@@ -111,6 +111,41 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
   EXPECT_DOUBLE_EQ(c.total, base.total + c.chatter_penalty + c.effort_penalty);
 }
 
+// --chatter-limit L: only each joint's share above L % costs (a hinge), so a run whose joints all
+// reverse on fewer ticks costs nothing and one above pays only the excess.
+TEST(Objective, ChatterLimitChargesOnlyTheShareAboveIt) {
+  std::string error;
+  const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
+                                                    fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(ex) << error;
+  std::vector<fuzzypid::sim::Condition> conditions(1);
+  conditions[0].noise_position_rad = 1e-4;
+  conditions[0].noise_velocity_rad_s = 1e-3;
+  const ctl::ControllerSpec pid = ctl::paper_pid();
+  const auto run = ex->run(conditions[0], pid);
+  const std::size_t ticks = run.rows.size() / 6;
+  std::vector<double> share(6);
+  for (std::size_t j = 0; j < 6; ++j) {
+    std::vector<double> u(ticks);
+    for (std::size_t k = 0; k < ticks; ++k)
+      u[k] = run.rows[k * 6 + j].u;
+    share[j] = fuzzypid::sim::reversals_pct(u);
+  }
+  const double lo = *std::min_element(share.begin(), share.end());
+  const double hi = *std::max_element(share.begin(), share.end());
+  ASSERT_LT(lo, hi);
+  tune::Objective o;
+  o.chatter_weight = 2.0;
+  o.chatter_limit_pct = 0.5 * (lo + hi);  // some joints above, some below
+  double excess = 0.0;
+  for (double s : share)
+    excess += std::max(0.0, s - o.chatter_limit_pct) / 100.0;
+  EXPECT_GT(excess, 0.0);
+  EXPECT_DOUBLE_EQ(tune::evaluate(*ex, conditions, pid, o).chatter_penalty, 2.0 * excess);
+  o.chatter_limit_pct = hi;
+  EXPECT_EQ(tune::evaluate(*ex, conditions, pid, o).chatter_penalty, 0.0);
+}
+
 TEST(Minimize, PidFamilyFindsTheBruteForcedItaeOptimumOfADoubleIntegrator) {
   // Brute force on a 61 x 41 x 61 grid (0.05 decade steps in kp and kd, 0.1 in ki).
   std::vector<double> best_x;

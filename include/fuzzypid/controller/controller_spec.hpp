@@ -223,6 +223,9 @@ struct Objective {
   // keep every joint's reversals at or below 10 % on the validation conditions of
   // tuning/robust.toml (docs/tuning.md, "Chatter"); a file without the key was tuned without it.
   double chatter_weight = 0.1;
+  // Reversals up to this share (percent, 0..100) cost nothing: the term is chatter_weight x the
+  // share above it. 0: every reversal costs (a file without the key).
+  double chatter_limit_pct = 0.0;
   double effort_weight = 0.0;
 };
 

@@ -13,6 +13,8 @@
 //                same at (+-x, +-y)), odd (24: log T(-x, -y) = -log T(x, y), the centre cell 1) or
 //                none (49). A class whose nodes training never visits is held at the start's
 //                values (unvisited = seed) or searched like the others (free).
+//   every family, with the derivative filter searched: tf last (the PID's derivative filter
+//                time constant Tf, log10 s), after all of the above.
 //
 // Library fuzzypid::tune (offline, allocates, never in a control loop).
 #pragma once
@@ -65,11 +67,12 @@ class ParameterSpace {
   // feed-forward and rule base; for fuzzy-rules start's table gives the values of the cells held
   // (start must then be a fuzzy-rules controller; `visits` says which nodes training reaches, and
   // is required when options.unvisited is Seed). Returns nullopt with `error` set otherwise.
-  [[nodiscard]] static std::optional<ParameterSpace> create(Family family,
-                                                            const ControllerSpec& start,
-                                                            const TableOptions& options,
-                                                            const VisitMap* visits,
-                                                            std::string& error);
+  // With search_filter, the last parameter is tf: log10 of the derivative filter's time constant
+  // Tf (s), in [-3, 0] at a 0.05 s tick (1 ms, no filter to speak of, .. 20 ticks); a start's
+  // Tf below 1 ms enters the space at 1 ms.
+  [[nodiscard]] static std::optional<ParameterSpace> create(
+      Family family, const ControllerSpec& start, const TableOptions& options,
+      const VisitMap* visits, std::string& error, bool search_filter = false);
 
   Family family() const noexcept { return family_; }
   // The default box, one entry per searched parameter.
@@ -95,6 +98,8 @@ class ParameterSpace {
     std::vector<int> sign;
   };
 
+  std::vector<double> from_spec_without_filter(const ControllerSpec& spec) const;
+
   Family family_ = Family::Pid;
   ControllerSpec start_{};
   TableOptions options_{};
@@ -102,6 +107,7 @@ class ParameterSpace {
   std::vector<CellClass> classes_;
   std::size_t first_cell_ = 0;  // index of the first cell parameter in x
   std::size_t held_cells_ = 0;
+  bool search_filter_ = false;  // tf is the last parameter
 };
 
 // The start of a stage: `from` as a controller of family `to`, exactly (the same commands for
@@ -120,8 +126,8 @@ class ParameterSpace {
 // (per-tick kd and ki at units_tick_s are Kd / units_tick_s and Ki * units_tick_s of the
 // continuous gains) and the error-rate scale as kec ~ 1/omega. Each such parameter's log10 box
 // moves by its exponent times log10(units_tick_s / tick_s): kp, sp by 2, ki, si by 3, kd, sd by
-// 1, kec by -1 (sp, si, sd: the fuzzy family's gain increments, in gain units); ke, the ratios
-// and the table cells are dimensionless and stay. Equal ticks return the box unchanged.
+// 1, kec by -1 (sp, si, sd: the fuzzy family's gain increments, in gain units), tf (a time, s)
+// by -1; ke, the ratios and the table cells are dimensionless and stay. Equal ticks return the box unchanged.
 [[nodiscard]] std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family,
                                                   double units_tick_s, double tick_s);
 

@@ -5,7 +5,7 @@
 //
 //   cost = sum ITAE (six joints)
 //        + overshoot_weight x sum_joints max(0, overshoot_pct - overshoot_bound_pct)
-//        + chatter_weight x sum_joints reversals_pct(u) / 100
+//        + chatter_weight x sum_joints max(0, reversals_pct(u) - chatter_limit_pct) / 100
 //        + effort_weight x sum_joints rms(u) / u_limit
 //        + fault_cost per run that faults, diverges (|e| > divergence_rad) or gives a non-finite
 //          ITAE (such a run adds only fault_cost),
@@ -14,7 +14,8 @@
 // in acceleration units). reversals_pct (sim/metrics.hpp, as metrics.csv reports it) is the
 // share of ticks on which the command's change reverses direction, counting only changes larger
 // than 1 % of the command's range in the run: ringing at the Nyquist rate scores 100 %, a smooth
-// command nearly 0. ITAE alone rewards that ringing, which costs nothing on a rigid, delay-free
+// command nearly 0; with chatter_limit_pct > 0 only the share above it costs, so that a large
+// weight acts as a bound on every joint of every run. ITAE alone rewards that ringing, which costs nothing on a rigid, delay-free
 // plant and excites the first resonance of a real joint.
 //
 // minimised by pagmo2's self-adaptive differential evolution (pagmo::sade, jDE adaptation) under a
@@ -115,6 +116,9 @@ struct Options {
   // and the controller whose training runs say which cells are visited. Without it the base.
   std::optional<ControllerSpec> init;
   TableOptions table{};  // fuzzy-rules only
+  // Search the derivative filter's time constant Tf beside the family's parameters (the last
+  // parameter, "tf": ParameterSpace::create); without it the result keeps the base's Tf.
+  bool search_filter = false;
   // The last `validation` of the given conditions are held back: never trained on, they choose
   // among the best points of the search (early stopping) and among stages.
   std::size_t validation = 0;
