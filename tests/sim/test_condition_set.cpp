@@ -357,7 +357,12 @@ TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
     EXPECT_EQ(c.effects.encoder_counts, 131072u) << c.name;
     coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
   }
-  EXPECT_EQ(coulomb, 2);
+  // Coulomb friction only in held-out: it is the plant's stiffest term (the file says why).
+  EXPECT_EQ(coulomb, 0);
+  int held_out_coulomb = 0;
+  for (const auto& c : f.find("held-out")->conditions)
+    held_out_coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
+  EXPECT_GE(held_out_coulomb, 1);
   double longest = 0.0;
   for (const auto& c : f.find("stress")->conditions)
     longest = std::max(longest, c.effects.delay_s);
