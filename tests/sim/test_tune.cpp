@@ -68,15 +68,20 @@ TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
   EXPECT_TRUE(tune::on_bound({2.0, -1.0, 2.0, 2.0}, box).empty());
 }
 
+// The paper scenario with measurement noise: the command reverses on many ticks.
+std::vector<fuzzypid::sim::Condition> noisy_condition() {
+  std::vector<fuzzypid::sim::Condition> conditions(1);
+  conditions[0].noise_position_rad = 1e-4;
+  conditions[0].noise_velocity_rad_s = 1e-3;
+  return conditions;
+}
+
 TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByDefault) {
   std::string error;
   const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
                                                     fuzzypid::sim::ExperimentOptions{}, error);
   ASSERT_TRUE(ex) << error;
-  // Measurement noise makes the command reverse on many ticks, so both terms are non-zero.
-  std::vector<fuzzypid::sim::Condition> conditions(1);
-  conditions[0].noise_position_rad = 1e-4;
-  conditions[0].noise_velocity_rad_s = 1e-3;
+  const auto conditions = noisy_condition();  // both terms non-zero
   const ctl::ControllerSpec pid = ctl::paper_pid();
   tune::Objective plain;
   EXPECT_EQ(plain.chatter_weight, 0.1);  // the default (docs/tuning.md, "Chatter")
@@ -118,9 +123,7 @@ TEST(Objective, ChatterLimitChargesOnlyTheShareAboveIt) {
   const auto ex = fuzzypid::sim::Experiment::create(fuzzypid::sim::RobotSetup{},
                                                     fuzzypid::sim::ExperimentOptions{}, error);
   ASSERT_TRUE(ex) << error;
-  std::vector<fuzzypid::sim::Condition> conditions(1);
-  conditions[0].noise_position_rad = 1e-4;
-  conditions[0].noise_velocity_rad_s = 1e-3;
+  const auto conditions = noisy_condition();
   const ctl::ControllerSpec pid = ctl::paper_pid();
   const auto run = ex->run(conditions[0], pid);
   const std::size_t ticks = run.rows.size() / 6;
