@@ -369,4 +369,33 @@ TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
   EXPECT_GT(longest, 0.05);
 }
 
+// tuning/ur5_class_drive.toml: the UR5-class sets with a real joint's effects, one 10 ms tick of
+// delay or less in training, Coulomb friction in held-out only, more than a tick in stress.
+TEST(ConditionSets, TheUr5DriveFileTrainsWithinOneTickOfDelay) {
+  ConditionFile f;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive.toml", f, e))
+      << e.to_string();
+  ASSERT_NE(f.find("training"), nullptr);
+  ASSERT_NE(f.find("held-out"), nullptr);
+  ASSERT_NE(f.find("stress"), nullptr);
+  const auto& training = f.find("training")->conditions;
+  ASSERT_EQ(training.size(), 10u);
+  for (const auto& c : training) {
+    EXPECT_LE(c.effects.delay_s, 0.01 + 1e-12) << c.name;
+    EXPECT_GE(c.effects.torque_bandwidth_hz, 50.0) << c.name;
+    EXPECT_GE(c.effects.joint_resonance_hz[0], 15.0) << c.name;
+    EXPECT_EQ(c.effects.encoder_counts, 131072u) << c.name;
+    EXPECT_EQ(c.effects.coulomb_nm[0], 0.0) << c.name;
+  }
+  int held_out_coulomb = 0;
+  for (const auto& c : f.find("held-out")->conditions)
+    held_out_coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
+  EXPECT_EQ(held_out_coulomb, 2);
+  double longest = 0.0;
+  for (const auto& c : f.find("stress")->conditions)
+    longest = std::max(longest, c.effects.delay_s);
+  EXPECT_GT(longest, 0.01);
+}
+
 }  // namespace
