@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the tuned controller files and the seed study (docs/tuning.md). Every family gets the
-# same total budget of objective evaluations on the training set of tuning/robust.toml, whose last
-# four conditions are held back for validation (--validation 4):
+# same total budget of objective evaluations on the training set of CONDITIONS (default
+# tuning/robust_drive.toml: a real joint's delay, current loop, gear and encoder), whose last four
+# conditions are held back for validation (--validation 4):
 #   pid, scheduled, fuzzy   one run of BUDGET evaluations
 #   fuzzy-rules             staged: pid BUDGET/16 -> scheduled 7 BUDGET/16 -> fuzzy-rules BUDGET/2,
 #                           each stage started from the last one's result
@@ -11,14 +12,21 @@
 #   controllers/tuned_{pid,scheduled,fuzzy,fuzzy_rules,scheduled_staged}.toml   seed 1
 #   out/seeds/<family>_seed<S>.toml                            seeds 1..SEEDS (default 5)
 # then every seed's file on all sets with sim_ab, summarised by scripts/seed_study.py.
-#   BUDGET=N   evaluations per controller (default 64000)   SEEDS=N   seeds (default 5)
+#   BUDGET=N   evaluations per controller (default 4000)    SEEDS=N   seeds (default 5)
+#   CONDITIONS=FILE  the condition file (default tuning/robust_drive.toml)
+#   SEARCH_FILTER=0  keep the start's derivative filter instead of searching it (--keep-filter)
 #   THREADS=N  threads per run (default: all cores)          SKIP_SEEDS=1   only seed 1
 #   RULES_ARGS="..."  the fuzzy-rules stage's regulariser (default: the documented defaults)
 #   RESUME=1   keep the seed files that exist (the runs are deterministic for a seed)
-#   CHATTER_WEIGHT=W   the objective's chatter weight (default 0: as the shipped files were tuned)
+#   CHATTER_WEIGHT=W   the objective's chatter weight (default 10: docs/tuning.md, "Chatter")
+# The controllers shipped before the drive re-tune came from
+#   CONDITIONS=tuning/robust.toml CHATTER_WEIGHT=0 SEARCH_FILTER=0 BUDGET=64000 scripts/tune.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-budget="${BUDGET:-64000}"
+budget="${BUDGET:-4000}"
+conditions="${CONDITIONS:-tuning/robust_drive.toml}"
+filter=--search-filter
+if [ "${SEARCH_FILTER:-1}" = 0 ]; then filter=--keep-filter; fi
 seeds="${SEEDS:-5}"
 threads="${THREADS:-$(nproc)}"
 rules_args="${RULES_ARGS:-}"
@@ -30,10 +38,9 @@ stages="pid:$((budget / 16)),scheduled:$((budget * 7 / 16)),fuzzy-rules:$((budge
 control="pid:$((budget / 16)),scheduled:$((budget - budget / 16))"
 # tune_one FAMILY SEED OUT: each run prints its stages, evaluations, wall time and rate.
 tune_one() {
-  # The shipped files were tuned without the chatter term (CHATTER_WEIGHT=0.1 is the default of
-  # `fuzzypid tune`; docs/tuning.md, "Chatter").
-  local common=(--conditions tuning/robust.toml --set training --validation 4 --seed "$2"
-                --chatter-weight "${CHATTER_WEIGHT:-0}" --threads "${threads}" --quiet --out "$3")
+  local common=(--conditions "${conditions}" --set training --validation 4 --seed "$2"
+                --chatter-weight "${CHATTER_WEIGHT:-10}" "${filter}" --threads "${threads}"
+                --quiet --out "$3")
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086
     build/bin/fuzzypid tune --stages "${stages}" ${rules_args} "${common[@]}"
@@ -55,9 +62,11 @@ for seed in $(seq 1 "${last}"); do
   done
 done
 for family in pid scheduled fuzzy fuzzy_rules scheduled_staged; do
-  cp "out/seeds/${family}_seed1.toml" "controllers/tuned_${family}.toml"
+  # The file records its conditions relative to its own folder: one level up from controllers/.
+  sed 's|^conditions = "\.\./\.\./|conditions = "../|' "out/seeds/${family}_seed1.toml" \
+    >"controllers/tuned_${family}.toml"
 done
 args=(--controller controllers/paper_pid.toml --controller controllers/paper_fuzzy.toml)
 for f in out/seeds/*_seed*.toml; do args+=(--controller "$f"); done
-build/bin/sim_ab --quiet --conditions tuning/robust.toml "${args[@]}" --out out/seeds/eval
+build/bin/sim_ab --quiet --allow-faults --conditions "${conditions}" "${args[@]}" --out out/seeds/eval
 /usr/bin/python3 scripts/seed_study.py out/seeds/eval

@@ -87,7 +87,7 @@ struct TuneOptions {
   ctl::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
-  bool search_filter = false;
+  bool search_filter = true;
   GivenOptions given;
 };
 
@@ -599,7 +599,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       ->check(finite_in(0.0, 1e12));
   cmd->add_option("--chatter-weight", t->objective.chatter_weight,
                   "cost per unit of each joint's command reversal share (0..1: the share of ticks "
-                  "on which the command's change reverses; docs/tuning.md) (default 0.1)")
+                  "on which the command's change reverses; docs/tuning.md) (default 10)")
       ->check(finite_in(0.0, 1e9));
   cmd->add_option("--chatter-limit", t->objective.chatter_limit_pct,
                   "reversal share per joint and run, %, that costs nothing: the chatter term "
@@ -614,9 +614,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--box", t->boxes,
                   "search box of one parameter in log10, NAME=MIN:MAX (repeatable; defaults in "
                   "docs/tuning.md)");
-  cmd->add_flag("--search-filter", t->search_filter,
+  cmd->add_flag("--search-filter,!--keep-filter", t->search_filter,
                 "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
-                "[-3, 0] at a 50 ms tick; default: keep the start's Tf)");
+                "[-3, 0] at a 50 ms tick; default), or keep the start's Tf");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
   cmd->callback([&run, t, budget, cmd] {
     t->budget_given = budget->count() > 0;

@@ -262,9 +262,10 @@ std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
     const double width = b.log10_max - b.log10_min;
     if (!(width > 0.0)) continue;
     const double margin = fraction * width;
-    if (x[k] >= b.log10_max - margin)
-      hits.push_back({b.name, true, x[k]});
-    else if (x[k] <= b.log10_min + margin)
+    if (x[k] >= b.log10_max - margin) hits.push_back({b.name, true, x[k]});
+    // The bottom of the derivative filter's box (a fiftieth of the tick, box_for_tick) is its
+    // "off" end: a filter below it is inert, so ending there is no sign of a box too small.
+    else if (x[k] <= b.log10_min + margin && b.name != "tf")
       hits.push_back({b.name, false, x[k]});
   }
   return hits;

@@ -219,10 +219,11 @@ struct Objective {
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
   // What a drive feels (tune/tune.hpp): cost per unit of each joint's command reversal share
   // (0..1) and of its RMS command relative to its limit (0..1), summed over the joints. The
-  // chatter default is the smallest of 0, 0.1, 1, 10 with which the pid and scheduled families
-  // keep every joint's reversals at or below 10 % on the validation conditions of
-  // tuning/robust.toml (docs/tuning.md, "Chatter"); a file without the key was tuned without it.
-  double chatter_weight = 0.1;
+  // chatter default is the smallest of 0.1, 1, 3, 10 with which the pid family (its derivative
+  // filter searched) keeps every joint's reversals at or below 10 % on the validation conditions
+  // of tuning/robust_drive.toml (docs/tuning.md, "Chatter"); a file without the key was tuned
+  // without it.
+  double chatter_weight = 10.0;
   // Reversals up to this share (percent, 0..100) cost nothing: the term is chatter_weight x the
   // share above it. 0: every reversal costs (a file without the key).
   double chatter_limit_pct = 0.0;

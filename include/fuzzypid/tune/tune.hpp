@@ -95,7 +95,8 @@ struct Minimum {
     const MinimizeOptions& options, std::string& error);
 
 // The parameters of x (in the box's units) that lie within `fraction` of their box's width of a
-// side, in box order. A box of zero width (a parameter held fixed) is never reported.
+// side, in box order. A box of zero width (a parameter held fixed) is never reported, nor the
+// derivative filter "tf" at its bottom (a filter shorter than that is inert: the "off" end).
 [[nodiscard]] std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
                                                          const std::vector<SearchBox>& box,
                                                          double fraction = 0.01);
@@ -117,8 +118,9 @@ struct Options {
   std::optional<ControllerSpec> init;
   TableOptions table{};  // fuzzy-rules only
   // Search the derivative filter's time constant Tf beside the family's parameters (the last
-  // parameter, "tf": ParameterSpace::create); without it the result keeps the base's Tf.
-  bool search_filter = false;
+  // parameter, "tf": ParameterSpace::create); without it the result keeps the base's Tf. On by
+  // default: an unfiltered derivative of an encoder's angle chatters (docs/tuning.md, "Chatter").
+  bool search_filter = true;
   // The last `validation` of the given conditions are held back: never trained on, they choose
   // among the best points of the search (early stopping) and among stages.
   std::size_t validation = 0;
