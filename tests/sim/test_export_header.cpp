@@ -1,5 +1,5 @@
 // `fuzzypid export-header`: the generated headers (built from the shipped controller files by
-// tests/sim/CMakeLists.txt, and from two controllers whose supervisor is a rule file) give
+// tests/sim/CMakeLists.txt, and from the test controllers of tests/sim/data) give
 // controllers equal to the files' bit for bit on x86, and compile for float as well.
 #include <gtest/gtest.h>
 
@@ -18,6 +18,7 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
 #include "paper_fuzzy.hpp"
+#include "rule_table_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
 #include "tuned_fuzzy_rules.hpp"
 #include "tuned_pid.hpp"
@@ -172,15 +173,16 @@ TEST(ExportHeader, GeneratedConfigurationIsConstexprAndInstantiatesForFloat) {
 
 namespace {
 
-// The tuned rule table as constexpr data: every ratio, centre and R of the file, bit for bit (the
-// random ticks above mostly saturate Ke e, so they reach few of the table's inner cells).
+// A tuned rule table as constexpr data: every ratio, centre and R of the file, bit for bit (the
+// random ticks above mostly saturate Ke e, so they reach few of the table's inner cells). The
+// file is a table with cells other than 1 (the shipped one may be the schedule's start).
 TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {
   ctl::ControllerSpec spec;
   fuzzypid::FileError err;
-  ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/controllers/tuned_fuzzy_rules.toml", spec, err))
+  ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/rule_table_fuzzy.toml", spec, err))
       << err.to_string();
   const control::RuleTable<double> file = ctl::rule_table(spec);
-  const auto& header = tuned_fuzzy_rules::kSupervisor<double>;
+  const auto& header = rule_table_fuzzy::kSupervisor<double>;
   bool some_cell_is_not_one = false;
   for (std::size_t g = 0; g < 3; ++g) {
     EXPECT_TRUE(same_bits(file.schedule_ratio[g], header.schedule_ratio[g]));

@@ -266,15 +266,21 @@ TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
   for (const auto& joint : cert.joints) {
     EXPECT_LE(joint.inertia_min_kgm2, joint.nominal_inertia_kgm2);
     EXPECT_GE(joint.inertia_max_kgm2, joint.nominal_inertia_kgm2);
-    // The worst case's loop, simulated with pid::Pid: stable below its margin, divergent above.
+    // The worst case's loop, simulated with pid::Pid: stable below its margin (small and still
+    // shrinking: a small Ki leaves a pole near 1 that decays over thousands of ticks), divergent
+    // above.
+    const auto decays = [](const JointLoop& loop, double scale, int delay_ticks) {
+      const double late = simulate(loop, scale, delay_ticks, 40000);
+      return late < 1e-4 && late < 0.5 * simulate(loop, scale, delay_ticks, 20000);
+    };
     const fuzzypid::sim::MarginCase& w = joint.worst_gain;
     const double gm = std::pow(10.0, w.margins.gain_margin_db / 20.0);
-    EXPECT_LT(simulate(w.loop, 0.95 * gm, 0, 20000), 1e-6);
+    EXPECT_TRUE(decays(w.loop, 0.95 * gm, 0));
     EXPECT_GT(simulate(w.loop, 1.05 * gm, 0, 20000), 1.0);
     // And with its whole-tick delay margin.
     const int ticks = joint.worst_delay.margins.delay_margin_ticks;
     ASSERT_GE(ticks, 1);
-    EXPECT_LT(simulate(joint.worst_delay.loop, 1.0, ticks - 1, 20000), 1e-6);
+    EXPECT_TRUE(decays(joint.worst_delay.loop, 1.0, ticks - 1));
     EXPECT_GT(simulate(joint.worst_delay.loop, 1.0, ticks, 20000), 1.0);
   }
 }
@@ -299,8 +305,13 @@ TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
     EXPECT_EQ(a.joints[i].worst_gain.margins.gain_margin_db,
               b.joints[i].worst_gain.margins.gain_margin_db);
   }
-  // tuned_pid's delay margin is under one 50 ms tick.
-  const fuzzypid::sim::Certificate late = er50.certify("controllers/tuned_pid.toml", 0.05);
+  // 5 ms beyond the smallest exact delay margin of its joints.
+  double margin_s = INFINITY;
+  for (const auto& joint : a.joints)
+    margin_s = std::min(margin_s, joint.worst_delay.margins.delay_margin_exact_s);
+  ASSERT_TRUE(std::isfinite(margin_s));
+  const fuzzypid::sim::Certificate late =
+      er50.certify("controllers/tuned_pid.toml", margin_s + 0.005);
   EXPECT_FALSE(late.certified);
   EXPECT_EQ(late.verdict, "not certified (unstable at frozen gains)");
 }
