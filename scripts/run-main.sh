@@ -2,11 +2,13 @@
 # The main job: builds sim_ab into build/ and runs the six-way A/B without re-tuning: the
 # controller files of controllers/ -- the paper's fixed and fuzzy PID; a fixed PID, a gain
 # schedule, a fuzzy PID with the paper's tables and a tuned rule table (fuzzy-rules), all tuned on
-# tuning/robust.toml with the same optimiser and total budget; and the control that explains the
-# rule table's result, the schedule tuned in two stages (PID first) with the same budget -- on
-# every condition of tuning/robust.toml (training, held-out and stress sets). Prints the table
-# (docs/tuning.md), writes out/ab/{trajectory,metrics,endeffector,conditions}.csv,
-# out/ab/settings.txt, the figures out/ab/*.png, and the robustness sweeps out/sweep-payload/ and
+# tuning/robust_drive.toml with the same optimiser and total budget; and the control that explains
+# the rule table's result, the schedule tuned in two stages (PID first) with the same budget -- on
+# every condition of tuning/robust.toml (training, held-out and stress sets: the paper's rigid
+# plant) and of tuning/robust_drive.toml (the same with delay, current loop, gear, encoder and
+# Coulomb friction). Prints the tables (docs/tuning.md), writes
+# out/{ab,drive}/{trajectory,metrics,endeffector,conditions}.csv and settings.txt, the figures
+# out/ab/*.png, and the robustness sweeps out/sweep-payload/ and
 # out/sweep-torque/ with their plots. Arguments replace the default run: sim_ab with them, output
 # and figures in out/run/ (e.g. --scenario all: the paper's scenarios, the paper's controllers).
 set -euo pipefail
@@ -28,6 +30,12 @@ fi
 build/bin/sim_ab --quiet --conditions tuning/robust.toml "${controllers[@]}" --out out/ab
 /usr/bin/python3 scripts/summarize_sim.py out/ab --per-condition --gains
 /usr/bin/python3 scripts/plot_sim.py --in out/ab --out out/ab --scenario nominal-ahead
+echo
+# The same controllers on joints with a real drive's effects (docs/tuning.md, "Results"): the
+# paper's gains and the stress set's 5 Hz gear fault, so the faults are reported, not fatal.
+build/bin/sim_ab --quiet --allow-faults --conditions tuning/robust_drive.toml "${controllers[@]}" \
+  --out out/drive
+/usr/bin/python3 scripts/summarize_sim.py out/drive --per-condition --drive
 echo
 # The sweeps go past the stable range on purpose: a value at which a controller faults is a
 # result (usable = 0 in sweep.csv), not a failure of the run (--allow-faults). The A/B above
