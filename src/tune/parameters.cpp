@@ -70,7 +70,7 @@ std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, d
     if (b.name == "kp" || (family == Family::Fuzzy && b.name == "sp")) exponent = 2.0;
     if (b.name == "ki" || (family == Family::Fuzzy && b.name == "si")) exponent = 3.0;
     if (b.name == "kd" || (family == Family::Fuzzy && b.name == "sd")) exponent = 1.0;
-    if (b.name == "kec" || b.name == "tf") exponent = -1.0;
+    if (b.name == "kec" || b.name == kFilterParameter) exponent = -1.0;
     b.log10_min += exponent * decades;
     b.log10_max += exponent * decades;
   }
@@ -90,7 +90,7 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
   p.options_ = options;
   p.box_ = fixed_box(family);
   const auto with_filter = [&p]() -> std::optional<ParameterSpace> {
-    if (p.search_filter_) p.box_.push_back({"tf", kFilterBox[0], kFilterBox[1]});
+    if (p.search_filter_) p.box_.push_back({kFilterParameter, kFilterBox[0], kFilterBox[1]});
     return p;
   };
   if (family != Family::FuzzyRules) return with_filter();

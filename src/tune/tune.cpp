@@ -265,7 +265,7 @@ std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
     if (x[k] >= b.log10_max - margin) hits.push_back({b.name, true, x[k]});
     // The bottom of the derivative filter's box (a fiftieth of the tick, box_for_tick) is its
     // "off" end: a filter below it is inert, so ending there is no sign of a box too small.
-    else if (x[k] <= b.log10_min + margin && b.name != "tf")
+    else if (x[k] <= b.log10_min + margin && b.name != kFilterParameter)
       hits.push_back({b.name, false, x[k]});
   }
   return hits;

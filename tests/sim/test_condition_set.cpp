@@ -336,49 +336,53 @@ conditions = [ { name = "bundled" }, { name = "bundled-coupled", dynamics = "cou
   EXPECT_FALSE(paper[1].gravity);
 }
 
+// Loads a shipped drive condition file, which has a training, a held-out and a stress set.
+void load_drive_file(const char* path, ConditionFile& f) {
+  fuzzypid::FileError e;
+  ASSERT_TRUE(load_conditions(path, f, e)) << e.to_string();
+  for (const char* set : {"training", "held-out", "stress"})
+    ASSERT_NE(f.find(set), nullptr) << set;
+}
+
+int coulomb_conditions(const ConditionFile& f, const char* set) {
+  int n = 0;
+  for (const auto& c : f.find(set)->conditions)
+    n += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
+  return n;
+}
+
+double longest_delay_s(const ConditionFile& f, const char* set) {
+  double longest = 0.0;
+  for (const auto& c : f.find(set)->conditions)
+    longest = std::max(longest, c.effects.delay_s);
+  return longest;
+}
+
 // tuning/robust_drive.toml: robust.toml's sets with what real joints have; every training
 // condition has one tick of delay or less, a current loop, a gear and an encoder, and the stress
 // set goes beyond one tick.
 TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
   ConditionFile f;
-  fuzzypid::FileError e;
-  ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", f, e))
-      << e.to_string();
-  ASSERT_NE(f.find("training"), nullptr);
-  ASSERT_NE(f.find("held-out"), nullptr);
-  ASSERT_NE(f.find("stress"), nullptr);
+  ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", f));
   const auto& training = f.find("training")->conditions;
   ASSERT_EQ(training.size(), 14u);
-  int coulomb = 0;
   for (const auto& c : training) {
     EXPECT_LE(c.effects.delay_s, 0.05 + 1e-12) << c.name;
     EXPECT_GE(c.effects.torque_bandwidth_hz, 20.0) << c.name;
     EXPECT_GE(c.effects.joint_resonance_hz[0], 8.0) << c.name;
     EXPECT_EQ(c.effects.encoder_counts, 131072u) << c.name;
-    coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
   }
   // Coulomb friction only in held-out: it is the plant's stiffest term (the file says why).
-  EXPECT_EQ(coulomb, 0);
-  int held_out_coulomb = 0;
-  for (const auto& c : f.find("held-out")->conditions)
-    held_out_coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
-  EXPECT_GE(held_out_coulomb, 1);
-  double longest = 0.0;
-  for (const auto& c : f.find("stress")->conditions)
-    longest = std::max(longest, c.effects.delay_s);
-  EXPECT_GT(longest, 0.05);
+  EXPECT_EQ(coulomb_conditions(f, "training"), 0);
+  EXPECT_GE(coulomb_conditions(f, "held-out"), 1);
+  EXPECT_GT(longest_delay_s(f, "stress"), 0.05);
 }
 
 // tuning/ur5_class_drive.toml: the UR5-class sets with a real joint's effects, one 10 ms tick of
 // delay or less in training, Coulomb friction in held-out only, more than a tick in stress.
 TEST(ConditionSets, TheUr5DriveFileTrainsWithinOneTickOfDelay) {
   ConditionFile f;
-  fuzzypid::FileError e;
-  ASSERT_TRUE(load_conditions(FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive.toml", f, e))
-      << e.to_string();
-  ASSERT_NE(f.find("training"), nullptr);
-  ASSERT_NE(f.find("held-out"), nullptr);
-  ASSERT_NE(f.find("stress"), nullptr);
+  ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive.toml", f));
   const auto& training = f.find("training")->conditions;
   ASSERT_EQ(training.size(), 10u);
   for (const auto& c : training) {
@@ -386,16 +390,10 @@ TEST(ConditionSets, TheUr5DriveFileTrainsWithinOneTickOfDelay) {
     EXPECT_GE(c.effects.torque_bandwidth_hz, 50.0) << c.name;
     EXPECT_GE(c.effects.joint_resonance_hz[0], 15.0) << c.name;
     EXPECT_EQ(c.effects.encoder_counts, 131072u) << c.name;
-    EXPECT_EQ(c.effects.coulomb_nm[0], 0.0) << c.name;
   }
-  int held_out_coulomb = 0;
-  for (const auto& c : f.find("held-out")->conditions)
-    held_out_coulomb += c.effects.coulomb_nm[0] > 0.0 ? 1 : 0;
-  EXPECT_EQ(held_out_coulomb, 2);
-  double longest = 0.0;
-  for (const auto& c : f.find("stress")->conditions)
-    longest = std::max(longest, c.effects.delay_s);
-  EXPECT_GT(longest, 0.01);
+  EXPECT_EQ(coulomb_conditions(f, "training"), 0);
+  EXPECT_EQ(coulomb_conditions(f, "held-out"), 2);
+  EXPECT_GT(longest_delay_s(f, "stress"), 0.01);
 }
 
 }  // namespace

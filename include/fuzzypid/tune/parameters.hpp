@@ -35,6 +35,9 @@ using controller::ControllerSpec;
 using controller::Family;
 using controller::SearchBox;
 
+// The searched derivative filter's name in a box (the last parameter with --search-filter).
+inline constexpr const char* kFilterParameter = "tf";
+
 enum class Symmetry : std::uint8_t { Even, Odd, None };
 inline constexpr std::array<EnumName<Symmetry>, 3> kSymmetryNames{
     {{Symmetry::Even, "even"}, {Symmetry::Odd, "odd"}, {Symmetry::None, "none"}}};
