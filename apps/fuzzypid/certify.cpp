@@ -81,14 +81,31 @@ void print_json(const CertifyCli& o, const sim::Certificate& cert) {
         num(disk.disk_margin).c_str(), num(sim::to_db(disk.disk_gain_low)).c_str(),
         num(sim::to_db(disk.disk_gain_high)).c_str(), num(disk.disk_phase_deg).c_str());
     std::printf("      \"gain_triples\": %zu,\n      \"cases\": %zu,\n", j.gain_triples, j.cases);
+    const sim::GainBox& b = j.gain_box;
+    std::printf(
+        "      \"gain_box\": {\"kp\": [%s, %s], \"ki\": [%s, %s], \"kd\": [%s, %s]},\n",
+        num(b.low.kp).c_str(), num(b.high.kp).c_str(), num(b.low.ki).c_str(),
+        num(b.high.ki).c_str(), num(b.low.kd).c_str(), num(b.high.kd).c_str());
+    const sim::LyapunovCertificate& l = j.lyapunov;
+    std::printf(
+        "      \"lyapunov\": {\"certified\": %s, \"contraction_per_tick\": %s, "
+        "\"condition_number\": %s, \"states\": %zu, \"vertices\": %zu, \"plant_groups\": %zu, "
+        "\"inertia_intervals\": %zu, \"switching_radius\": %s, \"switching_period\": %zu, "
+        "\"reason\": \"%s\"},\n",
+        l.certified ? "true" : "false", num(l.contraction).c_str(),
+        num(l.condition_number).c_str(), l.states, l.vertices, j.plant_groups,
+        l.inertia_intervals, num(l.switching_radius).c_str(), l.switching_period, l.reason.c_str());
+    std::printf("      \"certified\": %s,\n",
+                j.stable && disk.disk_margin > 0.0 && l.certified ? "true" : "false");
     print_case_json("worst_gain_at", j.worst_gain, false);
     print_case_json("worst_phase_at", j.worst_phase, false);
     print_case_json("worst_delay_at", j.worst_delay, false);
     print_case_json("worst_disk_at", j.worst_disk, true);
     std::printf("    }%s\n", i + 1 < cert.joints.size() ? "," : "");
   }
-  std::printf("  ],\n  \"certified\": %s,\n  \"verdict\": \"%s\"\n}\n",
-              cert.certified ? "true" : "false", cert.verdict.c_str());
+  std::printf("  ],\n  \"certified\": %s,\n  \"verdict\": \"%s\",\n  \"assumptions\": \"%s\"\n}\n",
+              cert.certified ? "true" : "false", cert.verdict.c_str(),
+              sim::lyapunov_assumptions());
 }
 
 void print_table(const CertifyCli& o, const sim::Certificate& cert) {
@@ -121,6 +138,23 @@ void print_table(const CertifyCli& o, const sim::Certificate& cert) {
         i + 1, w.inertia_kgm2, w.damping_nms, w.gains.kp, w.gains.ki, w.gains.kd, w.x, w.y,
         cert.joints[i].gain_triples, cert.joints[i].cases);
   }
+  std::printf("gains switching every tick inside their box (Kp, Ki 1/s, Kd s), inertia anywhere in "
+              "its range: common quadratic Lyapunov function (docs/margins.md)\n");
+  for (std::size_t i = 0; i < cert.joints.size(); ++i) {
+    const sim::JointCertificate& j = cert.joints[i];
+    const sim::GainBox& b = j.gain_box;
+    std::printf("  joint %zu: Kp %.6g..%.6g, Ki %.6g..%.6g, Kd %.6g..%.6g: ", i + 1, b.low.kp,
+                b.high.kp, b.low.ki, b.high.ki, b.low.kd, b.high.kd);
+    if (j.lyapunov.certified)
+      std::printf(
+          "certified, |x|_P shrinks by 1 - %.3g per tick (%zu states, %zu vertices, inertia in %zu "
+          "interval%s)\n",
+          1.0 - j.lyapunov.contraction, j.lyapunov.states, j.lyapunov.vertices,
+          j.lyapunov.inertia_intervals, j.lyapunov.inertia_intervals == 1 ? "" : "s");
+    else
+      std::printf("NOT certified: %s\n", j.lyapunov.reason.c_str());
+  }
+  std::printf("assumptions: %s\n", sim::lyapunov_assumptions());
   std::printf("%s\n", cert.verdict.c_str());
 }
 
@@ -196,7 +230,8 @@ void add_certify_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* cmd = app.add_subcommand(
       "certify",
       "Frozen-gain stability margins (gain, phase, delay, disk; MATLAB's allmargin/diskmargin "
-      "definitions) of each joint's linear loop over the inertia range of the conditions "
+      "definitions) of each joint's linear loop over the inertia range of the conditions, and a "
+      "common quadratic Lyapunov function for gains that change every tick inside their box "
       "(docs/margins.md). Exit 0 certified, 1 not certified, 2 bad usage or unreadable input.");
   cmd->add_option("controller", o->controller, "controller file (TOML)")->required();
   CLI::Option* conditions =

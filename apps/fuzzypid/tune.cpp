@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <thread>
@@ -22,6 +23,7 @@
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/tune.hpp"
@@ -386,6 +388,52 @@ int run_tune(const TuneOptions& t) {
     result->controller.tuning->init = path_from_folder_of(t.out, t.init_file);
   result->controller.description =
       "tuned " + std::string(ctl::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
+  // The result's margins and certificate over its training conditions (validation ones
+  // included), recorded in [margins]; a result below a required margin is not written.
+  {
+    sim::CertifyOptions co;
+    for (const sim::Condition& c : training->conditions)
+      co.delay_s = std::max(co.delay_s, c.effects.delay_s);
+    const auto cert = sim::certify(result->controller, training->conditions, *experiments, co, error);
+    if (!cert) {
+      std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
+      return 1;
+    }
+    result->controller.margins = sim::margin_record(*cert);
+    result->controller.margins->conditions = result->controller.tuning->conditions;
+    result->controller.margins->set = t.set;
+    const sim::MarginSummary m = sim::summarize(*cert);
+    if (!t.quiet)
+      std::fprintf(stderr,
+                   "fuzzypid tune: margins over the training plants: disk %.3f, gain %.2f dB, "
+                   "phase %.1f deg, delay %.1f ms; %s\n",
+                   m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
+                   cert->verdict.c_str());
+    // The requirement is judged as the search judged it: on the training conditions (the
+    // validation ones held back) with the screening options.
+    const std::vector<sim::Condition> trained(
+        training->conditions.begin(),
+        training->conditions.end() - static_cast<std::ptrdiff_t>(t.validation));
+    const auto screened =
+        opt.objective.requires_margins()
+            ? sim::certify(result->controller, trained, *experiments,
+                           tune::screening_options(std::accumulate(
+                               trained.begin(), trained.end(), 0.0,
+                               [](double d, const sim::Condition& c) {
+                                 return std::max(d, c.effects.delay_s);
+                               })),
+                           error)
+            : std::nullopt;
+    if (screened && tune::margin_shortfall(*screened, opt.objective) > 0.0) {
+      std::fprintf(stderr,
+                   "fuzzypid tune: no candidate within the budget kept the required margins "
+                   "(the best: disk %.3f, gain %.2f dB, phase %.1f deg, delay %.1f ms); %s not "
+                   "written\n",
+                   m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
+                   t.out.c_str());
+      return 1;
+    }
+  }
   const std::string text = cf::to_toml(result->controller);
   if (std::fwrite(text.data(), 1, text.size(), out_file->file()) != text.size()) {
     std::fprintf(stderr, "fuzzypid tune: cannot write %s: %s\n", t.out.c_str(),
@@ -438,7 +486,55 @@ struct ExportOptions {
   std::string in, out, ns = "fuzzypid_controller";
   bool out_given = false;  // --out '' is refused, not stdout
   RobotOptions robot;      // the plant whose J^ and torque limits the header records
+  // The conditions the certificate covers (empty: the robot options' nominal plant on its path).
+  std::string conditions;
+  std::string set = "held-out";
+  bool allow_uncertified = false;
 };
+
+// The certificate of `spec` over --conditions [--set] or, without them, over the nominal plant of
+// the robot options, as `fuzzypid certify` computes it (the conditions' largest delay).
+std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
+                                                    const ctl::ControllerSpec& spec,
+                                                    std::string& error) {
+  std::vector<sim::Condition> conditions;
+  if (!o.conditions.empty()) {
+    sim::ConditionFile file;
+    fuzzypid::FileError err;
+    if (!sim::load_conditions(o.conditions, file, err)) {
+      error = err.to_string();
+      return std::nullopt;
+    }
+    const sim::ConditionSet* set = file.find(o.set);
+    if (set == nullptr) {
+      error = "--set: " + o.conditions + " has no set '" + o.set + "' (it has: " +
+              file.set_names() + ")";
+      return std::nullopt;
+    }
+    conditions = set->conditions;
+  } else {
+    sim::Condition c;
+    o.robot.apply(c);
+    if (!o.robot.tick_given && spec.tuning && spec.tuning->tick_s > 0.0)
+      c.robot.tick_s = spec.tuning->tick_s;
+    if (const std::string bad = c.validate(); !bad.empty()) {
+      error = bad;
+      return std::nullopt;
+    }
+    conditions.push_back(c);
+  }
+  const auto experiments = sim::ExperimentSet::create(conditions, sim::ExperimentOptions{}, error);
+  if (!experiments) return std::nullopt;
+  sim::CertifyOptions co;
+  for (const sim::Condition& c : conditions)
+    co.delay_s = std::max(co.delay_s, c.effects.delay_s);
+  const auto cert = sim::certify(spec, conditions, *experiments, co, error);
+  if (!cert) return std::nullopt;
+  ctl::MarginRecord r = sim::margin_record(*cert);
+  r.conditions = o.conditions.empty() ? "the nominal plant of the robot options" : o.conditions;
+  r.set = o.conditions.empty() ? "-" : o.set;
+  return r;
+}
 
 // J^ and the torque limits of the plant `o.robot` names (the bundled ER50-C20 on the section 6
 // line by default), as sim_ab simulates it.
@@ -499,7 +595,20 @@ int run_export_header(const ExportOptions& o) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", plant_error.c_str());
     return 1;
   }
-  const std::string text = fuzzypid::codegen::export_header(spec, ns, in, &*plant);
+  const auto margins = margins_for_header(o, spec, plant_error);
+  if (!margins) {
+    std::fprintf(stderr, "fuzzypid export-header: certify: %s\n", plant_error.c_str());
+    return 1;
+  }
+  if (!margins->certified) {
+    std::fprintf(stderr, "fuzzypid export-header: %s: %s over %s%s\n", in.c_str(),
+                 margins->verdict.c_str(), margins->conditions.c_str(),
+                 o.allow_uncertified ? " (written: --allow-uncertified)"
+                                     : "; nothing written (--allow-uncertified writes it anyway, "
+                                       "with kCertified = false)");
+    if (!o.allow_uncertified) return 1;
+  }
+  const std::string text = fuzzypid::codegen::export_header(spec, ns, in, &*plant, &*margins);
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
     return std::ferror(stdout) ? 1 : 0;
@@ -608,6 +717,20 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--effort-weight", t->objective.effort_weight,
                   "cost per unit of each joint's RMS command over its limit (0..1) (default 0)")
       ->check(finite_in(0.0, 1e9));
+  cmd->add_option("--min-disk-margin", t->objective.min_disk_margin,
+                  "every candidate keeps at least this disk margin alpha on every joint over the "
+                  "training plants (e.g. 0.5: +-4.4 dB, +-28 deg; docs/margins.md); below it a "
+                  "candidate is infeasible (default 0: no requirement)")
+      ->check(finite_in(0.0, 2.0));
+  cmd->add_option("--min-gain-margin", t->objective.min_gain_margin_db,
+                  "the same for the upper gain margin, dB (default 0: none)")
+      ->check(finite_in(0.0, 100.0));
+  cmd->add_option("--min-phase-margin", t->objective.min_phase_margin_deg,
+                  "the same for the phase margin, degrees (default 0: none)")
+      ->check(finite_in(0.0, 180.0));
+  cmd->add_option("--min-delay-margin", t->objective.min_delay_margin_ms,
+                  "the same for the delay margin, ms (default 0: none)")
+      ->check(finite_in(0.0, 1e6));
   cmd->add_option("--divergence", t->objective.divergence_rad,
                   "a run diverged once any |e| exceeds this, rad (default 1)")
       ->check(finite_in(1e-9, 1e3));
@@ -630,17 +753,30 @@ void add_export_header_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* cmd = app.add_subcommand(
       "export-header",
       "Write a controller file as a self-contained C++ header of constexpr configuration (no "
-      "parser needed on the target).");
+      "parser needed on the target), with its stability margins and certificate (as `fuzzypid "
+      "certify` computes them); an uncertified controller is refused unless "
+      "--allow-uncertified.");
   cmd->add_option("file", o->in, "controller file (TOML)")->required();
   CLI::Option* out = cmd->add_option("--out", o->out, "header to write (default: stdout)");
   cmd->add_option("--namespace", o->ns,
                   "namespace of the generated code: C++ identifiers joined by ::, no keyword or "
                   "reserved name (default fuzzypid_controller)")
       ->check([](const std::string& s) { return fuzzypid::codegen::check_namespace(s); });
+  CLI::Option* conditions =
+      cmd->add_option("--conditions", o->conditions,
+                      "certify over this condition file's set instead of the nominal plant of the "
+                      "robot options (the header's J^ and limits still come from those)")
+          ->option_text("FILE");
+  CLI::Option* set = cmd->add_option("--set", o->set, "the set of --conditions (default held-out)")
+                         ->option_text("NAME");
+  cmd->add_flag("--allow-uncertified", o->allow_uncertified,
+                "write the header of a controller that is not certified (kCertified = false)");
   add_robot_options(*cmd, o->robot, true);
-  cmd->callback([&run, o, out] {
+  cmd->callback([&run, o, out, conditions, set] {
     if (const std::string bad = check_robot_options(o->robot); !bad.empty())
       throw CLI::ValidationError(bad);
+    if (set->count() > 0 && conditions->count() == 0)
+      throw CLI::ValidationError("--set", "needs --conditions");
     // The header's J^ and torque limits are the nominal model's: the plant's payload, dynamics,
     // gravity and joint effects change neither, so those options would do nothing.
     if (o->robot.payload_kg || o->robot.dynamics || o->robot.gravity ||

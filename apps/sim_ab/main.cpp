@@ -549,6 +549,21 @@ int run_sim_ab(int argc, char** argv) {
   }
   for (std::size_t k = 0; k < runs.size(); ++k)
     cli::warn_about_payload("sim_ab", experiments->of(k), runs[k].condition);
+  // The margins a controller file records ([margins], written by `fuzzypid tune`): the worst
+  // joint of each, and whether it was certified. `fuzzypid certify` recomputes them for any plant.
+  for (const auto& c : controllers) {
+    if (!c.spec.margins || o.quiet) continue;
+    const ctl::MarginRecord& m = *c.spec.margins;
+    const auto worst = [](const ctl::MarginRecord::PerJoint& v) {
+      return *std::min_element(v.begin(), v.end());
+    };
+    std::fprintf(stderr,
+                 "sim_ab: margins of %s (recorded over %s [%s]): disk %.3f, gain %.2f dB, phase "
+                 "%.1f deg, delay %.1f ms (worst joint); %s\n",
+                 c.name.c_str(), m.conditions.c_str(), m.set.c_str(), worst(m.disk_margin),
+                 worst(m.gain_margin_db), worst(m.phase_margin_deg), worst(m.delay_margin_ms),
+                 m.verdict.c_str());
+  }
   if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
 
   Outputs outs;

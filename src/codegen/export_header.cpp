@@ -35,6 +35,16 @@ std::string comment_safe(std::string s) {
   return s;
 }
 
+// The body of a C++ string literal holding `s` (one line).
+std::string literal_safe(const std::string& s) {
+  std::string out;
+  for (char c : comment_safe(s)) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 const char* enum_code(pid::DerivativeSource d) {
   return d == pid::DerivativeSource::Rates ? "fuzzypid::pid::DerivativeSource::Rates"
                                            : "fuzzypid::pid::DerivativeSource::Difference";
@@ -187,7 +197,8 @@ std::string check_float_range(const ControllerSpec& spec) {
 }
 
 std::string export_header(const ControllerSpec& spec, const std::string& ns,
-                          const std::string& source, const PlantRecord* plant) {
+                          const std::string& source, const PlantRecord* plant,
+                          const MarginRecord* margins) {
   const double inf = std::numeric_limits<double>::infinity();
   const pid::Config<double> pc = pid_config(spec, inf);
   std::string h;
@@ -263,6 +274,45 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += std::string("inline constexpr double kOutputLimit[6] = ") + six(output_limit) +
          (acceleration ? ";  // rad/s^2: the output_limit of joint i\n\n"
                        : ";  // N·m: the output_limit of joint i\n\n");
+  }
+  if (margins != nullptr) {
+    // Margins are written in decimal (they are read by people, not used as gains); +inf (no
+    // crossover) as the infinity of <limits>.
+    const auto six = [](const MarginRecord::PerJoint& v) {
+      std::string t = "{";
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        char b[64];
+        if (std::isinf(v[i]))
+          std::snprintf(b, sizeof b, "%sstd::numeric_limits<double>::infinity()",
+                        v[i] < 0 ? "-" : "");
+        else
+          std::snprintf(b, sizeof b, "%.6g", v[i]);
+        t += (i == 0 ? "" : ", ") + std::string(b);
+      }
+      return t + "}";
+    };
+    h += "// Stability margins of each joint's linear loop (`fuzzypid certify`, docs/margins.md),\n"
+         "// the worst case over " +
+         comment_safe(margins->conditions) + " [" + comment_safe(margins->set) +
+         "] with " + format_double(margins->delay_ms) +
+         " ms of delay: frozen-gain margins at every\n"
+         "// gain triple the controller produces over the joint's inertia range, and the "
+         "certificate for\n// gains that change every tick.\n";
+    h += "// Verdict: " + comment_safe(margins->verdict) + ".\n";
+    h += "// Assumptions: " + comment_safe(margins->assumptions) + ".\n";
+    h += "inline constexpr double kGainMarginDb[6] = " + six(margins->gain_margin_db) + ";\n";
+    h += "inline constexpr double kPhaseMarginDeg[6] = " + six(margins->phase_margin_deg) + ";\n";
+    h += "inline constexpr double kDelayMarginMs[6] = " + six(margins->delay_margin_ms) + ";\n";
+    h += "inline constexpr double kDiskMargin[6] = " + six(margins->disk_margin) +
+         ";  // alpha (balanced)\n";
+    h += "inline constexpr double kCertifiedInertiaMinKgm2[6] = " +
+         six(margins->inertia_min_kgm2) + ";\n";
+    h += "inline constexpr double kCertifiedInertiaMaxKgm2[6] = " +
+         six(margins->inertia_max_kgm2) + ";\n";
+    h += std::string("inline constexpr bool kCertified = ") +
+         (margins->certified ? "true" : "false") + ";\n";
+    h += "inline constexpr const char* kCertificate = \"" + literal_safe(margins->verdict) +
+         "\";\n\n";
   }
   h += "// The inner PID; |u| <= output_limit.\n";
   h += "template <class Scalar>\nconstexpr fuzzypid::pid::Config<Scalar> pid_config(Scalar "

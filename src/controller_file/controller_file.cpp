@@ -241,6 +241,14 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     if (o->has("chatter_limit_pct") &&
         !(tu.objective.chatter_limit_pct >= 0.0 && tu.objective.chatter_limit_pct <= 100.0))
       o->fail(*o->raw().get("chatter_limit_pct"), "chatter_limit_pct must be within 0 .. 100");
+    tu.objective.min_disk_margin = o->number("min_disk_margin", 0.0);
+    tu.objective.min_gain_margin_db = o->number("min_gain_margin_db", 0.0);
+    tu.objective.min_phase_margin_deg = o->number("min_phase_margin_deg", 0.0);
+    tu.objective.min_delay_margin_ms = o->number("min_delay_margin_ms", 0.0);
+    for (const char* key :
+         {"min_disk_margin", "min_gain_margin_db", "min_phase_margin_deg", "min_delay_margin_ms"})
+      if (o->has(key) && !(o->number(key) >= 0.0))
+        o->fail(*o->raw().get(key), std::string(key) + " must be >= 0");
     o->finish();
     const toml::array* box = t->array("box", true);
     for (const toml::node& entry : *box) {
@@ -339,6 +347,30 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     }
     t->finish();
     s.tuning = tu;
+  }
+
+  if (auto m = r.table("margins", false)) {
+    MarginRecord rec;
+    rec.conditions = m->text("conditions");
+    rec.set = m->text("set");
+    rec.delay_ms = m->number("delay_ms");
+    const auto joints = [&](const char* key, MarginRecord::PerJoint& out) {
+      const toml::array* a = m->array(key, true);
+      if (a->size() != out.size()) m->fail(*a, std::string(key) + " must have 6 numbers");
+      for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = number_of(*m, *a->get(i), std::string(key) + "[" + std::to_string(i) + "]", true);
+    };
+    joints("gain_margin_db", rec.gain_margin_db);
+    joints("phase_margin_deg", rec.phase_margin_deg);
+    joints("delay_margin_ms", rec.delay_margin_ms);
+    joints("disk_margin", rec.disk_margin);
+    joints("inertia_min_kgm2", rec.inertia_min_kgm2);
+    joints("inertia_max_kgm2", rec.inertia_max_kgm2);
+    rec.certified = m->flag("certified");
+    rec.verdict = m->text("verdict");
+    rec.assumptions = m->text("assumptions");
+    m->finish();
+    s.margins = rec;
   }
   r.finish();
   return s;
@@ -544,6 +576,38 @@ std::string to_toml(const ControllerSpec& s) {
       o += "chatter_limit_pct = " + format_double(t.objective.chatter_limit_pct) + "\n";
     if (t.objective.effort_weight != 0.0)
       o += "effort_weight = " + format_double(t.objective.effort_weight) + "\n";
+    const std::pair<const char*, double> minima[] = {
+        {"min_disk_margin", t.objective.min_disk_margin},
+        {"min_gain_margin_db", t.objective.min_gain_margin_db},
+        {"min_phase_margin_deg", t.objective.min_phase_margin_deg},
+        {"min_delay_margin_ms", t.objective.min_delay_margin_ms}};
+    for (const auto& [key, value] : minima)
+      if (value != 0.0) o += std::string(key) + " = " + format_double(value) + "\n";
+  }
+  if (s.margins) {
+    const MarginRecord& m = *s.margins;
+    const auto joints = [](const MarginRecord::PerJoint& v) {
+      std::string line = "[";
+      for (std::size_t i = 0; i < v.size(); ++i)
+        line += (i == 0 ? "" : ", ") + format_double(v[i]);
+      return line + "]";
+    };
+    o += "\n# What `fuzzypid certify` found over these conditions (docs/margins.md): per joint the\n";
+    o += "# worst frozen-gain margins and the inertia range; certified: a common quadratic\n";
+    o += "# Lyapunov function covers gains and inertia changing every tick.\n";
+    o += "[margins]\n";
+    o += "conditions = " + quoted(m.conditions) + "\n";
+    o += "set = " + quoted(m.set) + "\n";
+    o += "delay_ms = " + format_double(m.delay_ms) + "\n";
+    o += "gain_margin_db = " + joints(m.gain_margin_db) + "\n";
+    o += "phase_margin_deg = " + joints(m.phase_margin_deg) + "\n";
+    o += "delay_margin_ms = " + joints(m.delay_margin_ms) + "\n";
+    o += "disk_margin = " + joints(m.disk_margin) + "\n";
+    o += "inertia_min_kgm2 = " + joints(m.inertia_min_kgm2) + "\n";
+    o += "inertia_max_kgm2 = " + joints(m.inertia_max_kgm2) + "\n";
+    o += std::string("certified = ") + (m.certified ? "true" : "false") + "\n";
+    o += "verdict = " + quoted(m.verdict) + "\n";
+    o += "assumptions = " + quoted(m.assumptions) + "\n";
   }
   return o;
 }

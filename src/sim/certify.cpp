@@ -3,22 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <tuple>
 
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "loop_matrix.hpp"
 
 namespace fuzzypid::sim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The plants one joint meets at one tick and one nominal inertia J^.
-struct PlantGroup {
-  double tick_s = 0.0;
-  double nominal_inertia_kgm2 = 0.0;
-  double inertia_min = kInf, inertia_max = 0.0;
-  double damping_min = kInf, damping_max = 0.0;
-};
 
 struct GainPoint {
   pid::Gains<double> gains;
@@ -90,44 +84,88 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
   return out;
 }
 
+// The box of the gains the supervisor produces (continuous SI form). GainUpdate::Incremental
+// accumulates its steps: it can reach anything inside the file's gain bounds.
+GainBox gain_box(const ControllerSpec& spec, const std::vector<GainPoint>& points) {
+  GainBox box;
+  if (spec.family == controller::Family::Fuzzy &&
+      spec.supervisor.gain_update == control::GainUpdate::Incremental) {
+    box.low = controller::to_continuous(spec.gain_min, spec.units.form, spec.units.tick_s);
+    box.high = controller::to_continuous(spec.gain_max, spec.units.form, spec.units.tick_s);
+    return box;
+  }
+  box.low = box.high = points.front().gains;
+  for (const GainPoint& p : points) {
+    box.low = {std::min(box.low.kp, p.gains.kp), std::min(box.low.ki, p.gains.ki),
+               std::min(box.low.kd, p.gains.kd)};
+    box.high = {std::max(box.high.kp, p.gains.kp), std::max(box.high.ki, p.gains.ki),
+                std::max(box.high.kd, p.gains.kd)};
+  }
+  return box;
+}
+
 }  // namespace
 
-std::optional<Certificate> certify(const ControllerSpec& controller,
-                                   const std::vector<Condition>& conditions,
-                                   const ExperimentSet& experiments, const CertifyOptions& options,
-                                   std::string& error) {
-  if (conditions.empty()) {
+MarginSummary summarize(const Certificate& cert) {
+  MarginSummary s;
+  s.gain_margin_db = s.phase_margin_deg = s.delay_margin_ms = s.disk_margin = kInf;
+  for (const JointCertificate& j : cert.joints) {
+    s.gain_margin_db = std::min(s.gain_margin_db, j.worst_gain.margins.gain_margin_db);
+    s.phase_margin_deg = std::min(s.phase_margin_deg, j.worst_phase.margins.phase_margin_deg);
+    s.delay_margin_ms = std::min(s.delay_margin_ms, j.worst_delay.margins.delay_margin_s * 1e3);
+    s.disk_margin = std::min(s.disk_margin, j.worst_disk.margins.disk_margin);
+  }
+  if (!std::all_of(cert.joints.begin(), cert.joints.end(),
+                   [](const JointCertificate& j) { return j.stable; }))
+    s = {};
+  return s;
+}
+
+controller::MarginRecord margin_record(const Certificate& cert) {
+  controller::MarginRecord r;
+  r.delay_ms = cert.delay_s * 1e3;
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+    const JointCertificate& j = cert.joints[i];
+    r.gain_margin_db[i] = j.worst_gain.margins.gain_margin_db;
+    r.phase_margin_deg[i] = j.worst_phase.margins.phase_margin_deg;
+    r.delay_margin_ms[i] = j.worst_delay.margins.delay_margin_s * 1e3;
+    r.disk_margin[i] = j.worst_disk.margins.disk_margin;
+    r.inertia_min_kgm2[i] = j.inertia_min_kgm2;
+    r.inertia_max_kgm2[i] = j.inertia_max_kgm2;
+  }
+  r.certified = cert.certified;
+  r.verdict = cert.verdict;
+  r.assumptions = lyapunov_assumptions();
+  return r;
+}
+
+std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions,
+                                        const std::vector<const Experiment*>& experiments,
+                                        std::string& error) {
+  if (conditions.empty() || experiments.size() != conditions.size()) {
     error = "no conditions to certify on";
     return std::nullopt;
   }
-  if (!(options.delay_s >= 0.0) || !std::isfinite(options.delay_s)) {
-    error = "the delay must be finite and >= 0";
-    return std::nullopt;
-  }
-  Certificate cert;
-  cert.family = controller.family;
-  cert.moving_gains =
-      controller::row_of(controller.family).supervisor != controller::SupervisorKind::None;
-  cert.delay_s = options.delay_s;
-  cert.conditions = conditions.size();
-
-  // The plants of each joint, grouped by tick and J^.
-  std::array<std::vector<PlantGroup>, robot::kNumJoints> groups;
+  PlantRanges ranges;
+  ranges.conditions = conditions.size();
+  auto& groups = ranges.joints;
   for (std::size_t k = 0; k < conditions.size(); ++k) {
     const Condition& c = conditions[k];
-    const Experiment& ex = experiments.of(k);
+    const Experiment& ex = *experiments[k];
     const robot::JointPathResult* path = ex.path(c, error);
     if (path == nullptr) return std::nullopt;
     const double h = ex.options().tick_s;
     const robot::RobotModel model = ex.plant_model(c);
     const robot::PlantConfig plant = ex.plant_config(c);
+    const double bandwidth = plant.torque_bandwidth_hz;
     for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
       const double nominal = ex.nominal_inertia()[i];
       auto it = std::find_if(groups[i].begin(), groups[i].end(), [&](const PlantGroup& g) {
-        return g.tick_s == h && g.nominal_inertia_kgm2 == nominal;
+        return g.tick_s == h && g.nominal_inertia_kgm2 == nominal &&
+               g.torque_bandwidth_hz == bandwidth;
       });
       if (it == groups[i].end()) {
-        groups[i].push_back({h, nominal});
+        groups[i].push_back({h, nominal, bandwidth, kInf, 0.0, kInf, 0.0});
         it = groups[i].end() - 1;
       }
       for (const robot::JointVector& q : path->position_rad) {
@@ -140,6 +178,34 @@ std::optional<Certificate> certify(const ControllerSpec& controller,
       it->damping_max = std::max(it->damping_max, plant.damping_nms[i]);
     }
   }
+  return ranges;
+}
+
+std::optional<Certificate> certify(const ControllerSpec& controller,
+                                   const std::vector<Condition>& conditions,
+                                   const ExperimentSet& experiments, const CertifyOptions& options,
+                                   std::string& error) {
+  std::vector<const Experiment*> ex;
+  for (std::size_t k = 0; k < conditions.size(); ++k)
+    ex.push_back(&experiments.of(k));
+  const auto ranges = plant_ranges(conditions, ex, error);
+  if (!ranges) return std::nullopt;
+  return certify(controller, *ranges, options, error);
+}
+
+std::optional<Certificate> certify(const ControllerSpec& controller, const PlantRanges& ranges,
+                                   const CertifyOptions& options, std::string& error) {
+  if (!(options.delay_s >= 0.0) || !std::isfinite(options.delay_s)) {
+    error = "the delay must be finite and >= 0";
+    return std::nullopt;
+  }
+  Certificate cert;
+  cert.family = controller.family;
+  cert.moving_gains =
+      controller::row_of(controller.family).supervisor != controller::SupervisorKind::None;
+  cert.delay_s = options.delay_s;
+  cert.conditions = ranges.conditions;
+  const auto& groups = ranges.joints;
 
   const auto points = gain_points(controller, options, error);
   if (!points) return std::nullopt;
@@ -169,17 +235,22 @@ std::optional<Certificate> certify(const ControllerSpec& controller,
                                       ? g.nominal_inertia_kgm2
                                       : 1.0;
       for (double j : inertias)
-        for (double b : dampings)
+        for (double b : dampings) {
+          JointLoop plant;
+          plant.tick_s = g.tick_s;
+          plant.plant_gain = torque_per_u / j;
+          plant.damping_per_s = b / j;
+          plant.derivative_filter_s = controller.pid.derivative_filter_s;
+          plant.derivative = controller.pid.derivative;
+          plant.torque_bandwidth_hz = g.torque_bandwidth_hz;
+          set_delay(plant, options.delay_s);
+          // The plant's frequency response once; each gain triple only recombines it.
+          const detail::PlantGrid grid = detail::plant_grid(plant, bulk);
           for (const GainPoint& p : (*points)[i]) {
-            JointLoop loop;
-            loop.tick_s = g.tick_s;
-            loop.plant_gain = torque_per_u / j;
-            loop.damping_per_s = b / j;
+            JointLoop loop = plant;
             loop.gains = p.gains;
-            loop.derivative_filter_s = controller.pid.derivative_filter_s;
-            loop.derivative = controller.pid.derivative;
-            set_delay(loop, options.delay_s);
-            MarginCase mc{margins(loop, bulk), loop, j, b, g.tick_s, p.gains, p.x, p.y};
+            MarginCase mc{detail::margins(loop, bulk, &grid), loop, j, b, g.tick_s, p.gains,
+                          p.x, p.y};
             ++jc.cases;
             jc.stable = jc.stable && mc.margins.stable;
             const LoopMargins& m = mc.margins;
@@ -194,18 +265,79 @@ std::optional<Certificate> certify(const ControllerSpec& controller,
             if (first || m.disk_margin < jc.worst_disk.margins.disk_margin) jc.worst_disk = mc;
             first = false;
           }
+        }
     }
     // The whole-tick delay margin of the worst delay case only (it takes eigenvalues).
     if (!first) jc.worst_delay.margins = margins(jc.worst_delay.loop, options.margin);
     all_stable = all_stable && jc.stable && jc.worst_disk.margins.disk_margin > 0.0;
+
+    // The gains may switch every tick inside their box, the inertia anywhere in its range.
+    jc.gain_box = gain_box(controller, (*points)[i]);
+    jc.plant_groups = groups[i].size();
+    jc.lyapunov.reason = "not computed";
+    if (!options.lyapunov) continue;
+    // One certificate per tick, J^ and kind of current loop (ideal or not): the inertia,
+    // damping and bandwidth ranges of its plant groups merged.
+    std::vector<SwitchingLoop> sets;
+    std::vector<double> set_nominal;  // J^ of each set
+    for (const PlantGroup& g : groups[i]) {
+      const double torque_per_u =
+          controller.units.gains == controller::GainUnits::Acceleration ? g.nominal_inertia_kgm2
+                                                                        : 1.0;
+      const double c_lo = torque_per_u / g.inertia_max, c_hi = torque_per_u / g.inertia_min;
+      const double a_lo = g.damping_min / g.inertia_max, a_hi = g.damping_max / g.inertia_min;
+      const double w = g.torque_bandwidth_hz;
+      std::size_t k = 0;
+      while (k < sets.size() &&
+             !(sets[k].loop.tick_s == g.tick_s && set_nominal[k] == g.nominal_inertia_kgm2 &&
+               (sets[k].torque_bandwidth_max_hz > 0.0) == (w > 0.0)))
+        ++k;
+      if (k == sets.size()) {
+        SwitchingLoop set;
+        set.loop.tick_s = g.tick_s;
+        set.loop.derivative_filter_s = controller.pid.derivative_filter_s;
+        set.loop.derivative = controller.pid.derivative;
+        set_delay(set.loop, options.delay_s);
+        set.gains = jc.gain_box;
+        set.plant_gain_min = c_lo;
+        set.plant_gain_max = c_hi;
+        set.damping_min_per_s = a_lo;
+        set.damping_max_per_s = a_hi;
+        set.torque_bandwidth_min_hz = set.torque_bandwidth_max_hz = w;
+        sets.push_back(set);
+        set_nominal.push_back(g.nominal_inertia_kgm2);
+        continue;
+      }
+      SwitchingLoop* const it = &sets[k];
+      it->plant_gain_min = std::min(it->plant_gain_min, c_lo);
+      it->plant_gain_max = std::max(it->plant_gain_max, c_hi);
+      it->damping_min_per_s = std::min(it->damping_min_per_s, a_lo);
+      it->damping_max_per_s = std::max(it->damping_max_per_s, a_hi);
+      it->torque_bandwidth_min_hz = std::min(it->torque_bandwidth_min_hz, w);
+      it->torque_bandwidth_max_hz = std::max(it->torque_bandwidth_max_hz, w);
+    }
+    bool first_set = true;
+    for (const SwitchingLoop& set : sets) {
+      const LyapunovCertificate lc = common_lyapunov(set);
+      if (first_set || !lc.certified || lc.contraction > jc.lyapunov.contraction)
+        jc.lyapunov = lc;
+      first_set = false;
+      if (!lc.certified) break;  // the joint is not certified: the first failing set says why
+    }
   }
-  cert.certified = all_stable && !cert.moving_gains;
-  if (cert.moving_gains)
-    cert.verdict = "not certified (frozen-gain margins only)";
-  else if (!all_stable)
+  std::string failing;
+  for (std::size_t i = 0; i < robot::kNumJoints && failing.empty(); ++i)
+    if (!cert.joints[i].lyapunov.certified)
+      failing = "joint " + std::to_string(i + 1) + ": " + cert.joints[i].lyapunov.reason;
+  cert.certified = all_stable && options.lyapunov && failing.empty();
+  if (!all_stable)
     cert.verdict = "not certified (unstable at frozen gains)";
+  else if (!options.lyapunov)
+    cert.verdict = "not certified (frozen-gain margins only)";
+  else if (!failing.empty())
+    cert.verdict = "not certified (" + failing + ")";
   else
-    cert.verdict = "certified (linear, no saturation)";
+    cert.verdict = "certified (linear, no saturation; gains may change every tick)";
   return cert;
 }
 

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "loop_matrix.hpp"
 
 namespace fuzzypid::sim {
 namespace {
@@ -69,7 +72,22 @@ bool valid(const JointLoop& l) {
   return finite(l.tick_s) && l.tick_s > 0.0 && finite(l.plant_gain) && l.plant_gain > 0.0 &&
          finite(l.damping_per_s) && l.damping_per_s >= 0.0 && l.gains.finite() &&
          finite(l.derivative_filter_s) && l.derivative_filter_s >= 0.0 && l.delay_ticks >= 0 &&
-         l.delay_fraction >= 0.0 && l.delay_fraction < 1.0;
+         l.delay_fraction >= 0.0 && l.delay_fraction < 1.0 && finite(l.torque_bandwidth_hz) &&
+         l.torque_bandwidth_hz >= 0.0;
+}
+
+// Φ(t) and Γ(t) = ∫₀ᵗ e^{A s} ds B of the plant with a current loop (states θ, θ̇, v; v̇ = w (u − v),
+// θ̈ = c v − a θ̇), from the exponential of [[A, B], [0, 0]] t.
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> lagged_segment(double a, double c, double w,
+                                                           double t) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  m(0, 1) = 1.0;
+  m(1, 1) = -a;
+  m(1, 2) = c;
+  m(2, 2) = -w;
+  m(2, 3) = w;
+  const Eigen::Matrix4d e = (m * t).exp();
+  return {e.topLeftCorner<3, 3>(), e.topRightCorner<3, 1>()};
 }
 
 // |S − 1/2| = |(1 − L) / (2 (1 + L))|.
@@ -100,81 +118,172 @@ double to_db(double factor) noexcept {
   return 20.0 * std::log10(factor);
 }
 
-Complex loop_response(const JointLoop& loop, double omega_rad_s) {
-  const double h = loop.tick_s;
-  const Complex z = std::polar(1.0, omega_rad_s * h);
-  const Zoh d = zoh(loop.damping_per_s, h);
-  const double c = loop.plant_gain;
-  // The input vector of the delayed plant: g1 + g0 / z, then z^−m.
-  const DelayedInput in = delayed_input(loop.damping_per_s, h, 0, loop.delay_fraction);
-  const Complex gt = in.g1t + in.g0t / z, gw = in.g1w + in.g0w / z;
-  const Complex p_theta = c * ((z - d.q) * gt + d.p * gw) / ((z - 1.0) * (z - d.q));
-  const Complex p_omega = c * gw / (z - d.q);
-  const double beta = h / (loop.derivative_filter_s + h);
-  const Complex filter = beta * z / (z - 1.0 + beta);
-  const Complex integral = loop.gains.ki * h * z / (z - 1.0);
-  const Complex derivative =
-      loop.derivative == pid::DerivativeSource::Rates ? p_omega : (1.0 - 1.0 / z) / h * p_theta;
-  const Complex l = (loop.gains.kp + integral) * p_theta + loop.gains.kd * filter * derivative;
-  return l * std::polar(1.0, -omega_rad_s * h * loop.delay_ticks);
+namespace detail {
+
+DiscretePlant discretise(const JointLoop& loop, double plant_gain, double fraction) {
+  const double h = loop.tick_s, a = loop.damping_per_s, c = plant_gain;
+  DiscretePlant d;
+  if (loop.torque_bandwidth_hz > 0.0) {
+    const double w = 2.0 * kPi * loop.torque_bandwidth_hz;
+    const auto [phi_last, gamma_last] = lagged_segment(a, c, w, (1.0 - fraction) * h);
+    const auto [phi_first, gamma_first] = lagged_segment(a, c, w, fraction * h);
+    d.phi = lagged_segment(a, c, w, h).first;
+    d.g1 = gamma_last;
+    d.g0 = phi_last * gamma_first;
+    return d;
+  }
+  const Zoh z = zoh(a, h);
+  const DelayedInput in = delayed_input(a, h, 0, fraction);
+  d.phi = Eigen::Matrix2d{{1.0, z.p}, {0.0, z.q}};
+  d.g1 = c * Eigen::Vector2d{in.g1t, in.g1w};
+  d.g0 = c * Eigen::Vector2d{in.g0t, in.g0w};
+  return d;
 }
 
-namespace {
-
-// Spectral radius with the loop's gains scaled and a total delay of m + f ticks.
-double spectral_radius(const JointLoop& loop, double gain_scale, int m, double f) {
+Eigen::MatrixXd closed_loop_matrix(const JointLoop& loop, const pid::Gains<double>& gains,
+                                   double plant_gain, int m, double f) {
   const double h = loop.tick_s;
-  // State: θ, θ̇, I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−len}.
+  const DiscretePlant plant = discretise(loop, plant_gain, f);
+  const auto np = static_cast<int>(plant.phi.rows());
+  // State: the plant's (θ, θ̇[, v]), then I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−len}.
+  const int ii = np, id = np + 1, ip = np + 2, iu = np + 3;
   const int len = f > 0.0 ? m + 1 : m;
-  const int n = 5 + len;
-  const Zoh z = zoh(loop.damping_per_s, h);
-  const DelayedInput in = delayed_input(loop.damping_per_s, h, m, f);
-  const double s = gain_scale;
+  const int n = iu + len;
   const double beta = h / (loop.derivative_filter_s + h);
   Eigen::RowVectorXd d_raw = Eigen::RowVectorXd::Zero(n);
   if (loop.derivative == pid::DerivativeSource::Rates) {
     d_raw(1) = -1.0;
   } else {
     d_raw(0) = -1.0 / h;
-    d_raw(4) = 1.0 / h;
+    d_raw(ip) = 1.0 / h;
   }
   Eigen::RowVectorXd filtered = beta * d_raw;
-  filtered(3) += 1.0 - beta;
+  filtered(id) += 1.0 - beta;
   Eigen::RowVectorXd integral = Eigen::RowVectorXd::Zero(n);
   // With Ki = 0 the PID freezes its integral: a constant, not a mode of the loop (its eigenvalue
   // 1 would read as marginal stability).
-  integral(2) = loop.gains.ki != 0.0 ? 1.0 : 0.0;
-  integral(0) = -s * loop.gains.ki * h;
-  Eigen::RowVectorXd u = integral + s * loop.gains.kd * filtered;
-  u(0) += -s * loop.gains.kp;
+  integral(ii) = gains.ki != 0.0 ? 1.0 : 0.0;
+  integral(0) = -gains.ki * h;
+  Eigen::RowVectorXd u = integral + gains.kd * filtered;
+  u(0) += -gains.kp;
   // u_{k−j} as a row of the state (j = 0: this tick's output).
   const auto past = [&](int j) {
     if (j == 0) return u;
     Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
-    r(5 + j - 1) = 1.0;
+    r(iu + j - 1) = 1.0;
     return r;
   };
   const Eigen::RowVectorXd v1 = past(m);
   const Eigen::RowVectorXd v0 = f > 0.0 ? past(m + 1) : Eigen::RowVectorXd::Zero(n);
 
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
-  a(0, 0) = 1.0;
-  a(0, 1) = z.p;
-  a(1, 1) = z.q;
-  a.row(0) += loop.plant_gain * (in.g1t * v1 + in.g0t * v0);
-  a.row(1) += loop.plant_gain * (in.g1w * v1 + in.g0w * v0);
-  a.row(2) = integral;
-  a.row(3) = filtered;
-  a(4, 0) = 1.0;
+  a.topLeftCorner(np, np) = plant.phi;
+  a.topRows(np) += plant.g1 * v1 + plant.g0 * v0;
+  a.row(ii) = integral;
+  a.row(id) = filtered;
+  a(ip, 0) = 1.0;
   if (len > 0) {
-    a.row(5) = u;
+    a.row(iu) = u;
     for (int j = 1; j < len; ++j)
-      a(5 + j, 5 + j - 1) = 1.0;
+      a(iu + j, iu + j - 1) = 1.0;
   }
-  const Eigen::VectorXcd lambda = a.eigenvalues();
+  return a;
+}
+
+}  // namespace detail
+
+namespace {
+
+// L(e^{jωh}) with the plant discretised once (margins() evaluates it thousands of times):
+// L = Kp a + Ki b + Kd c with gain-independent terms a = Pθ, b = h z / (z − 1) Pθ, c = F D, each
+// with the whole ticks of delay z^−d.
+class LoopResponse {
+ public:
+  explicit LoopResponse(const JointLoop& loop)
+      : loop_(loop), plant_(detail::discretise(loop, loop.plant_gain, loop.delay_fraction)) {}
+
+  detail::ResponseTerms terms(double omega_rad_s) const {
+    const double h = loop_.tick_s;
+    const Complex z = std::polar(1.0, omega_rad_s * h);
+    Complex p_theta, p_omega;
+    if (loop_.torque_bandwidth_hz > 0.0) {
+      // (zI − Φ)⁻¹ (g1 + g0 / z): the transfers from u to θ and θ̇. Φ is upper triangular (so is
+      // the continuous plant with its lag), so back substitution solves it.
+      const Eigen::MatrixXd& phi = plant_.phi;
+      const Complex g2 = plant_.g1(2) + plant_.g0(2) / z;
+      const Complex x2 = g2 / (z - phi(2, 2));
+      const Complex x1 = (plant_.g1(1) + plant_.g0(1) / z + phi(1, 2) * x2) / (z - phi(1, 1));
+      p_omega = x1;
+      p_theta =
+          (plant_.g1(0) + plant_.g0(0) / z + phi(0, 1) * x1 + phi(0, 2) * x2) / (z - phi(0, 0));
+    } else {
+      // The same in closed form: Φ = [[1, p], [0, q]].
+      const double p = plant_.phi(0, 1), q = plant_.phi(1, 1);
+      const Complex gt = plant_.g1(0) + plant_.g0(0) / z, gw = plant_.g1(1) + plant_.g0(1) / z;
+      p_theta = ((z - q) * gt + p * gw) / ((z - 1.0) * (z - q));
+      p_omega = gw / (z - q);
+    }
+    const double beta = h / (loop_.derivative_filter_s + h);
+    const Complex filter = beta * z / (z - 1.0 + beta);
+    const Complex derivative =
+        loop_.derivative == pid::DerivativeSource::Rates ? p_omega : (1.0 - 1.0 / z) / h * p_theta;
+    const Complex delay = std::polar(1.0, -omega_rad_s * h * loop_.delay_ticks);
+    return {p_theta * delay, h * z / (z - 1.0) * p_theta * delay, filter * derivative * delay};
+  }
+
+  Complex operator()(double omega_rad_s) const { return combine(terms(omega_rad_s)); }
+
+  Complex combine(const detail::ResponseTerms& t) const {
+    return loop_.gains.kp * t.a + loop_.gains.ki * t.b + loop_.gains.kd * t.c;
+  }
+
+ private:
+  JointLoop loop_;
+  detail::DiscretePlant plant_;
+};
+
+// The logarithmic grid margins() scans: n points up to π/h.
+std::vector<double> frequency_grid(double tick_s, int grid_points) {
+  const double nyquist = kPi / tick_s;
+  const int n = std::max(16, grid_points);
+  std::vector<double> w(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    w[static_cast<std::size_t>(i)] =
+        i == n - 1 ? nyquist : nyquist * std::pow(10.0, -5.0 + 5.0 * i / (n - 1));
+  return w;
+}
+
+}  // namespace
+
+namespace detail {
+
+PlantGrid plant_grid(const JointLoop& loop, const MarginOptions& options) {
+  PlantGrid g;
+  g.omega_rad_s = frequency_grid(loop.tick_s, options.grid_points);
+  const LoopResponse response(loop);
+  g.terms.reserve(g.omega_rad_s.size());
+  for (double w : g.omega_rad_s)
+    g.terms.push_back(response.terms(w));
+  return g;
+}
+
+}  // namespace detail
+
+Complex loop_response(const JointLoop& loop, double omega_rad_s) {
+  return LoopResponse(loop)(omega_rad_s);
+}
+
+namespace {
+
+// Spectral radius with the loop's gains scaled and a total delay of m + f ticks.
+double spectral_radius(const JointLoop& loop, double gain_scale, int m, double f) {
+  const pid::Gains<double> k{gain_scale * loop.gains.kp, gain_scale * loop.gains.ki,
+                             gain_scale * loop.gains.kd};
+  const Eigen::VectorXcd lambda =
+      detail::closed_loop_matrix(loop, k, loop.plant_gain, m, f).eigenvalues();
   double rho = 0.0;
-  for (int k = 0; k < lambda.size(); ++k)
-    rho = std::max(rho, std::abs(lambda(k)));
+  for (int i = 0; i < lambda.size(); ++i)
+    rho = std::max(rho, std::abs(lambda(i)));
   return rho;
 }
 
@@ -200,21 +309,26 @@ void set_delay(JointLoop& loop, double delay_s) {
 }
 
 LoopMargins margins(const JointLoop& loop, const MarginOptions& options) {
+  return detail::margins(loop, options, nullptr);
+}
+
+LoopMargins detail::margins(const JointLoop& loop, const MarginOptions& options,
+                            const PlantGrid* grid) {
   LoopMargins m;
   m.phase_crossover_rad_s = m.gain_crossover_rad_s = m.disk_frequency_rad_s = kNaN;
   if (!valid(loop)) return m;
   m.spectral_radius = closed_loop_spectral_radius(loop);
   m.stable = m.spectral_radius < 1.0 - 1e-12;
 
+  const LoopResponse response(loop);
   const double nyquist = kPi / loop.tick_s;
-  const int n = std::max(16, options.grid_points);
-  std::vector<double> w(static_cast<std::size_t>(n));
+  const std::vector<double> w =
+      grid != nullptr ? grid->omega_rad_s : frequency_grid(loop.tick_s, options.grid_points);
+  const int n = static_cast<int>(w.size());
   std::vector<Complex> l(w.size());
-  for (int i = 0; i < n; ++i) {
-    w[i] = i == n - 1 ? nyquist : nyquist * std::pow(10.0, -5.0 + 5.0 * i / (n - 1));
-    l[i] = loop_response(loop, w[i]);
-  }
-  const auto at = [&](double omega) { return loop_response(loop, omega); };
+  for (std::size_t i = 0; i < w.size(); ++i)
+    l[i] = grid != nullptr ? response.combine(grid->terms[i]) : response(w[i]);
+  const auto at = [&](double omega) { return response(omega); };
 
   double gm_up = kInf, gm_low = 0.0, pm = kInf, dm = kInf;
   const auto phase_crossing = [&](double omega) {

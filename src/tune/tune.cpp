@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 
 namespace fuzzypid::tune {
@@ -353,6 +354,33 @@ VisitMap visits_in(tbb::task_arena* arena, const ExperimentOf& ex,
   return sum;
 }
 
+}  // namespace
+
+double margin_shortfall(const sim::Certificate& cert, const Objective& o) {
+  const sim::MarginSummary m = sim::summarize(cert);
+  double shortfall = 0.0;
+  const auto below = [&](double required, double got) {
+    if (required > 0.0 && !(got >= required)) shortfall += (required - std::max(0.0, got)) / required;
+  };
+  below(o.min_disk_margin, m.disk_margin);
+  below(o.min_gain_margin_db, m.gain_margin_db);
+  below(o.min_phase_margin_deg, m.phase_margin_deg);
+  below(o.min_delay_margin_ms, m.delay_margin_ms);
+  return shortfall;
+}
+
+sim::CertifyOptions screening_options(double delay_s) {
+  sim::CertifyOptions c;
+  c.delay_s = delay_s;
+  c.grid_points = 5;
+  c.margin.grid_points = 400;
+  c.margin.delay_ticks = false;
+  c.lyapunov = false;
+  return c;
+}
+
+namespace {
+
 std::optional<Result> tune_on(const ExperimentOf& experiment,
                               const std::vector<sim::Condition>& conditions, const Options& options,
                               std::string& error) {
@@ -406,8 +434,27 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
     *it = b;
   }
   const Objective& o = options.objective;
+  // Margins required: the plants of the training conditions, computed once; every candidate's
+  // frozen-gain margins over them are checked before it is simulated.
+  std::optional<sim::PlantRanges> ranges;
+  double delay_s = 0.0;
+  if (o.requires_margins()) {
+    ranges = sim::plant_ranges(data.training, data.training_ex, error);
+    if (!ranges) return std::nullopt;
+    for (const sim::Condition& c : data.training)
+      delay_s = std::max(delay_s, c.effects.delay_s);
+  }
+  const double infeasible_cost = static_cast<double>(data.training.size() + 1) * o.fault_cost;
   const auto objective = [&](const std::vector<double>& x) {
     const ControllerSpec spec = space->to_spec(x);
+    if (ranges) {
+      std::string ignored;
+      const auto cert = sim::certify(spec, *ranges, screening_options(delay_s), ignored);
+      const double shortfall = cert ? margin_shortfall(*cert, o) : 1.0;
+      // More than any feasible candidate (whose runs cost at most fault_cost each), and less the
+      // closer it comes: the search is led back to the feasible region.
+      if (shortfall > 0.0) return infeasible_cost * (1.0 + shortfall);
+    }
     const Cost c = evaluate_in(arena.get(), data.training_ex, data.training, spec, o);
     return c.total + space->penalty(spec);
   };
@@ -423,7 +470,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   mo.progress = options.progress;
   if (options.init) mo.start = space->from_spec(*start);
   if (!data.validation.empty())
-    mo.improved = [&](const std::vector<double>& x, double) {
+    mo.improved = [&](const std::vector<double>& x, double f) {
+      if (ranges && f >= infeasible_cost) return;  // below the required margins
       const Cost v =
           evaluate_in(arena.get(), data.validation_ex, data.validation, space->to_spec(x), o);
       ++validation_runs;

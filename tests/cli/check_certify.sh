@@ -1,6 +1,7 @@
 #!/bin/sh
-# certify: a fixed PID with positive margins is certified (exit 0), a moving-gain controller is not
-# (exit 1, frozen-gain margins only), an unstable PID is not (exit 1); the paper's PD-like gains give
+# certify: a fixed PID with positive margins is certified (exit 0), so is a gain schedule whose box
+# has a common Lyapunov function; the paper's fuzzy PID is not (exit 1: its Ki reaches 0), nor an
+# unstable PID (exit 1); the paper's PD-like gains give
 # the closed-form gain margin 2 / (Kd h) of a double integrator under ZOH; an extra delay lowers the
 # delay margin by itself; --json is the same twice; bad usage exits 2 naming the option.
 # Usage: check_certify.sh <fuzzypid> <source dir> <python3>
@@ -26,9 +27,11 @@ expect() {
 }
 
 pid="$src/controllers/paper_pid.toml"
-expect 0 "^certified (linear, no saturation)$" -- "$fuzzypid" certify "$pid"
-expect 1 "^not certified (frozen-gain margins only)$" -- \
+expect 0 "^certified (linear, no saturation; gains may change every tick)$" -- "$fuzzypid" certify "$pid"
+expect 0 "^certified (linear, no saturation; gains may change every tick)$" -- \
   "$fuzzypid" certify "$src/controllers/tuned_scheduled.toml" --grid 5
+expect 1 "^not certified (joint 1: Ki reaches 0 inside the box" -- \
+  "$fuzzypid" certify "$src/controllers/paper_fuzzy.toml" --grid 5
 
 # Kd per tick 1000 at a 50 ms tick: Kd h = 2.5 > 2, beyond the double integrator's boundary.
 sed 's/^kd = .*/kd = 1000.0/' "$pid" >"$work/unstable.toml"
@@ -45,10 +48,15 @@ import json, math, sys
 a = json.load(open(sys.argv[1]))
 d = json.load(open(sys.argv[2]))
 assert a["certified"] is True and a["family"] == "pid", a
+assert "no saturation" in a["assumptions"], a
 for j in a["joints"]:
     for key in ("gain_margin_db", "phase_margin_deg", "delay_margin_ms", "disk_margin"):
         assert isinstance(j[key], float) and j[key] > 0, (key, j)
     assert j["inertia_kgm2"][0] <= j["inertia_kgm2"][1]
+    # A fixed PID: a box of one point, certified with a contraction below 1.
+    assert j["certified"] is True, j
+    assert j["gain_box"]["kp"] == [4.0, 4.0] and j["gain_box"]["kd"] == [5.0, 5.0], j
+    assert j["lyapunov"]["certified"] is True and 0 < j["lyapunov"]["contraction_per_tick"] < 1, j
 # Joint 6 (constant inertia = J^): the PD-dominated loop's margin at z = -1 is 2 / (Kd h) with
 # Kd = 100 per tick = 5 s at h = 0.05 s, plus the integral's tiny share (Ki h z / (z - 1) = Ki h / 2).
 kp, ki, kd, h = 4.0, 0.001 / 0.05, 100.0 * 0.05, 0.05

@@ -262,7 +262,7 @@ TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
   const Er50 er50;
   const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml");
   EXPECT_TRUE(cert.certified);
-  EXPECT_EQ(cert.verdict, "certified (linear, no saturation)");
+  EXPECT_EQ(cert.verdict, "certified (linear, no saturation; gains may change every tick)");
   for (const auto& joint : cert.joints) {
     EXPECT_LE(joint.inertia_min_kgm2, joint.nominal_inertia_kgm2);
     EXPECT_GE(joint.inertia_max_kgm2, joint.nominal_inertia_kgm2);
@@ -285,14 +285,37 @@ TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
   }
 }
 
-TEST(Certify, MovingGainsAreNotCertifiedAndTheirGainSetIsSearched) {
+TEST(Certify, AGainScheduleIsCertifiedOverTheBoxOfTheGainsItProduces) {
   const Er50 er50;
   const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_scheduled.toml");
   EXPECT_TRUE(cert.moving_gains);
-  EXPECT_FALSE(cert.certified);
-  EXPECT_EQ(cert.verdict, "not certified (frozen-gain margins only)");
-  for (const auto& joint : cert.joints)
+  EXPECT_TRUE(cert.certified) << cert.verdict;
+  EXPECT_EQ(cert.verdict, "certified (linear, no saturation; gains may change every tick)");
+  for (const auto& joint : cert.joints) {
     EXPECT_GT(joint.gain_triples, 1u);
+    // The box spans the triples the supervisor produced: the worst frozen cases lie inside it.
+    const fuzzypid::sim::GainBox& box = joint.gain_box;
+    EXPECT_LT(box.low.kp, box.high.kp);
+    for (const fuzzypid::sim::MarginCase* c : {&joint.worst_gain, &joint.worst_disk}) {
+      EXPECT_GE(c->gains.kp, box.low.kp);
+      EXPECT_LE(c->gains.kp, box.high.kp);
+      EXPECT_GE(c->gains.kd, box.low.kd);
+      EXPECT_LE(c->gains.kd, box.high.kd);
+    }
+    EXPECT_TRUE(joint.lyapunov.certified) << joint.lyapunov.reason;
+    EXPECT_LT(joint.lyapunov.contraction, 1.0);
+  }
+}
+
+TEST(Certify, APaperFuzzyPidWhoseKiReachesZeroIsNotCertified) {
+  const Er50 er50;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/paper_fuzzy.toml");
+  EXPECT_TRUE(cert.moving_gains);
+  EXPECT_FALSE(cert.certified);
+  EXPECT_EQ(cert.joints[0].gain_box.low.ki, 0.0);
+  EXPECT_EQ(cert.verdict,
+            "not certified (joint 1: Ki reaches 0 inside the box: there the integral is frozen and "
+            "holds its value)");
 }
 
 TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {

@@ -38,9 +38,13 @@ struct PlantRecord {
 
 // The header's text. `ns`: the namespace of the generated code (check_namespace() must accept
 // it); `source`: named in the header's comment; `plant`, when given, adds kNominalInertiaKgm2,
-// kTorqueLimitNm and kOutputLimit (the limit in the controller's output units).
+// kTorqueLimitNm and kOutputLimit (the limit in the controller's output units); `margins`, when
+// given, adds the stability margins and certificate (sim::certify) with its assumptions:
+// kGainMarginDb, kPhaseMarginDeg, kDelayMarginMs, kDiskMargin (per joint, worst case over the
+// conditions named), kCertified and kCertificate.
 [[nodiscard]] std::string export_header(const controller::ControllerSpec& spec,
                                         const std::string& ns, const std::string& source,
-                                        const PlantRecord* plant = nullptr);
+                                        const PlantRecord* plant = nullptr,
+                                        const controller::MarginRecord* margins = nullptr);
 
 }  // namespace fuzzypid::codegen

@@ -228,6 +228,19 @@ struct Objective {
   // share above it. 0: every reversal costs (a file without the key).
   double chatter_limit_pct = 0.0;
   double effort_weight = 0.0;
+  // Margins every candidate must keep (`fuzzypid tune --min-disk-margin` and the gain, phase and
+  // delay forms; docs/margins.md): the worst frozen-gain margin over the joints and the training
+  // conditions' plants (sim::certify). A candidate below any of them is infeasible: it is not
+  // simulated and costs more than any feasible one. 0: no requirement.
+  double min_disk_margin = 0.0;
+  double min_gain_margin_db = 0.0;
+  double min_phase_margin_deg = 0.0;
+  double min_delay_margin_ms = 0.0;
+
+  [[nodiscard]] bool requires_margins() const noexcept {
+    return min_disk_margin > 0.0 || min_gain_margin_db > 0.0 || min_phase_margin_deg > 0.0 ||
+           min_delay_margin_ms > 0.0;
+  }
 };
 
 // A file a controller was tuned on: the URDF or path of a training condition, by name and a
@@ -286,6 +299,22 @@ struct Tuning {
   std::optional<TableRegulariser> regulariser;  // fuzzy-rules only
 };
 
+// What `fuzzypid certify` found for the controller (sim/certify.hpp, docs/margins.md) over the
+// conditions named, as `fuzzypid tune` records it for its training conditions: per joint the
+// worst frozen-gain margins and the inertia range, and whether a common quadratic Lyapunov
+// function covers gains switching every tick (the certificate) under `assumptions`.
+struct MarginRecord {
+  using PerJoint = std::array<double, 6>;
+  std::string conditions;  // the condition file (relative to the controller file's folder)
+  std::string set;         // its set
+  double delay_ms = 0.0;   // the delay the loops were analysed with
+  PerJoint gain_margin_db{}, phase_margin_deg{}, delay_margin_ms{}, disk_margin{};
+  PerJoint inertia_min_kgm2{}, inertia_max_kgm2{};
+  bool certified = false;
+  std::string verdict;
+  std::string assumptions;
+};
+
 // Model-based feed-forward added to the PID's torque.
 struct Feedforward {
   // tau += g^(q_desired): the gravity torque of the nominal model (no payload) at the reference,
@@ -306,6 +335,7 @@ struct ControllerSpec {
   PidOptions pid{};
   Feedforward feedforward{};
   std::optional<Tuning> tuning;
+  std::optional<MarginRecord> margins;
 };
 
 // A value as controller files and messages write it: "%.17g", always with a '.', 'e', "inf" or

@@ -14,10 +14,15 @@
 //     inputs (x, y) = (Ke e, Kec ec) in [−8, 8]² (denser within [−1, 1]), computed by
 //     controller::JointControllers from a fresh start (for GainUpdate::Incremental: one tick from
 //     K0, not the set reachable over many ticks).
-// The worst case of each margin and where it occurs are reported. A fixed PID whose loop is stable
-// with a positive disk margin everywhere is "certified (linear, no saturation)"; a moving-gain
-// controller is at best "not certified (frozen-gain margins only)": frozen-gain margins do not
-// carry over to gains that change every tick unless they change slowly (Shamma and Athans, 1991).
+// The worst case of each margin and where it occurs are reported. Frozen-gain margins do not carry
+// over to gains that change every tick unless they change slowly (Shamma and Athans, 1991), so
+// each joint also gets the certificate of lyapunov.hpp: one quadratic Lyapunov function common to
+// every corner of the box of the gain triples above (for GainUpdate::Incremental the gain bounds
+// of the file, which that update can reach) × the plant-gain and damping ranges of each group of
+// plants (tick, J^, current loop). A controller is "certified" when every loop is stable at frozen
+// gains with a positive disk margin and every joint has that certificate: then no sequence of
+// gains the supervisor can produce, switching on every tick, and no variation of the inertia
+// within its range destabilises the linear loop (lyapunov_assumptions()).
 //
 // Part of fuzzypid::sim (set-up code: allocates, reports errors).
 #pragma once
@@ -32,6 +37,7 @@
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/lyapunov.hpp"
 #include "fuzzypid/sim/margins.hpp"
 
 namespace fuzzypid::sim {
@@ -40,6 +46,7 @@ struct CertifyOptions {
   double delay_s = 0.0;          // extra delay, s, >= 0 (whole ticks and a fraction)
   std::size_t grid_points = 25;  // per axis of the (x, y) grid of moving-gain families, >= 3
   MarginOptions margin{};
+  bool lyapunov = true;  // also solve for the common Lyapunov function (SDPA)
 };
 
 // One evaluated loop and where it comes from.
@@ -65,6 +72,12 @@ struct JointCertificate {
   // delay_margin_exact_s (they take eigenvalues of growing loops): those of the case with the
   // lowest allmargin delay margin.
   MarginCase worst_gain, worst_gain_low, worst_phase, worst_delay, worst_disk;
+  // The box of the gain triples (continuous SI form) and its certificate: the worst over the
+  // plant groups (the first that fails, else the largest contraction). Not computed (reason
+  // "not computed") when CertifyOptions::lyapunov is false.
+  GainBox gain_box{};
+  LyapunovCertificate lyapunov{};
+  std::size_t plant_groups = 0;
 };
 
 struct Certificate {
@@ -77,9 +90,48 @@ struct Certificate {
   std::string verdict;  // "certified (linear, no saturation)" or "not certified (...)"
 };
 
-// Certifies `controller` on `conditions` (each run by `experiments.of(k)`). Returns nullopt with
-// `error` set when a path cannot be planned, the delay is negative or not finite, or the
-// controller cannot be built.
+// The smallest of each margin over the joints (the controller's worst case), as controller files
+// record them and `fuzzypid tune --min-*` constrains them.
+struct MarginSummary {
+  double gain_margin_db = 0.0;
+  double phase_margin_deg = 0.0;
+  double delay_margin_ms = 0.0;
+  double disk_margin = 0.0;
+};
+[[nodiscard]] MarginSummary summarize(const Certificate& cert);
+
+// The record a controller file keeps of `cert` (its conditions and set left empty).
+[[nodiscard]] controller::MarginRecord margin_record(const Certificate& cert);
+
+// The plants one joint meets at one tick, one nominal inertia J^ and one current loop: the ranges
+// of its effective inertia and viscous friction over the conditions.
+struct PlantGroup {
+  double tick_s = 0.0;
+  double nominal_inertia_kgm2 = 0.0;
+  double torque_bandwidth_hz = 0.0;
+  double inertia_min = 0.0, inertia_max = 0.0;  // kg·m²
+  double damping_min = 0.0, damping_max = 0.0;  // N·m·s/rad
+};
+
+struct PlantRanges {
+  std::array<std::vector<PlantGroup>, robot::kNumJoints> joints;
+  std::size_t conditions = 0;
+};
+
+// The plant groups of `conditions` (conditions[k] runs on experiments[k]). Returns nullopt with
+// `error` set when there are none or a path cannot be planned. Computed once, it serves any number
+// of controllers (the tuner certifies every candidate against it).
+[[nodiscard]] std::optional<PlantRanges> plant_ranges(
+    const std::vector<Condition>& conditions, const std::vector<const Experiment*>& experiments,
+    std::string& error);
+
+// Certifies `controller` on the plants of `ranges`. Returns nullopt with `error` set when the
+// delay is negative or not finite, or the controller cannot be built.
+[[nodiscard]] std::optional<Certificate> certify(const ControllerSpec& controller,
+                                                 const PlantRanges& ranges,
+                                                 const CertifyOptions& options, std::string& error);
+
+// Both steps: certifies `controller` on `conditions` (each run by `experiments.of(k)`).
 [[nodiscard]] std::optional<Certificate> certify(const ControllerSpec& controller,
                                                  const std::vector<Condition>& conditions,
                                                  const ExperimentSet& experiments,

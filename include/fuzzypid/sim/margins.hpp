@@ -9,6 +9,9 @@
 //               or (e_k − e_{k−1}) / h (Difference), d_k = d_{k−1} + β (d_raw − d_{k−1}) with
 //               β = h / (Tf + h), u_k = P + I_k + Kd d_k; gains in continuous SI form.
 //               DerivativeOn does not matter here: with a constant setpoint both give the same d.
+//   current loop (torque_bandwidth_hz F > 0) the plant receives v, the command lagged to first
+//               order: v̇ = 2π F (u_delayed − v), as robot::Plant applies torque_bandwidth_hz;
+//               discretised exactly (matrix exponential) with the ZOH.
 //   delay       u_k reaches the plant (d + f) h later (d = delay_ticks, f = delay_fraction in
 //               [0, 1)): over each tick the plant sees u_{k−d−1} for f h, then u_{k−d} (the
 //               modified z-transform of the ZOH plant; exact, not a Padé or e^{−jωτ} model).
@@ -58,6 +61,9 @@ struct JointLoop {
   pid::DerivativeSource derivative = pid::DerivativeSource::Rates;
   int delay_ticks = 0;          // d >= 0
   double delay_fraction = 0.0;  // f in [0, 1): the part of a tick beyond d
+  // The current loop, a first-order lag on the (delayed) command, Hz; 0: ideal (robot::PlantConfig's
+  // torque_bandwidth_hz). With it the plant is θ̈ = c v − a θ̇, v̇ = 2π F (u − v).
+  double torque_bandwidth_hz = 0.0;
 };
 
 struct LoopMargins {

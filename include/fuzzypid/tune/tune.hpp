@@ -10,6 +10,10 @@
 //        + fault_cost per run that faults, diverges (|e| > divergence_rad) or gives a non-finite
 //          ITAE (such a run adds only fault_cost),
 //
+// and, when the objective requires margins (min_disk_margin, ...), a candidate whose frozen-gain
+// margins over the training plants fall short is not simulated: it costs
+// (runs + 1) fault_cost (1 + shortfall), more than any feasible candidate (margin_shortfall),
+//
 // with u a joint's command over the run and u_limit its output limit (the torque limit over J^
 // in acceleration units). reversals_pct (sim/metrics.hpp, as metrics.csv reports it) is the
 // share of ticks on which the command's change reverses direction, counting only changes larger
@@ -33,6 +37,7 @@
 #include <vector>
 
 #include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/parameters.hpp"
@@ -61,6 +66,14 @@ struct Cost {
                             const std::vector<sim::Condition>& conditions,
                             const ControllerSpec& controller, const Objective& objective,
                             unsigned threads = 1);
+
+// How far `cert`'s worst margins (sim::summarize) fall below the objective's minima: the sum of
+// (required − got) / required over the margins required and not met (0: feasible).
+[[nodiscard]] double margin_shortfall(const sim::Certificate& cert, const Objective& o);
+// The certify options the tuner screens candidates with: frozen-gain margins only (no Lyapunov
+// certificate, no whole-tick delay scan), 5 points per axis of a supervisor's grid, 400
+// frequencies; `delay_s` the training conditions' largest delay.
+[[nodiscard]] sim::CertifyOptions screening_options(double delay_s);
 
 struct Progress {
   std::uint64_t evaluations = 0;
