@@ -22,7 +22,7 @@ for pair in "$@"; do
   controller=${pair##*:}
   header="$work/$controller.hpp"
   "$fuzzypid" export-header "$src/controllers/$controller.toml" --namespace "$ns" --out "$header" \
-    2>"$work/err" || fail "--namespace $ns refused: $(cat "$work/err")"
+    --allow-uncertified 2>"$work/err" || fail "--namespace $ns refused: $(cat "$work/err")"
   cat >"$work/use.cpp" <<EOF
 #include "$header"
 void use() {
@@ -42,8 +42,8 @@ done
 # fuzzy-rules controller (its table becomes constexpr data) go through the command as well.
 for file in tests/sim/data/engine_fuzzy.toml tests/cli/data/fuzzy_rules.toml; do
   header="$work/from_file.hpp"
-  "$fuzzypid" export-header "$src/$file" --namespace from_file --out "$header" 2>"$work/err" ||
-    fail "export-header $file refused: $(cat "$work/err")"
+  "$fuzzypid" export-header "$src/$file" --namespace from_file --out "$header" \
+    --allow-uncertified 2>"$work/err" || fail "export-header $file refused: $(cat "$work/err")"
   cat >"$work/use.cpp" <<EOF
 #include "$header"
 void use() {
@@ -67,6 +67,31 @@ for ns in class int and xor_eq main std a::std fuzzypid a::fuzzypid final 1abc _
   grep -q "namespace" "$work/err" || fail "--namespace '$ns': no reason: $(cat "$work/err")"
   [ -e "$work/refused.hpp" ] && fail "--namespace '$ns': a header was written"
 done
+
+# The certificate: an uncertified controller (the paper's fuzzy PID: its Ki reaches 0) is refused
+# with the reason (exit 1, nothing written) unless --allow-uncertified, which writes kCertified =
+# false; a certified one (the tuned PID) carries kCertified = true and its margins, usable at
+# compile time.
+"$fuzzypid" export-header "$src/controllers/paper_fuzzy.toml" --out "$work/uncertified.hpp" \
+  2>"$work/err"
+code=$?
+[ "$code" -eq 1 ] || fail "uncertified: exit $code, expected 1: $(cat "$work/err")"
+grep -q "not certified (joint 1: Ki reaches 0" "$work/err" || fail "uncertified: $(cat "$work/err")"
+[ -e "$work/uncertified.hpp" ] && fail "uncertified: a header was written"
+"$fuzzypid" export-header "$src/controllers/paper_fuzzy.toml" --out "$work/uncertified.hpp" \
+  --allow-uncertified 2>"$work/err" || fail "--allow-uncertified: $(cat "$work/err")"
+grep -q "^inline constexpr bool kCertified = false;" "$work/uncertified.hpp" ||
+  fail "--allow-uncertified: no kCertified = false"
+"$fuzzypid" export-header "$src/controllers/tuned_pid.toml" --namespace certified \
+  --out "$work/certified.hpp" 2>"$work/err" || fail "certified: $(cat "$work/err")"
+grep -q "^// Assumptions: linear joint" "$work/certified.hpp" || fail "certified: no assumptions"
+cat >"$work/use.cpp" <<EOF
+#include "$work/certified.hpp"
+static_assert(certified::kCertified, "the tuned PID is certified");
+static_assert(certified::kDiskMargin[0] > 0.5 && certified::kGainMarginDb[5] > 3.0, "margins");
+EOF
+"$cxx" -std=c++17 -fsyntax-only -Wall -Wextra -Wpedantic -Werror -I"$src/include" \
+  "$work/use.cpp" 2>"$work/err" || fail "certified header: $(cat "$work/err")"
 
 # kp = 1e39 is a finite double but no float: refused (exit 1) with the value named.
 sed 's/^kp = .*/kp = 1e39/' "$src/controllers/tuned_pid.toml" >"$work/huge.toml"

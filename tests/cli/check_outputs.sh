@@ -131,7 +131,7 @@ if unshare --mount sh -c "mount -t tmpfs -o size=64k tmpfs '$work/full_disk'" 2>
     cd "$1" && mount -t tmpfs -o size=64k tmpfs full_disk && cd full_disk || exit 3
     echo previous >h.hpp
     dd if=/dev/zero of=fill bs=4k count=15 2>/dev/null
-    "$2" export-header "$3/controllers/paper_fuzzy.toml" --out h.hpp 2>"$1/err"
+    "$2" export-header "$3/controllers/paper_fuzzy.toml" --allow-uncertified --out h.hpp 2>"$1/err"
     [ $? -eq 1 ] && grep -q "No space left on device" "$1/err" || { cat "$1/err"; exit 4; }
     "$2" tune --family pid --conditions "$3/tuning/robust.toml" --budget 40 --population 20 \
       --threads 1 --quiet --out h.hpp 2>"$1/err"

@@ -177,6 +177,59 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
   EXPECT_EQ(cf::to_toml(back), text);
 }
 
+// The margins record and the margin requirements of the objective read back value for value
+// (an infinite gain margin, no phase crossover, included); a record with five joints is refused.
+TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
+  ctl::ControllerSpec spec = tuned_example();
+  spec.tuning->objective.min_disk_margin = 0.5;
+  spec.tuning->objective.min_delay_margin_ms = 20.0;
+  ctl::MarginRecord m;
+  m.conditions = "../tuning/robust_drive.toml";
+  m.set = "training";
+  m.delay_ms = 50.0;
+  m.gain_margin_db = {6.5, 7.0, std::numeric_limits<double>::infinity(), 8.0, 9.0, 10.0};
+  m.phase_margin_deg = {40, 41, 42, 43, 44, 45};
+  m.delay_margin_ms = {20, 21, 22, 23, 24, 25.5};
+  m.disk_margin = {0.5, 0.6, 0.7, 0.8, 0.9, 1.0};
+  m.inertia_min_kgm2 = {1, 2, 3, 4, 5, 6};
+  m.inertia_max_kgm2 = {2, 3, 4, 5, 6, 7};
+  m.certified = true;
+  m.verdict = "certified (linear, no saturation; gains may change every tick)";
+  m.assumptions = "linear joint";
+  spec.margins = m;
+  const std::string text = cf::to_toml(spec);
+  ctl::ControllerSpec back;
+  fuzzypid::FileError error;
+  ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
+  ASSERT_TRUE(back.margins);
+  const ctl::MarginRecord& b = *back.margins;
+  EXPECT_EQ(b.conditions, m.conditions);
+  EXPECT_EQ(b.set, m.set);
+  EXPECT_EQ(b.delay_ms, 50.0);
+  EXPECT_EQ(b.gain_margin_db, m.gain_margin_db);
+  EXPECT_EQ(b.phase_margin_deg, m.phase_margin_deg);
+  EXPECT_EQ(b.delay_margin_ms, m.delay_margin_ms);
+  EXPECT_EQ(b.disk_margin, m.disk_margin);
+  EXPECT_EQ(b.inertia_min_kgm2, m.inertia_min_kgm2);
+  EXPECT_EQ(b.inertia_max_kgm2, m.inertia_max_kgm2);
+  EXPECT_TRUE(b.certified);
+  EXPECT_EQ(b.verdict, m.verdict);
+  EXPECT_EQ(b.assumptions, m.assumptions);
+  EXPECT_EQ(back.tuning->objective.min_disk_margin, 0.5);
+  EXPECT_EQ(back.tuning->objective.min_delay_margin_ms, 20.0);
+  EXPECT_EQ(back.tuning->objective.min_gain_margin_db, 0.0);
+  EXPECT_EQ(cf::to_toml(back), text);
+
+  std::string five = text;
+  const std::string row = "disk_margin = [0.5, ";
+  const auto at = five.find(row);
+  ASSERT_NE(at, std::string::npos);
+  five.replace(at, row.size(), "disk_margin = [");
+  EXPECT_FALSE(cf::parse(five, "five.toml", back, error));
+  EXPECT_NE(error.to_string().find("disk_margin must have 6 numbers"), std::string::npos)
+      << error.to_string();
+}
+
 TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
   ctl::ControllerSpec spec = ctl::paper_pid();
   EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);
