@@ -139,7 +139,8 @@ cli::Histogram g_latency;
 cli::Histogram g_period_error;
 cli::Histogram g_compute;
 
-LoopResult run_loop(sim::ClosedLoop& loop, sim::FaultMonitor& faults, const Options& o,
+LoopResult run_loop(sim::ClosedLoop& loop, sim::FaultMonitor& faults,
+                    const robot::JointVector& torque_limit_nm, const Options& o,
                     std::uint64_t ticks, std::vector<TickRecord>* csv) {
   LoopResult r;
   const std::size_t samples = loop.samples();
@@ -179,7 +180,11 @@ LoopResult run_loop(sim::ClosedLoop& loop, sim::FaultMonitor& faults, const Opti
       const double err = std::fabs(t.theta_d[j] - t.theta[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
-    (void)faults.observe(t.t_s, t.theta_d, t.theta);
+    std::array<bool, robot::kNumJoints> at_limit{};
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j)
+      at_limit[j] = loop.plant().saturated()[j] || std::fabs(loop.plant().applied_torque()[j]) >=
+                                                       (1.0 - 1e-9) * torque_limit_nm[j];
+    (void)faults.observe(t.t_s, t.theta_d, t.theta, loop.plant().applied_torque(), at_limit);
     const std::int64_t done = now_ns();
 
     g_compute.record(done - woke);
@@ -371,7 +376,8 @@ int run(int argc, char** argv) {
 
   sim::FaultMonitor faults(o.divergence_rad, experiment->model().lower_limits_rad(),
                            experiment->model().upper_limits_rad());
-  const LoopResult r = run_loop(*loop, faults, o, ticks, csv_file ? &csv : nullptr);
+  const LoopResult r = run_loop(*loop, faults, experiment->torque_limit(condition), o, ticks,
+                                csv_file ? &csv : nullptr);
 
   // --- After the loop: summary and CSV.
   if (g_stop != 0) std::printf("interrupted: stopped at the next tick\n");

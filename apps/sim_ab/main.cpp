@@ -586,7 +586,7 @@ int run_sim_ab(int argc, char** argv) {
       "scenario,controller,joint,settling_time_s,overshoot_pct,max_abs_error_rad,rms_error_rad,"
       "iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,clamped_gain_ticks,"
       "reversals_pct,sign_changes_pct,saturated_pct,tau_rms_nm,torque_variation_nm_per_s,"
-      "tcp_error_max_mm,tcp_error_rms_mm,divergence_ticks,joint_limit_ticks\n",
+      "tcp_error_max_mm,tcp_error_rms_mm,divergence_ticks,joint_limit_ticks,limit_cycle_ticks\n",
       metrics);
   std::fputs("scenario,controller,t,x_d,y_d,z_d,x,y,z\n", tip);
   // The robot and plant columns come last (readers by name keep working); the armature is six
@@ -667,7 +667,7 @@ int run_sim_ab(int argc, char** argv) {
       const sim::TrackingFaults& tf = r.tracking_faults;
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
         std::fprintf(metrics,
-                     "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu\n",
+                     "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n",
                      cond.name.c_str(), cname, i + 1, fmt(m[i].settling_time_s).c_str(),
                      fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
                      fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
@@ -676,7 +676,7 @@ int run_sim_ab(int argc, char** argv) {
                      fmt(d[i].sign_changes_pct).c_str(), fmt(d[i].saturated_pct).c_str(),
                      fmt(d[i].tau_rms_nm).c_str(), fmt(d[i].torque_variation_nm_per_s).c_str(),
                      fmt(tcp.max_mm).c_str(), fmt(tcp.rms_mm).c_str(), tf.divergence[i].ticks,
-                     tf.joint_limit[i].ticks);
+                     tf.joint_limit[i].ticks, tf.limit_cycle[i].ticks);
       }
       const Summary s = summarize(m, d);
       if (!o.quiet)

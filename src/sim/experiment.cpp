@@ -313,7 +313,15 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
     const TickResult r = loop->tick(k, advance);
     const bool controller_fault = is_fault(r.command.status);
     if (controller_fault) ++result.controller_faults;
-    if (faults.observe(r.t_s, r.theta_d, r.theta) || controller_fault) ++result.fault_ticks;
+    // At a limit: clamped by the plant, or held there by the controller's own output limit (the
+    // plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
+    std::array<bool, kJoints> at_limit{};
+    for (std::size_t i = 0; i < kJoints; ++i)
+      at_limit[i] = loop->plant().saturated()[i] ||
+                    std::fabs(loop->plant().applied_torque()[i]) >= (1.0 - 1e-9) * torque_limit_nm[i];
+    if (faults.observe(r.t_s, r.theta_d, r.theta, loop->plant().applied_torque(), at_limit) ||
+        controller_fault)
+      ++result.fault_ticks;
     for (std::size_t i = 0; supervised && i < kJoints; ++i) {
       if (r.command.joint_status[i] == Status::NoRuleFired) ++result.no_rule_ticks[i];
       const pid::Gains<double> g = loop->controller().gains(i);
@@ -342,10 +350,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
       row.kd = g.kd;
       row.tau_nm = loop->plant().applied_torque()[i];
       row.omega_rad_s = r.theta_dot[i];
-      // At a limit: clamped by the plant, or held there by the controller's own output limit
-      // (the plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
-      const double applied = std::fabs(row.tau_nm);
-      row.saturated = loop->plant().saturated()[i] || applied >= (1.0 - 1e-9) * torque_limit_nm[i];
+      row.saturated = at_limit[i];
       result.rows.push_back(row);
     }
     if (diverged) {

@@ -35,6 +35,30 @@ bool FaultMonitor::observe(double t_s, const robot::JointVector& theta_d,
   return faulted;
 }
 
+bool FaultMonitor::observe(double t_s, const robot::JointVector& theta_d,
+                           const robot::JointVector& theta, const robot::JointVector& torque_nm,
+                           const std::array<bool, robot::kNumJoints>& at_limit) noexcept {
+  bool cycling = false;
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+    const int sign = torque_nm[i] > 0.0 ? 1 : (torque_nm[i] < 0.0 ? -1 : 0);
+    if (at_limit[i] && sign != 0 && sign == -cycle_sign_[i]) {
+      ++cycle_run_[i];
+    } else {
+      cycle_run_[i] = at_limit[i] && sign != 0 ? 1 : 0;
+    }
+    cycle_sign_[i] = at_limit[i] ? sign : 0;
+    if (cycle_run_[i] >= kLimitCycleTicks) {
+      record(faults_.limit_cycle[i], t_s, torque_nm[i]);
+      cycling = true;
+    }
+  }
+  // The tick counts once whichever kinds hold.
+  const std::size_t before = faults_.ticks;
+  const bool other = observe(t_s, theta_d, theta);
+  if (cycling && faults_.ticks == before) ++faults_.ticks;
+  return other || cycling;
+}
+
 std::vector<std::string> describe(const TrackingFaults& faults, double divergence_rad,
                                   const robot::JointVector& lower_rad,
                                   const robot::JointVector& upper_rad) {
@@ -54,6 +78,15 @@ std::vector<std::string> describe(const TrackingFaults& faults, double divergenc
                     "joint %zu: angle %.6g rad outside its limits [%.6g, %.6g] rad at t = %.6g s "
                     "(first of %zu ticks)",
                     i + 1, l.first_value_rad, lower_rad[i], upper_rad[i], l.first_t_s, l.ticks);
+      lines.emplace_back(buf);
+    }
+    const JointFault& c = faults.limit_cycle[i];
+    if (c.ticks != 0) {
+      std::snprintf(buf, sizeof buf,
+                    "joint %zu: limit cycle: torque on its limits with alternating sign for %zu "
+                    "ticks at t = %.6g s (first of %zu ticks): the loop is unstable, bounded "
+                    "only by the torque limits",
+                    i + 1, kLimitCycleTicks, c.first_t_s, c.ticks);
       lines.emplace_back(buf);
     }
   }

@@ -39,10 +39,17 @@ m=$work/x10/metrics.csv
   fail "--allow-faults did not exit 0: $(cat "$work/err")"
 grep -q "^sim_ab: fault: paper_pid_x10 on paper: joint" "$work/err" || fail "allowed: not named"
 [ "$(column_sum "$work/allowed/metrics.csv" paper_pid_x10 11)" -gt 0 ] || fail "allowed: faults 0"
-# The bound is the option's: 100 rad is never passed.
-"$sim_ab" --quiet --divergence 100 --controller "$x10" --out "$work/loose" 2>"$work/err" ||
-  fail "--divergence 100: $(cat "$work/err")"
-[ "$(column_sum "$work/loose/metrics.csv" paper_pid_x10 11)" -eq 0 ] || fail "loose: faults"
+# The bound is the option's: 100 rad is never passed. The loop still rings on its torque limits
+# at the Nyquist rate: a limit cycle, a fault whatever the bound (exit 1, named).
+"$sim_ab" --quiet --divergence 100 --controller "$x10" --out "$work/loose" 2>"$work/err"
+[ $? -eq 1 ] || fail "--divergence 100: the limit cycle did not fail the run: $(cat "$work/err")"
+grep -q "^sim_ab: fault: paper_pid_x10 on paper: joint [0-9]: limit cycle: torque on its limits" \
+  "$work/err" || fail "loose: the limit cycle is not named: $(cat "$work/err")"
+m="$work/loose/metrics.csv"
+[ "$(column_sum "$m" paper_pid_x10 "$(col "$m" divergence_ticks)")" -eq 0 ] ||
+  fail "loose: divergence_ticks"
+[ "$(column_sum "$m" paper_pid_x10 "$(col "$m" limit_cycle_ticks)")" -gt 0 ] ||
+  fail "loose: limit_cycle_ticks is 0"
 grep -q "^divergence_rad=100$" "$work/loose/settings.txt" || fail "settings.txt divergence_rad"
 
 # A sweep: the faulting runs are named and make it exit 1, unless --allow-faults.

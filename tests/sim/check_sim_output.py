@@ -20,7 +20,7 @@ METRICS_HEADER = ("scenario,controller,joint,settling_time_s,overshoot_pct,max_a
                   "rms_error_rad,iae,itae,max_abs_error_after_1s_rad,faults,no_rule_ticks,"
                   "clamped_gain_ticks,reversals_pct,sign_changes_pct,saturated_pct,tau_rms_nm,"
                   "torque_variation_nm_per_s,tcp_error_max_mm,tcp_error_rms_mm,divergence_ticks,"
-                  "joint_limit_ticks")
+                  "joint_limit_ticks,limit_cycle_ticks")
 TIP_HEADER = "scenario,controller,t,x_d,y_d,z_d,x,y,z"
 DT = 0.05
 

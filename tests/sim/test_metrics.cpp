@@ -2,6 +2,7 @@
 // (fuzzypid/sim/faults.hpp) on hand-computable signals.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -152,6 +153,49 @@ TEST(DriveMetrics, TorqueOfARampHasItsSlopeAsVariationPerSecond) {
   EXPECT_NEAR(sim::drive_metrics({0, 1, 2, 3, 4}, up_down, up_down, {0, 0, 0, 0, 0})
                   .torque_variation_nm_per_s,
               12.0 / 4.0, 1e-12);
+}
+
+// A limit cycle is kLimitCycleTicks consecutive ticks of saturated torque with alternating sign:
+// one tick fewer, a repeated sign, a tick off the limit or a zero torque restart the count.
+TEST(FaultMonitor, ALimitCycleIsTenConsecutiveSaturatedTicksOfAlternatingSign) {
+  const fuzzypid::robot::JointVector zero{};
+  sim::FaultMonitor m;
+  std::array<bool, 6> sat{};
+  sat[3] = true;  // joint 4 at its limit
+  double t = 0.0;
+  const auto tick = [&](double tau4, bool at_limit) {
+    sat[3] = at_limit;
+    t += 0.05;
+    return m.observe(t, zero, zero, {0, 0, 0, tau4, 0, 0}, sat);
+  };
+  // Nine alternating saturated ticks: no fault.
+  for (std::size_t k = 0; k + 1 < sim::kLimitCycleTicks; ++k)
+    EXPECT_FALSE(tick(k % 2 == 0 ? 300.0 : -300.0, true)) << k;
+  // The same sign again (the ninth was +300) restarts the run at 1: eight more alternating
+  // ticks make nine.
+  EXPECT_FALSE(tick(300.0, true));
+  for (std::size_t k = 0; k + 2 < sim::kLimitCycleTicks; ++k)
+    EXPECT_FALSE(tick(k % 2 == 0 ? -300.0 : 300.0, true)) << k;
+  // A tick off the limit breaks it too.
+  EXPECT_FALSE(tick(100.0, false));
+  EXPECT_EQ(m.faults().ticks, 0u);
+  // Ten in a row: the tenth faults, and every further one.
+  for (std::size_t k = 0; k < sim::kLimitCycleTicks + 2; ++k)
+    EXPECT_EQ(tick(k % 2 == 0 ? 300.0 : -300.0, true), k + 1 >= sim::kLimitCycleTicks) << k;
+  const sim::TrackingFaults& f = m.faults();
+  EXPECT_EQ(f.limit_cycle[3].ticks, 3u);
+  EXPECT_EQ(f.ticks, 3u);
+  EXPECT_DOUBLE_EQ(f.limit_cycle[3].first_value_rad, -300.0);  // the tenth tick's torque
+  EXPECT_EQ(f.divergence[3].ticks, 0u);
+  const auto lines = sim::describe(f, 1.0, zero, zero);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("joint 4: limit cycle: torque on its limits with alternating sign"),
+            std::string::npos)
+      << lines[0];
+  // Saturated on one side for long (a large step): never a cycle.
+  sim::FaultMonitor push;
+  for (int k = 0; k < 50; ++k)
+    EXPECT_FALSE(push.observe(0.05 * k, zero, zero, {0, 0, 0, 300.0, 0, 0}, sat));
 }
 
 TEST(FaultMonitor, NamesTheFirstTickOfEachJointsDivergenceAndLimitViolation) {
