@@ -82,19 +82,18 @@ void print_json(const CertifyCli& o, const sim::Certificate& cert) {
         num(sim::to_db(disk.disk_gain_high)).c_str(), num(disk.disk_phase_deg).c_str());
     std::printf("      \"gain_triples\": %zu,\n      \"cases\": %zu,\n", j.gain_triples, j.cases);
     const sim::GainBox& b = j.gain_box;
-    std::printf(
-        "      \"gain_box\": {\"kp\": [%s, %s], \"ki\": [%s, %s], \"kd\": [%s, %s]},\n",
-        num(b.low.kp).c_str(), num(b.high.kp).c_str(), num(b.low.ki).c_str(),
-        num(b.high.ki).c_str(), num(b.low.kd).c_str(), num(b.high.kd).c_str());
+    std::printf("      \"gain_box\": {\"kp\": [%s, %s], \"ki\": [%s, %s], \"kd\": [%s, %s]},\n",
+                num(b.low.kp).c_str(), num(b.high.kp).c_str(), num(b.low.ki).c_str(),
+                num(b.high.ki).c_str(), num(b.low.kd).c_str(), num(b.high.kd).c_str());
     const sim::LyapunovCertificate& l = j.lyapunov;
     std::printf(
         "      \"lyapunov\": {\"certified\": %s, \"contraction_per_tick\": %s, "
         "\"condition_number\": %s, \"states\": %zu, \"vertices\": %zu, \"plant_groups\": %zu, "
         "\"inertia_intervals\": %zu, \"switching_radius\": %s, \"switching_period\": %zu, "
         "\"reason\": \"%s\"},\n",
-        l.certified ? "true" : "false", num(l.contraction).c_str(),
-        num(l.condition_number).c_str(), l.states, l.vertices, j.plant_groups,
-        l.inertia_intervals, num(l.switching_radius).c_str(), l.switching_period, l.reason.c_str());
+        l.certified ? "true" : "false", num(l.contraction).c_str(), num(l.condition_number).c_str(),
+        l.states, l.vertices, j.plant_groups, l.inertia_intervals, num(l.switching_radius).c_str(),
+        l.switching_period, l.reason.c_str());
     std::printf("      \"certified\": %s,\n",
                 j.stable && disk.disk_margin > 0.0 && l.certified ? "true" : "false");
     print_case_json("worst_gain_at", j.worst_gain, false);
@@ -104,8 +103,7 @@ void print_json(const CertifyCli& o, const sim::Certificate& cert) {
     std::printf("    }%s\n", i + 1 < cert.joints.size() ? "," : "");
   }
   std::printf("  ],\n  \"certified\": %s,\n  \"verdict\": \"%s\",\n  \"assumptions\": \"%s\"\n}\n",
-              cert.certified ? "true" : "false", cert.verdict.c_str(),
-              sim::lyapunov_assumptions());
+              cert.certified ? "true" : "false", cert.verdict.c_str(), sim::lyapunov_assumptions());
 }
 
 void print_table(const CertifyCli& o, const sim::Certificate& cert) {
@@ -138,8 +136,9 @@ void print_table(const CertifyCli& o, const sim::Certificate& cert) {
         i + 1, w.inertia_kgm2, w.damping_nms, w.gains.kp, w.gains.ki, w.gains.kd, w.x, w.y,
         cert.joints[i].gain_triples, cert.joints[i].cases);
   }
-  std::printf("gains switching every tick inside their box (Kp, Ki 1/s, Kd s), inertia anywhere in "
-              "its range: common quadratic Lyapunov function (docs/margins.md)\n");
+  std::printf(
+      "gains switching every tick inside their box (Kp, Ki 1/s, Kd s), inertia anywhere in "
+      "its range: common quadratic Lyapunov function (docs/margins.md)\n");
   for (std::size_t i = 0; i < cert.joints.size(); ++i) {
     const sim::JointCertificate& j = cert.joints[i];
     const sim::GainBox& b = j.gain_box;

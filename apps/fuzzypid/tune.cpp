@@ -394,7 +394,8 @@ int run_tune(const TuneOptions& t) {
     sim::CertifyOptions co;
     for (const sim::Condition& c : training->conditions)
       co.delay_s = std::max(co.delay_s, c.effects.delay_s);
-    const auto cert = sim::certify(result->controller, training->conditions, *experiments, co, error);
+    const auto cert =
+        sim::certify(result->controller, training->conditions, *experiments, co, error);
     if (!cert) {
       std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
       return 1;
@@ -416,13 +417,13 @@ int run_tune(const TuneOptions& t) {
         training->conditions.end() - static_cast<std::ptrdiff_t>(t.validation));
     const auto screened =
         opt.objective.requires_margins()
-            ? sim::certify(result->controller, trained, *experiments,
-                           tune::screening_options(std::accumulate(
-                               trained.begin(), trained.end(), 0.0,
-                               [](double d, const sim::Condition& c) {
-                                 return std::max(d, c.effects.delay_s);
-                               })),
-                           error)
+            ? sim::certify(
+                  result->controller, trained, *experiments,
+                  tune::screening_options(std::accumulate(trained.begin(), trained.end(), 0.0,
+                                                          [](double d, const sim::Condition& c) {
+                                                            return std::max(d, c.effects.delay_s);
+                                                          })),
+                  error)
             : std::nullopt;
     if (screened && tune::margin_shortfall(*screened, opt.objective) > 0.0) {
       std::fprintf(stderr,
@@ -507,8 +508,8 @@ std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
     }
     const sim::ConditionSet* set = file.find(o.set);
     if (set == nullptr) {
-      error = "--set: " + o.conditions + " has no set '" + o.set + "' (it has: " +
-              file.set_names() + ")";
+      error = "--set: " + o.conditions + " has no set '" + o.set +
+              "' (it has: " + file.set_names() + ")";
       return std::nullopt;
     }
     conditions = set->conditions;

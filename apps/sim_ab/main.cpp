@@ -666,17 +666,18 @@ int run_sim_ab(int argc, char** argv) {
       const auto d = sim::run_drive_metrics(r.rows);
       const sim::TrackingFaults& tf = r.tracking_faults;
       for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-        std::fprintf(metrics,
-                     "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n",
-                     cond.name.c_str(), cname, i + 1, fmt(m[i].settling_time_s).c_str(),
-                     fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
-                     fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
-                     fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.fault_ticks,
-                     r.no_rule_ticks[i], r.clamped_gain_ticks[i], fmt(d[i].reversals_pct).c_str(),
-                     fmt(d[i].sign_changes_pct).c_str(), fmt(d[i].saturated_pct).c_str(),
-                     fmt(d[i].tau_rms_nm).c_str(), fmt(d[i].torque_variation_nm_per_s).c_str(),
-                     fmt(tcp.max_mm).c_str(), fmt(tcp.rms_mm).c_str(), tf.divergence[i].ticks,
-                     tf.joint_limit[i].ticks, tf.limit_cycle[i].ticks);
+        std::fprintf(
+            metrics,
+            "%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,%zu\n",
+            cond.name.c_str(), cname, i + 1, fmt(m[i].settling_time_s).c_str(),
+            fmt(m[i].overshoot_pct).c_str(), fmt(m[i].max_abs_error_rad).c_str(),
+            fmt(m[i].rms_error_rad).c_str(), fmt(m[i].iae).c_str(), fmt(m[i].itae).c_str(),
+            fmt(m[i].max_abs_error_after_1s_rad).c_str(), r.fault_ticks, r.no_rule_ticks[i],
+            r.clamped_gain_ticks[i], fmt(d[i].reversals_pct).c_str(),
+            fmt(d[i].sign_changes_pct).c_str(), fmt(d[i].saturated_pct).c_str(),
+            fmt(d[i].tau_rms_nm).c_str(), fmt(d[i].torque_variation_nm_per_s).c_str(),
+            fmt(tcp.max_mm).c_str(), fmt(tcp.rms_mm).c_str(), tf.divergence[i].ticks,
+            tf.joint_limit[i].ticks, tf.limit_cycle[i].ticks);
       }
       const Summary s = summarize(m, d);
       if (!o.quiet)

@@ -293,8 +293,8 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     };
     h += "// Stability margins of each joint's linear loop (`fuzzypid certify`, docs/margins.md),\n"
          "// the worst case over " +
-         comment_safe(margins->conditions) + " [" + comment_safe(margins->set) +
-         "] with " + format_double(margins->delay_ms) +
+         comment_safe(margins->conditions) + " [" + comment_safe(margins->set) + "] with " +
+         format_double(margins->delay_ms) +
          " ms of delay: frozen-gain margins at every\n"
          "// gain triple the controller produces over the joint's inertia range, and the "
          "certificate for\n// gains that change every tick.\n";
@@ -305,10 +305,10 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += "inline constexpr double kDelayMarginMs[6] = " + six(margins->delay_margin_ms) + ";\n";
     h += "inline constexpr double kDiskMargin[6] = " + six(margins->disk_margin) +
          ";  // alpha (balanced)\n";
-    h += "inline constexpr double kCertifiedInertiaMinKgm2[6] = " +
-         six(margins->inertia_min_kgm2) + ";\n";
-    h += "inline constexpr double kCertifiedInertiaMaxKgm2[6] = " +
-         six(margins->inertia_max_kgm2) + ";\n";
+    h += "inline constexpr double kCertifiedInertiaMinKgm2[6] = " + six(margins->inertia_min_kgm2) +
+         ";\n";
+    h += "inline constexpr double kCertifiedInertiaMaxKgm2[6] = " + six(margins->inertia_max_kgm2) +
+         ";\n";
     h += std::string("inline constexpr bool kCertified = ") +
          (margins->certified ? "true" : "false") + ";\n";
     h += "inline constexpr const char* kCertificate = \"" + literal_safe(margins->verdict) +

@@ -592,7 +592,8 @@ std::string to_toml(const ControllerSpec& s) {
         line += (i == 0 ? "" : ", ") + format_double(v[i]);
       return line + "]";
     };
-    o += "\n# What `fuzzypid certify` found over these conditions (docs/margins.md): per joint the\n";
+    o += "\n# What `fuzzypid certify` found over these conditions (docs/margins.md): per joint "
+         "the\n";
     o += "# worst frozen-gain margins and the inertia range; certified: a common quadratic\n";
     o += "# Lyapunov function covers gains and inertia changing every tick.\n";
     o += "[margins]\n";

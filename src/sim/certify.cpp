@@ -249,8 +249,8 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
           for (const GainPoint& p : (*points)[i]) {
             JointLoop loop = plant;
             loop.gains = p.gains;
-            MarginCase mc{detail::margins(loop, bulk, &grid), loop, j, b, g.tick_s, p.gains,
-                          p.x, p.y};
+            MarginCase mc{
+                detail::margins(loop, bulk, &grid), loop, j, b, g.tick_s, p.gains, p.x, p.y};
             ++jc.cases;
             jc.stable = jc.stable && mc.margins.stable;
             const LoopMargins& m = mc.margins;
@@ -281,9 +281,9 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
     std::vector<SwitchingLoop> sets;
     std::vector<double> set_nominal;  // J^ of each set
     for (const PlantGroup& g : groups[i]) {
-      const double torque_per_u =
-          controller.units.gains == controller::GainUnits::Acceleration ? g.nominal_inertia_kgm2
-                                                                        : 1.0;
+      const double torque_per_u = controller.units.gains == controller::GainUnits::Acceleration
+                                      ? g.nominal_inertia_kgm2
+                                      : 1.0;
       const double c_lo = torque_per_u / g.inertia_max, c_hi = torque_per_u / g.inertia_min;
       const double a_lo = g.damping_min / g.inertia_max, a_hi = g.damping_max / g.inertia_min;
       const double w = g.torque_bandwidth_hz;
@@ -319,8 +319,7 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
     bool first_set = true;
     for (const SwitchingLoop& set : sets) {
       const LyapunovCertificate lc = common_lyapunov(set);
-      if (first_set || !lc.certified || lc.contraction > jc.lyapunov.contraction)
-        jc.lyapunov = lc;
+      if (first_set || !lc.certified || lc.contraction > jc.lyapunov.contraction) jc.lyapunov = lc;
       first_set = false;
       if (!lc.certified) break;  // the joint is not certified: the first failing set says why
     }

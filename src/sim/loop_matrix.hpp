@@ -31,8 +31,8 @@ struct DiscretePlant {
 // or m + 1 with a fraction). Entries are multi-affine in (c, Kp, Ki, Kd) for fixed damping, tick,
 // filter and delay, except that Ki = 0 freezes the integral (its row is then zero).
 [[nodiscard]] Eigen::MatrixXd closed_loop_matrix(const JointLoop& loop,
-                                                 const pid::Gains<double>& gains,
-                                                 double plant_gain, int m, double f);
+                                                 const pid::Gains<double>& gains, double plant_gain,
+                                                 int m, double f);
 
 // The gain-independent terms of L at one frequency: L = Kp a + Ki b + Kd c.
 struct ResponseTerms {

@@ -4,14 +4,14 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <sdpa_call.h>
+#include <Eigen/Dense>
 
 #include "loop_matrix.hpp"
 
@@ -65,9 +65,8 @@ double p_norm(const Eigen::MatrixXd& a, const Eigen::LLT<Eigen::MatrixXd>& llt) 
   const Eigen::MatrixXd lt = llt.matrixU();  // Lᵀ
   const Eigen::MatrixXd m = lt * a * lt.inverse();
   const Eigen::MatrixXd mtm = m.transpose() * m;
-  return std::sqrt(
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mtm, Eigen::EigenvaluesOnly).eigenvalues()(
-          mtm.rows() - 1));
+  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(mtm, Eigen::EigenvaluesOnly)
+                       .eigenvalues()(mtm.rows() - 1));
 }
 
 // Solves for P with I ⪯ P ⪯ γ I and P − Aᵀ P A ⪰ δ I at every A, minimising γ. δ, the decrease
@@ -75,8 +74,8 @@ double p_norm(const Eigen::MatrixXd& a, const Eigen::LLT<Eigen::MatrixXd>& llt) 
 // integral gain) then still has a P of order 1, where a fixed δ = 1 would need P ~ 1 / (1 − ρ²)
 // and defeat the solver's scaling. Returns an empty matrix and the solver's phase when it finds
 // none.
-Eigen::MatrixXd solve_lmis(const std::vector<Eigen::MatrixXd>& as, double delta,
-                           std::string& phase, bool careful) {
+Eigen::MatrixXd solve_lmis(const std::vector<Eigen::MatrixXd>& as, double delta, std::string& phase,
+                           bool careful) {
   const auto n = static_cast<int>(as.front().rows());
   const int unknowns = n * (n + 1) / 2;  // the upper triangle of P
   const int m = unknowns + 1;            // and γ
@@ -119,7 +118,8 @@ Eigen::MatrixXd solve_lmis(const std::vector<Eigen::MatrixXd>& as, double delta,
         const Eigen::MatrixXd f = e - as[v].transpose() * e * as[v];
         for (int r = 0; r < n; ++r)
           for (int c = r; c < n; ++c)
-            if (f(r, c) != 0.0) sdpa.inputElement(k, static_cast<int>(v) + 2, r + 1, c + 1, f(r, c));
+            if (f(r, c) != 0.0)
+              sdpa.inputElement(k, static_cast<int>(v) + 2, r + 1, c + 1, f(r, c));
       }
       sdpa.inputElement(k, blocks, i + 1, j + 1, -1.0);
     }
@@ -324,12 +324,11 @@ LyapunovCertificate common_lyapunov(const SwitchingLoop& set) {
         worst = std::max(worst, p_norm(a, llt));
         const Eigen::MatrixXd q = p - a.transpose() * p * a;
         const double a_norm = a.norm();  // Frobenius: above the spectral norm, so safe here
-        const double tolerance = 100.0 * n * std::numeric_limits<double>::epsilon() * p_norm2 *
-                                 (1.0 + a_norm * a_norm);
-        const double q_min =
-            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (q + q.transpose()),
-                                                           Eigen::EigenvaluesOnly)
-                .eigenvalues()(0);
+        const double tolerance =
+            100.0 * n * std::numeric_limits<double>::epsilon() * p_norm2 * (1.0 + a_norm * a_norm);
+        const double q_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
+                                 0.5 * (q + q.transpose()), Eigen::EigenvaluesOnly)
+                                 .eigenvalues()(0);
         decreasing = decreasing && q_min > tolerance;
       }
       r.contraction = worst;

@@ -78,8 +78,7 @@ bool valid(const JointLoop& l) {
 
 // Φ(t) and Γ(t) = ∫₀ᵗ e^{A s} ds B of the plant with a current loop (states θ, θ̇, v; v̇ = w (u − v),
 // θ̈ = c v − a θ̇), from the exponential of [[A, B], [0, 0]] t.
-std::pair<Eigen::Matrix3d, Eigen::Vector3d> lagged_segment(double a, double c, double w,
-                                                           double t) {
+std::pair<Eigen::Matrix3d, Eigen::Vector3d> lagged_segment(double a, double c, double w, double t) {
   Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
   m(0, 1) = 1.0;
   m(1, 1) = -a;

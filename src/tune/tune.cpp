@@ -360,7 +360,8 @@ double margin_shortfall(const sim::Certificate& cert, const Objective& o) {
   const sim::MarginSummary m = sim::summarize(cert);
   double shortfall = 0.0;
   const auto below = [&](double required, double got) {
-    if (required > 0.0 && !(got >= required)) shortfall += (required - std::max(0.0, got)) / required;
+    if (required > 0.0 && !(got >= required))
+      shortfall += (required - std::max(0.0, got)) / required;
   };
   below(o.min_disk_margin, m.disk_margin);
   below(o.min_gain_margin_db, m.gain_margin_db);
