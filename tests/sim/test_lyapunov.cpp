@@ -12,7 +12,10 @@
 #include <random>
 #include <vector>
 
+#include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/sim/certify.hpp"
+#include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/margins.hpp"
 
 namespace {
@@ -155,6 +158,42 @@ TEST(CommonLyapunov, ACertifiedBoxNeverDivergesUnderTenThousandRandomSwitchingSe
   for (int k = 0; k < 10000; ++k)
     worst = std::max(worst, run(s, random_sequence(s, 400, rng)));
   // V = xᵀPx never grows: |θ| stays within a small factor of its start (0.05 rad).
+  EXPECT_LT(worst, 0.5);
+}
+
+// The shipped tuned gain schedule on the ER50's default condition: certify's box for joint 2 (its
+// gains over the (Ke e, Kec ec) grid) and its plant-gain range J^ / J, certified, and 10,000
+// random sequences of gains and inertias inside them never diverge.
+TEST(CommonLyapunov, TheCertifiedTunedScheduleNeverDivergesUnderRandomSwitchingInItsBox) {
+  fuzzypid::controller::ControllerSpec spec;
+  fuzzypid::FileError err;
+  ASSERT_TRUE(fuzzypid::controller_file::load(
+      std::string(FUZZYPID_SOURCE_DIR) + "/controllers/tuned_scheduled.toml", spec, err))
+      << err.to_string();
+  const std::vector<fuzzypid::sim::Condition> conditions{fuzzypid::sim::Condition{}};
+  std::string error;
+  const auto experiments =
+      fuzzypid::sim::ExperimentSet::create(conditions, fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(experiments) << error;
+  fuzzypid::sim::CertifyOptions options;
+  options.grid_points = 5;
+  const auto cert = fuzzypid::sim::certify(spec, conditions, *experiments, options, error);
+  ASSERT_TRUE(cert) << error;
+  ASSERT_TRUE(cert->certified) << cert->verdict;
+  const fuzzypid::sim::JointCertificate& j = cert->joints[1];
+  SwitchingLoop s;
+  s.loop.tick_s = spec.units.tick_s;
+  s.loop.derivative_filter_s = spec.pid.derivative_filter_s;
+  s.loop.derivative = spec.pid.derivative;
+  s.gains = j.gain_box;
+  s.plant_gain_min = j.nominal_inertia_kgm2 / j.inertia_max_kgm2;
+  s.plant_gain_max = j.nominal_inertia_kgm2 / j.inertia_min_kgm2;
+  EXPECT_LT(s.gains.low.kp, s.gains.high.kp);  // the gains do move
+  EXPECT_TRUE(fuzzypid::sim::common_lyapunov(s).certified);
+  std::mt19937_64 rng(20261205);
+  double worst = 0.0;
+  for (int k = 0; k < 10000; ++k)
+    worst = std::max(worst, run(s, random_sequence(s, 200, rng)));
   EXPECT_LT(worst, 0.5);
 }
 

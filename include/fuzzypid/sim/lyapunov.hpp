@@ -79,9 +79,9 @@ struct LyapunovCertificate {
   std::size_t switching_period = 0;  // n of the sequence that gives switching_radius
 };
 
-// The common quadratic Lyapunov function of `loop` (see above). Invalid ranges (not finite,
+// The common quadratic Lyapunov function of `set` (see above). Invalid ranges (not finite,
 // non-positive plant gain or tick, low > high) give certified = false with the reason.
-[[nodiscard]] LyapunovCertificate common_lyapunov(const SwitchingLoop& loop);
+[[nodiscard]] LyapunovCertificate common_lyapunov(const SwitchingLoop& set);
 
 // The words every certificate carries (docs, controller files, exported headers).
 [[nodiscard]] const char* lyapunov_assumptions() noexcept;
