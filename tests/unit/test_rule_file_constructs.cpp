@@ -524,7 +524,7 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
   double worst = 0.0;
   int cases = 0;
   for (const Shape shape :
-       {Shape::Ramp, Shape::Sigmoid, Shape::SShape, Shape::ZShape, Shape::Concave}) {
+       {Shape::Ramp, Shape::Sigmoid, Shape::SShape, Shape::ZShape, Shape::Concave, Shape::Arc}) {
     for (int k = 0; k < 20000; ++k) {
       Term<double> t{};
       t.shape = shape;
@@ -552,7 +552,8 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
       ++cases;
       ASSERT_LE(d, 1e-12) << "shape " << static_cast<int>(shape) << " p " << t.p[0] << " " << t.p[1]
                           << " h " << h << " w " << w << " z " << z;
-      if (shape == Shape::Ramp || shape == Shape::SShape || shape == Shape::ZShape) {
+      if (shape == Shape::Ramp || shape == Shape::SShape || shape == Shape::ZShape ||
+          shape == Shape::Arc) {
         EXPECT_GE(z, std::fmin(t.p[0], t.p[1]));
         EXPECT_LE(z, std::fmax(t.p[0], t.p[1]));
       }
@@ -572,6 +573,91 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
     EXPECT_EQ(z, shape == Shape::ZShape ? 2.0 : shape == Shape::Sigmoid ? hi : 6.0);
   }
   std::printf("Tsukamoto: %d inverses, max |mu(z(w)) - w| = %.3g\n", cases, worst);
+}
+
+// fuzzylite 8's Arc and SemiEllipse in .fll (and .fcl, under the same names), as inputs and as
+// Tsukamoto outputs; .fis has no form for them. At x = 0.45 in the corpus file:
+//   near  = SemiEllipse(0, 0.6):   sqrt(0.3^2 - 0.15^2) / 0.3 = sqrt(3) / 2 = w1
+//   far   = Arc(0.3, 1):           sqrt(0.7^2 - 0.55^2) / 0.7, weight 0.75 -> w2
+//   down  = Arc(9.5, 0.5), h = 1:  z1 = 0.5 + sqrt(9^2 - (9 w1)^2) = 0.5 + 4.5 = 5
+//   up    = Arc(1, 9), h = 0.8:    z2 = 9 - sqrt(8^2 - (8 w2 / 0.8)^2)
+//   tsu   = (w1 z1 + w2 z2) / (w1 + w2)
+TEST(RuleFileFll, ArcAndSemiEllipseAreFuzzylite8sTermsWithTheArcsExactInverse) {
+  std::string text;
+  {
+    std::ifstream in(FUZZYPID_RULEFILES_DIR "/corpus/fuzzylite8_arc_semi_ellipse.fll");
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  const auto model = load("arc.fll", text);
+  ASSERT_TRUE(model);
+  const double w1 = std::sqrt(3.0) / 2.0;
+  const double w2 = 0.75 * std::sqrt(0.49 - 0.55 * 0.55) / 0.7;
+  const double z1 = 5.0;
+  const double z2 = 9.0 - std::sqrt(64.0 - std::pow(8.0 * w2 / 0.8, 2));
+  const auto& up = model->outputs[1].terms[0].membership;
+  EXPECT_NEAR(up(z2, nullptr), w2, 1e-15);  // mu(z) = w
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.45;
+  double y[2] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  EXPECT_NEAR(y[1], (w1 * z1 + w2 * z2) / (w1 + w2), 1e-14);
+
+  // The same system written as .fcl reads back to the same bits; .fis refuses it by term.
+  std::string fcl, fis, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, why)) << why;
+  EXPECT_NE(fcl.find("TERM near := SemiEllipse 0 0.59999999999999998;"), std::string::npos) << fcl;
+  const auto again = load("arc.fcl", fcl);
+  ASSERT_TRUE(again);
+  auto engine2 = std::make_unique<Engine<double>>(*again);
+  for (double xi = -0.1; xi <= 1.1; xi += 0.01) {
+    double a[2] = {}, b[2] = {};
+    ASSERT_EQ(engine->evaluate(&xi, a), engine2->evaluate(&xi, b));
+    EXPECT_EQ(a[0], b[0]);
+    EXPECT_EQ(a[1], b[1]);
+  }
+  // steer alone (.fis has one defuzzifier for all outputs)
+  std::string steer = replace(replace(text, " and tsu is down", ""), " and tsu is up", "");
+  steer.erase(steer.find("OutputVariable: tsu"),
+              steer.find("RuleBlock:") - steer.find("OutputVariable: tsu"));
+  const auto steer_only = load("steer.fll", steer);
+  ASSERT_TRUE(steer_only);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*steer_only, fis, why));
+  EXPECT_NE(why.find("input term 'near' has a shape or height .fis cannot express"),
+            std::string::npos)
+      << why;
+  const LoadError error = refusal("arc.fis", R"([System]
+Name='arc'
+Type='mamdani'
+NumInputs=1
+NumOutputs=1
+NumRules=1
+AndMethod='min'
+OrMethod='max'
+ImpMethod='min'
+AggMethod='max'
+DefuzzMethod='centroid'
+
+[Input1]
+Name='x'
+Range=[0 1]
+NumMFs=1
+MF1='far':'arcmf',[0.3 1]
+
+[Output1]
+Name='y'
+Range=[0 1]
+NumMFs=1
+MF1='one':'trimf',[0 0.5 1]
+
+[Rules]
+1, 1 (1) : 1
+)");
+  EXPECT_EQ(error.line, 17) << error.to_string();
+  EXPECT_NE(error.message.find("'arcmf': fuzzylite 8's Arc and SemiEllipse have no .fis form"),
+            std::string::npos)
+      << error.to_string();
 }
 
 // Bisector as fuzzylite 8 computes it: the sample where the running area is nearest half the

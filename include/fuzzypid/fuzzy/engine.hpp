@@ -30,8 +30,9 @@
 //     monotone).
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
 //     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
-//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave terms): z_r
-//     is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as Sugeno.
+//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
+//     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
+//     Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
 // and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
@@ -130,6 +131,8 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
 //   ZShape(s, e)     z = e - (e - s) sqrt(w / 2h)        if w <= h / 2      (z in [s, e])
 //                    z = s + (e - s) sqrt((h - w) / 2h)  otherwise
 //   Concave(i, e)    z = h (i - e) / w + 2e - i                            (z = e at w = h)
+//   Arc(s, e)        z = c -+ sqrt(r^2 - (w r / h)^2), r = e - s, c = s + r, - when s < e
+//                                                                          (z in [s, e])
 // A degree above the term's height (no z reaches it) is taken as h: the point where the term
 // reaches its height (fuzzylite 8 extrapolates Ramp and Concave there and gives NaN for the
 // others). A sigmoid reaches h only at infinity: at w >= h (and at w <= 0, where it reaches 0)
@@ -161,6 +164,13 @@ Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
     case Shape::Concave: {
       const Scalar z = h * (p[0] - p[1]) / w + Scalar(2) * p[1] - p[0];
       return p[0] <= p[1] ? detail::min(z, p[1]) : detail::max(z, p[1]);
+    }
+    case Shape::Arc: {
+      const Scalar r = p[1] - p[0];
+      const Scalar c = p[0] + r;
+      const Scalar a = w * r / h;
+      const Scalar d = std::sqrt(detail::max(Scalar(0), r * r - a * a));
+      return within(p[0] < p[1] ? c - d : c + d);
     }
     default:
       return t(w, points);

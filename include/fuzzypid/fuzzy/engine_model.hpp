@@ -450,13 +450,13 @@ struct EngineModel {
         if (membership != tsukamoto && sugeno)
           return {
               "Sugeno defuzzifiers need constant/linear terms (or, for Tsukamoto, monotonic "
-              "Ramp, Sigmoid, SShape, ZShape or Concave terms), not a mix",
+              "Ramp, Sigmoid, SShape, ZShape, Concave or Arc terms), not a mix",
               o, ModelError::Where::Output};
         if (!sugeno && !membership)
           return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
                   ModelError::Where::Output};
         if (tsukamoto && !is_monotonic(term.membership))
-          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape or Concave", o,
+          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape, Concave or Arc", o,
                   ModelError::Where::Output};
         if (membership && !term_ok(term.membership))
           return {"invalid output term parameters", o, ModelError::Where::Output};
