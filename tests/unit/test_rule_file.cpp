@@ -481,8 +481,8 @@ TEST(RuleFile, MalformedFisFilesNameTheLine) {
        "Range must hold two numbers"},
       {"range not a list", replace(good, "Range=[-0.3 0.3]", "Range=-0.3 0.3"), "Range=-0.3 0.3",
        "Range must be [min max]"},
-      {"unknown hedge code", replace(good, "1 1, 7 1 5 (1) : 1", "1.7 1, 7 1 5 (1) : 1"),
-       "1.7 1, 7", "unknown hedge code"},
+      {"hedge without a term", replace(good, "1 1, 7 1 5 (1) : 1", "0.5 1, 7 1 5 (1) : 1"),
+       "0.5 1, 7", "rule names term 0 of input 1"},
       {"unsupported method", replace(good, "AndMethod='min'", "AndMethod='my_and'"), "my_and",
        "unsupported AndMethod 'my_and'"},
       {"defuzz vs type", replace(good, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'"),
@@ -1002,11 +1002,11 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
       const Token tokens[3] = {{Token::Kind::Proposition, 0, i, 0, {}},
                                {Token::Kind::Proposition, 1, j, 0, {}},
                                {Token::Kind::And, 0, 0, 0, {}}};
-      const fuzzypid::fuzzy::Conclusion c{0, static_cast<std::uint8_t>((i + j) / 2), 0, {}};
+      const fuzzypid::fuzzy::Conclusion c{0, static_cast<std::uint8_t>((i + j) / 2), 0, {}, 0};
       ASSERT_TRUE(small->add_rule(tokens, 3, &c, 1));
     }
   const Token one{Token::Kind::Proposition, 0, 0, 0, {}};
-  const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}};
+  const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}, 0};
   EXPECT_FALSE(small->add_rule(&one, 1, &c, 1)) << "a 50th rule exceeds SmallCapacity";
   EXPECT_FALSE(small->validate());
   fuzzypid::fuzzy::Engine<float, fuzzypid::fuzzy::SmallCapacity> engine(*small);

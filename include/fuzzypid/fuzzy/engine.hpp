@@ -22,14 +22,19 @@
 //                    (General: every rule with strength > 0, in rule order; see RuleBlock)
 //   conclusions    = in rule order, each conclusion's hedges are applied (right to left) to the
 //                    running degree, which is then the degree of that conclusion (fuzzylite's
-//                    Consequent::modify)
+//                    Consequent::modify); a conclusion with Octave's power hedge .dd (a .fis)
+//                    has the degree w^(1/(dd/10)), then its hedges, and leaves the running
+//                    degree alone (eval_rules_sugeno). A proposition's power hedge raises the
+//                    term's degree to dd/10 before the other hedges (evalmf)
 //   Mamdani output: activations (term, degree, the block's implication), aggregated by the
 //     output's s-norm (folded from 0 in rule order), then centroid (sampled or exact), bisector,
 //     mean/smallest/largest of maximum. With Maximum aggregation and a Minimum/Product implication
 //     shared by all blocks, one activation per term holds the largest degree (exact, as both are
 //     monotone).
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
-//     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
+//     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r). With
+//     merge_equal_singletons (Octave's aggregate_output_sugeno), conclusions of equal z are one
+//     singleton whose weight is the output's aggregation of theirs.
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
 //     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
 //     Sugeno.
@@ -77,7 +82,32 @@ Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
   const Scalar* degrees = tok.kind == Token::Kind::OutputProposition ? ws.degree : ws.membership;
-  return hedge_right_to_left(tok.hedges, n, degrees[tok.input * ws.stride + tok.term]);
+  Scalar mu = degrees[tok.input * ws.stride + tok.term];
+  // Octave's evalmf: mu .^ (dd / 10), then `not`.
+  if (tok.power_tenths != 0) mu = std::pow(mu, static_cast<Scalar>(tok.power_tenths) / Scalar(10));
+  return hedge_right_to_left(tok.hedges, n, mu);
+}
+
+// The degree of conclusion c of a rule of firing strength w. `running` is the rule's running
+// degree (w before its first conclusion): fuzzylite's hedges modify it for this conclusion and
+// the later ones (Consequent::modify); Octave's power hedge .dd gives w^(1 / (dd / 10)), then
+// `not`, for this conclusion only (eval_rules_sugeno).
+template <class Scalar>
+Scalar conclusion_degree(const Conclusion& c, Scalar w, Scalar& running) noexcept {
+  if (c.power_tenths == 0) return running = hedge_right_to_left(c.hedges, c.num_hedges, running);
+  const Scalar exponent = Scalar(1) / (static_cast<Scalar>(c.power_tenths) / Scalar(10));
+  return hedge_right_to_left(c.hedges, c.num_hedges, std::pow(w, exponent));
+}
+
+// z of a constant or linear term: c, or sum_i c_i x_i + c_0 over the inputs after locking.
+template <class Scalar, class Cap>
+Scalar sugeno_value(const OutputTerm<Scalar, Cap>& term, const Scalar* input,
+                    std::size_t num_inputs) noexcept {
+  if (term.kind != OutputTermKind::Linear) return term.coefficients[0];
+  Scalar z = Scalar(0);
+  for (std::size_t i = 0; i < num_inputs; ++i)
+    z += term.coefficients[i] * input[i];
+  return z + term.coefficients[num_inputs];
 }
 
 // Weight times the antecedent of rule r (postfix evaluation on ws.stack). `disabled`: the model
@@ -110,12 +140,12 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
 template <class Scalar, class Model>
 void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
-  Scalar degree = ws.strength[r];
+  Scalar running = ws.strength[r];
   for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
     const Conclusion& c = model.conclusions[rule.first_conclusion + k];
     const auto& out = model.outputs[c.output];
     if (!out.enabled) continue;
-    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
+    const Scalar degree = conclusion_degree(c, ws.strength[r], running);
     Scalar& d = ws.degree[c.output * ws.stride + c.term];
     d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
   }
@@ -311,37 +341,36 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     if (!out.enabled) continue;  // 0, written above
     const bool sugeno = is_sugeno(out.defuzzifier);
     const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
+    const bool singletons = sugeno && out.merge_equal_singletons;
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
     bool fired = false;
     Scalar sum = Scalar(0);
     Scalar weights = Scalar(0);
     std::size_t n = 0;
-    if (merge)
+    if (merge || singletons)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
     for (std::size_t f = 0; f < fired_rules; ++f) {
       const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
-      Scalar degree = ws.strength[r];
+      Scalar running = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
         if (disabled && !model.outputs[c.output].enabled) continue;
-        degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
+        const Scalar degree = engine_detail::conclusion_degree(c, ws.strength[r], running);
         if (c.output != o) continue;
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
-        if (sugeno) {
+        if (singletons) {
+          // A term's value z is the same in every rule: its degrees aggregate first (folded
+          // from 0, the identity of every s-norm), equal values of other terms below.
+          ws.level[c.term] = apply(out.aggregation, ws.level[c.term], degree);
+        } else if (sugeno) {
           // Membership terms of a sized model hold no coefficients.
-          Scalar z = Scalar(0);
-          if (term.kind == OutputTermKind::Membership) {
-            z = engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points);
-          } else if (term.kind == OutputTermKind::Linear) {
-            for (std::size_t i = 0; i < model.num_inputs; ++i)
-              z += term.coefficients[i] * ws.input[i];
-            z += term.coefficients[model.num_inputs];
-          } else {
-            z = term.coefficients[0];
-          }
+          const Scalar z =
+              term.kind == OutputTermKind::Membership
+                  ? engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points)
+                  : engine_detail::sugeno_value(term, ws.input, model.num_inputs);
           sum += degree * z;
           weights += degree;
         } else if (merge) {
@@ -351,7 +380,29 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
         }
       }
     }
-    if (fired && sugeno) {
+    if (fired && singletons) {
+      // Octave's aggregate_output_sugeno: the singletons of equal z are one, of the aggregation
+      // of their degrees (a term's value is recomputed rather than stored: no scratch beyond
+      // one level per term).
+      for (std::size_t t = 0; t < out.num_terms; ++t) {
+        if (!(ws.level[t] > Scalar(0))) continue;
+        const Scalar z = engine_detail::sugeno_value(out.terms[t], ws.input, model.num_inputs);
+        for (std::size_t u = 0; u < t; ++u)
+          if (ws.level[u] > Scalar(0) &&
+              engine_detail::sugeno_value(out.terms[u], ws.input, model.num_inputs) == z) {
+            ws.level[u] = apply(out.aggregation, ws.level[u], ws.level[t]);
+            ws.level[t] = Scalar(0);
+            break;
+          }
+      }
+      for (std::size_t t = 0; t < out.num_terms; ++t)
+        if (ws.level[t] > Scalar(0)) {
+          sum +=
+              ws.level[t] * engine_detail::sugeno_value(out.terms[t], ws.input, model.num_inputs);
+          weights += ws.level[t];
+        }
+      y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
+    } else if (fired && sugeno) {
       y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
     } else if (fired) {
       if (merge)

@@ -164,6 +164,10 @@ struct OutputSpec {
   int resolution = 100;         // samples of the integral defuzzifiers
   bool exact_centroid = false;  // Centroid in closed form instead of sampled
   SNorm aggregation = SNorm::Maximum;
+  // Octave's Sugeno aggregation (aggregate_output_sugeno): conclusions whose values z are equal
+  // are one singleton, of the `aggregation` of their degrees, before the weighted average or sum.
+  // Constant/linear terms only; false: every conclusion is a singleton of its own (fuzzylite).
+  bool merge_equal_singletons = false;
   std::size_t num_terms = 0;
   typename Cap::template Array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
   typename Cap::template Array<Name, Cap::terms> term_names{};
@@ -180,14 +184,21 @@ struct Token {
   std::uint8_t term = 0;   // index into the input's terms, or kAnyTerm
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
+  // Octave's .fis hedge .dd (dd = 1..99): the degree raised to dd/10 before the hedges (which
+  // then hold at most `not`); 0: none. fuzzylite has no such hedge (docs/rule_files.md).
+  std::uint8_t power_tenths = 0;
 };
 
-// "output is [hedges] term".
+// "output is [hedges] term". Without a power, the hedges act on the rule's running degree, which
+// later conclusions of the rule inherit (fuzzylite's Consequent::modify). With Octave's power
+// hedge .dd (Sugeno outputs only), the conclusion's degree is the rule's strength raised to
+// 1/(dd/10), then the hedges, and the running degree is left alone (Octave's eval_rules_sugeno).
 struct Conclusion {
   std::uint8_t output = 0;
   std::uint8_t term = 0;
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};
+  std::uint8_t power_tenths = 0;  // Octave's .fis hedge .dd; 0: none
 };
 
 template <class Scalar>
@@ -455,6 +466,9 @@ struct EngineModel {
         if (!sugeno && !membership)
           return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
                   ModelError::Where::Output};
+        if (out.merge_equal_singletons && (membership || !out.has_aggregation))
+          return {"merging equal singletons needs constant/linear terms and an aggregation", o,
+                  ModelError::Where::Output};
         if (tsukamoto && !is_monotonic(term.membership))
           return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape, Concave or Arc", o,
                   ModelError::Where::Output};
@@ -488,6 +502,8 @@ struct EngineModel {
           const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
           if (!any && tok.term >= inputs[tok.input].num_terms)
             return {"rule names an unknown input term", r, ModelError::Where::Rule};
+          if (tok.power_tenths > 99 || (any && tok.power_tenths != 0))
+            return {"a power hedge must be .01 to .99 on a term", r, ModelError::Where::Rule};
           ++depth;
         } else if (tok.kind == Token::Kind::OutputProposition) {
           if (!chained || tok.input >= num_outputs || tok.num_hedges > kMaxHedges)
@@ -496,6 +512,8 @@ struct EngineModel {
           if (!any && tok.term >= outputs[tok.input].num_terms)
             return {"rule names an unknown output term in its antecedent", r,
                     ModelError::Where::Rule};
+          if (tok.power_tenths > 99 || (any && tok.power_tenths != 0))
+            return {"a power hedge must be .01 to .99 on a term", r, ModelError::Where::Rule};
           ++depth;
         } else {
           if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
@@ -517,6 +535,10 @@ struct EngineModel {
             return {"rule concludes twice on one output", r, ModelError::Where::Rule};
         if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
           return {"a Mamdani output needs an implication operator in the rule's block", r,
+                  ModelError::Where::Rule};
+        if (c.power_tenths > 99 ||
+            (c.power_tenths != 0 && !is_sugeno(outputs[c.output].defuzzifier)))
+          return {"a power hedge (.01 to .99) concludes on Sugeno outputs only", r,
                   ModelError::Where::Rule};
       }
     }
@@ -599,6 +621,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     b.defuzzifier = a.defuzzifier;
     b.resolution = a.resolution;
     b.exact_centroid = a.exact_centroid;
+    b.merge_equal_singletons = a.merge_equal_singletons;
     b.aggregation = a.aggregation;
     b.num_terms = a.num_terms;
     for (std::size_t t = 0; t < a.num_terms; ++t) {
