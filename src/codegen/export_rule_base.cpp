@@ -112,7 +112,8 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
        ";\n  m.num_rules = " + num(m.num_rules) + ";\n  m.num_blocks = " + num(m.num_blocks) +
        ";\n  m.num_tokens = " + num(m.num_tokens) +
        ";\n  m.num_conclusions = " + num(m.num_conclusions) +
-       ";\n  m.num_points = " + num(m.num_points) + ";\n  m.chained = " + b(m.chained) + ";\n";
+       ";\n  m.num_points = " + num(m.num_points) + ";\n  m.chained = " + b(m.chained) +
+       ";\n  m.power_hedges = " + b(m.power_hedges) + ";\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
     const std::string v = "  m.inputs[" + num(i) + "]";

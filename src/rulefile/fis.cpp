@@ -387,7 +387,7 @@ class FisParser {
 
   // A rule's index code as Octave's fuzzy-logic-toolkit reads it (get_mf_index_and_hedge): sign =
   // not, integer part = term (0 = none), fraction .dd = hedge, the degree raised to dd/10 (dd =
-  // round(100 * fraction); MATLAB has no hedges). Where that power is one of fuzzylite's hedges it
+  // round(100 * fraction), 1..100; MATLAB has no hedges). Where that power is one of fuzzylite's hedges it
   // is written as one: .05 somewhat (mu^0.5), .2 very (mu^2), .4 very very (mu^4); the others
   // (.3 = mu^3, .01 = mu^0.1, ...) are Octave's power hedge. On a conclusion every .dd is the
   // power hedge, Octave's w^(1 / (dd/10)) (Sugeno outputs only). 0.99 without a term is
@@ -403,7 +403,7 @@ class FisParser {
     if (code < 0) t.hedges[t.num_hedges++] = Hedge::Not;
     const auto near = [&](double v) { return std::fabs(frac - v) < 1e-6; };
     const int dd = static_cast<int>(std::round(100 * frac));
-    if (near(0.0) || near(1.0) || dd == 0 || dd == 100) {
+    if (near(0.0) || near(1.0) || dd == 0) {
       if (near(1.0)) ++term;
     } else if (dd == 99 && term == -1 && !output) {
       t.hedges[t.num_hedges++] = Hedge::Any;

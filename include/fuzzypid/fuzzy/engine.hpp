@@ -76,7 +76,7 @@ Scalar hedge_right_to_left(const std::array<Hedge, kMaxHedges>& hedges, std::siz
 // "variable is [hedges] term": the hedges right to left on the term's degree (an input's
 // membership, or an output's degree so far); 1 when the last hedge is `any` (fuzzylite's
 // Antecedent::activationDegree).
-template <class Scalar>
+template <bool Power, class Scalar>
 Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   const std::size_t n = tok.num_hedges;
   if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
@@ -84,7 +84,9 @@ Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   const Scalar* degrees = tok.kind == Token::Kind::OutputProposition ? ws.degree : ws.membership;
   Scalar mu = degrees[tok.input * ws.stride + tok.term];
   // Octave's evalmf: mu .^ (dd / 10), then `not`.
-  if (tok.power_tenths != 0) mu = std::pow(mu, static_cast<Scalar>(tok.power_tenths) / Scalar(10));
+  if constexpr (Power)
+    if (tok.power_tenths != 0)
+      mu = std::pow(mu, static_cast<Scalar>(tok.power_tenths) / Scalar(10));
   return hedge_right_to_left(tok.hedges, n, mu);
 }
 
@@ -92,11 +94,17 @@ Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
 // degree (w before its first conclusion): fuzzylite's hedges modify it for this conclusion and
 // the later ones (Consequent::modify); Octave's power hedge .dd gives w^(1 / (dd / 10)), then
 // `not`, for this conclusion only (eval_rules_sugeno).
-template <class Scalar>
+template <bool Power, class Scalar>
 Scalar conclusion_degree(const Conclusion& c, Scalar w, Scalar& running) noexcept {
-  if (c.power_tenths == 0) return running = hedge_right_to_left(c.hedges, c.num_hedges, running);
-  const Scalar exponent = Scalar(1) / (static_cast<Scalar>(c.power_tenths) / Scalar(10));
-  return hedge_right_to_left(c.hedges, c.num_hedges, std::pow(w, exponent));
+  if constexpr (Power) {
+    if (c.power_tenths != 0) {
+      const Scalar exponent = Scalar(1) / (static_cast<Scalar>(c.power_tenths) / Scalar(10));
+      return hedge_right_to_left(c.hedges, c.num_hedges, std::pow(w, exponent));
+    }
+  } else {
+    (void)w;
+  }
+  return running = hedge_right_to_left(c.hedges, c.num_hedges, running);
 }
 
 // z of a constant or linear term: c, or sum_i c_i x_i + c_0 over the inputs after locking.
@@ -112,7 +120,7 @@ Scalar sugeno_value(const OutputTerm<Scalar, Cap>& term, const Scalar* input,
 
 // Weight times the antecedent of rule r (postfix evaluation on ws.stack). `disabled`: the model
 // has disabled variables, whose propositions are 0.
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r,
                      bool disabled) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
@@ -129,7 +137,7 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
       const bool enabled = !disabled || (tok.kind == Token::Kind::OutputProposition
                                              ? model.outputs[tok.input].enabled
                                              : model.inputs[tok.input].enabled);
-      ws.stack[sp++] = enabled ? proposition(ws, tok) : Scalar(0);
+      ws.stack[sp++] = enabled ? proposition<Power>(ws, tok) : Scalar(0);
     }
   }
   return rule.weight * ws.stack[0];
@@ -137,7 +145,7 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
 
 // Adds rule r's conclusions to the outputs' term degrees that chained antecedents read
 // (fuzzylite's Consequent::modify into Aggregated, then activationDegree).
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
   Scalar running = ws.strength[r];
@@ -145,7 +153,7 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
     const Conclusion& c = model.conclusions[rule.first_conclusion + k];
     const auto& out = model.outputs[c.output];
     if (!out.enabled) continue;
-    const Scalar degree = conclusion_degree(c, ws.strength[r], running);
+    const Scalar degree = conclusion_degree<Power>(c, ws.strength[r], running);
     Scalar& d = ws.degree[c.output * ws.stride + c.term];
     d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
   }
@@ -231,7 +239,7 @@ bool compare(Comparison c, Scalar a, Scalar b) noexcept {
 // matters when antecedents test outputs: General, Threshold, First and Last evaluate and trigger
 // rule by rule (Last from the block's last rule up), so a rule sees the conclusions of the rules
 // triggered before it; Proportional, Highest and Lowest evaluate all of the block's rules first.
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t b,
                            std::size_t n, bool disabled) noexcept {
   const Scalar zero = Scalar(0);
@@ -240,7 +248,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
   const Scalar threshold = static_cast<Scalar>(block.threshold);
   const auto fire = [&](std::size_t r) {
     ws.order[n++] = static_cast<std::uint32_t>(r);
-    if (model.chained) trigger(model, ws, r);
+    if (model.chained) trigger<Power>(model, ws, r);
   };
   switch (block.activation) {
     case ActivationMethod::General:
@@ -252,7 +260,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       for (std::size_t k = 0; k < model.num_rules; ++k) {
         const std::size_t r = last ? model.num_rules - 1 - k : k;
         if (!in_block(r)) continue;
-        const Scalar w = ws.strength[r] = rule_strength(model, ws, r, disabled);
+        const Scalar w = ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
         bool fires = w > zero;
         if (block.activation == ActivationMethod::Threshold)
           fires = fires && compare(block.comparison, w, threshold);
@@ -268,7 +276,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
     case ActivationMethod::Proportional: {
       Scalar sum = zero;
       for (std::size_t r = 0; r < model.num_rules; ++r)
-        if (in_block(r)) sum += ws.strength[r] = rule_strength(model, ws, r, disabled);
+        if (in_block(r)) sum += ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
         ws.strength[r] = ws.strength[r] / sum;
@@ -286,7 +294,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       std::size_t size = 0;
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
-        ws.strength[r] = rule_strength(model, ws, r, disabled);
+        ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
         if (!(ws.strength[r] > zero)) continue;
         ws.heap[size++] = static_cast<std::uint32_t>(r);
         std::push_heap(ws.heap, ws.heap + size, before);
@@ -302,14 +310,12 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
   return n;
 }
 
-}  // namespace engine_detail
-
-// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
-// have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
-// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
-template <class Scalar, class Cap>
-Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
-                const Scalar* inputs, Scalar* outputs) noexcept {
+// fuzzy::evaluate; Power: the model holds Octave's power hedges, whose std::pow calls the other
+// instance leaves out of its loops (a call there costs the common case a quarter of its speed on
+// a Cortex-M4F, measured by embedded.rule_file_cortex_m4_qemu).
+template <bool Power, class Scalar, class Cap>
+Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
+                     const Scalar* inputs, Scalar* outputs) noexcept {
   for (std::size_t o = 0; o < model.num_outputs; ++o)
     outputs[o] = Scalar(0);
   for (std::size_t i = 0; i < model.num_inputs; ++i)
@@ -332,7 +338,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       ws.degree[k] = Scalar(0);
   std::size_t fired_rules = 0;
   for (std::size_t b = 0; b < model.num_blocks; ++b)
-    fired_rules = engine_detail::activate_block(model, ws, b, fired_rules, disabled);
+    fired_rules = engine_detail::activate_block<Power>(model, ws, b, fired_rules, disabled);
 
   const bool merged = model.merges_activations();
   Status status = Status::Ok;
@@ -357,7 +363,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
         if (disabled && !model.outputs[c.output].enabled) continue;
-        const Scalar degree = engine_detail::conclusion_degree(c, ws.strength[r], running);
+        const Scalar degree = engine_detail::conclusion_degree<Power>(c, ws.strength[r], running);
         if (c.output != o) continue;
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
@@ -446,6 +452,18 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     outputs[o] = y;
   }
   return status;
+}
+
+}  // namespace engine_detail
+
+// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
+// have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
+// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
+template <class Scalar, class Cap>
+Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
+                const Scalar* inputs, Scalar* outputs) noexcept {
+  return model.power_hedges ? engine_detail::evaluate_with<true>(model, ws, inputs, outputs)
+                            : engine_detail::evaluate_with<false>(model, ws, inputs, outputs);
 }
 
 // A model with its own workspace. For a fixed capacity the workspace is fixed too and nothing

@@ -184,7 +184,7 @@ struct Token {
   std::uint8_t term = 0;   // index into the input's terms, or kAnyTerm
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
-  // Octave's .fis hedge .dd (dd = 1..99): the degree raised to dd/10 before the hedges (which
+  // Octave's .fis hedge .dd (dd = 1..100): the degree raised to dd/10 before the hedges (which
   // then hold at most `not`); 0: none. fuzzylite has no such hedge (docs/rule_files.md).
   std::uint8_t power_tenths = 0;
 };
@@ -279,6 +279,9 @@ struct EngineModel {
   std::size_t num_conclusions = 0;
   std::size_t num_points = 0;
   bool chained = false;  // some antecedent tests an output (set by add_rule)
+  // Some token or conclusion holds Octave's power hedge (set by add_rule): evaluation then takes
+  // the instance that computes them (fuzzy::evaluate).
+  bool power_hedges = false;
   template <class T, std::size_t N>
   using Array = typename Cap::template Array<T, N>;
   Array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
@@ -307,10 +310,13 @@ struct EngineModel {
     r.weight = weight;
     for (std::size_t k = 0; k < n_tokens; ++k) {
       chained = chained || antecedent[k].kind == Token::Kind::OutputProposition;
+      power_hedges = power_hedges || antecedent[k].power_tenths != 0;
       tokens[num_tokens++] = antecedent[k];
     }
-    for (std::size_t k = 0; k < n_conclusions; ++k)
+    for (std::size_t k = 0; k < n_conclusions; ++k) {
+      power_hedges = power_hedges || then[k].power_tenths != 0;
       conclusions[num_conclusions++] = then[k];
+    }
     return true;
   }
 
@@ -502,8 +508,10 @@ struct EngineModel {
           const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
           if (!any && tok.term >= inputs[tok.input].num_terms)
             return {"rule names an unknown input term", r, ModelError::Where::Rule};
-          if (tok.power_tenths > 99 || (any && tok.power_tenths != 0))
-            return {"a power hedge must be .01 to .99 on a term", r, ModelError::Where::Rule};
+          if (tok.power_tenths > 100 || (any && tok.power_tenths != 0) ||
+              (tok.power_tenths != 0 && !power_hedges))
+            return {"a power hedge must be .01 to 1.00 on a term, with power_hedges set", r,
+                    ModelError::Where::Rule};
           ++depth;
         } else if (tok.kind == Token::Kind::OutputProposition) {
           if (!chained || tok.input >= num_outputs || tok.num_hedges > kMaxHedges)
@@ -512,8 +520,10 @@ struct EngineModel {
           if (!any && tok.term >= outputs[tok.input].num_terms)
             return {"rule names an unknown output term in its antecedent", r,
                     ModelError::Where::Rule};
-          if (tok.power_tenths > 99 || (any && tok.power_tenths != 0))
-            return {"a power hedge must be .01 to .99 on a term", r, ModelError::Where::Rule};
+          if (tok.power_tenths > 100 || (any && tok.power_tenths != 0) ||
+              (tok.power_tenths != 0 && !power_hedges))
+            return {"a power hedge must be .01 to 1.00 on a term, with power_hedges set", r,
+                    ModelError::Where::Rule};
           ++depth;
         } else {
           if (depth < 2) return {"malformed antecedent", r, ModelError::Where::Rule};
@@ -536,10 +546,11 @@ struct EngineModel {
         if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
           return {"a Mamdani output needs an implication operator in the rule's block", r,
                   ModelError::Where::Rule};
-        if (c.power_tenths > 99 ||
-            (c.power_tenths != 0 && !is_sugeno(outputs[c.output].defuzzifier)))
-          return {"a power hedge (.01 to .99) concludes on Sugeno outputs only", r,
-                  ModelError::Where::Rule};
+        if (c.power_tenths > 100 ||
+            (c.power_tenths != 0 && (!is_sugeno(outputs[c.output].defuzzifier) || !power_hedges)))
+          return {
+              "a power hedge (.01 to 1.00, with power_hedges set) concludes on Sugeno outputs only",
+              r, ModelError::Where::Rule};
       }
     }
     return {};
@@ -581,6 +592,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
   to.num_conclusions = from.num_conclusions;
   to.num_points = from.num_points;
   to.chained = from.chained;
+  to.power_hedges = from.power_hedges;
   if (!reserve_exact(to.inputs, from.num_inputs) || !reserve_exact(to.outputs, from.num_outputs) ||
       !reserve_exact(to.rules, from.num_rules) || !reserve_exact(to.blocks, from.num_blocks) ||
       !reserve_exact(to.tokens, from.num_tokens) ||
