@@ -278,13 +278,22 @@ class FisParser {
       return true;
     }
     if (key == "Range") {
-      Scanner sc(value);
-      std::vector<std::string_view> words;
-      if (!sc.list(words) || !sc.at_end())
+      // MATLAB evaluates the bounds: numbers or constant expressions (`[-pi/4 pi/4]`).
+      const std::string_view trimmed = text::trim(value);
+      if (trimmed.size() < 2 || trimmed.front() != '[' || trimmed.back() != ']' ||
+          trimmed.find(']') != trimmed.size() - 1)
         return fail("Range must be [min max], got '" + std::string(value) + "'");
-      if (words.size() != 2 || !text::parse_number(words[0], v.min) ||
-          !text::parse_number(words[1], v.max))
+      const auto bounds = text::matlab_row_elements(trimmed.substr(1, trimmed.size() - 2));
+      if (bounds.size() != 2)
         return fail("Range must hold two numbers, got '" + std::string(value) + "'");
+      for (std::size_t k = 0; k < 2; ++k) {
+        double& bound = k == 0 ? v.min : v.max;
+        std::string why;
+        if (!text::parse_number(bounds[k], bound) &&
+            !text::evaluate_matlab_constant(bounds[k], bound, why))
+          return fail("Range must hold two numbers or constant expressions, got '" +
+                      std::string(bounds[k]) + "' (" + why + ")");
+      }
       // min == max is allowed where the range is unused (Sugeno outputs; EngineModel::validate).
       if (!(std::isfinite(v.min) && std::isfinite(v.max) && v.min <= v.max))
         return fail("Range must be finite with min < max, got '" + std::string(value) + "'");

@@ -827,6 +827,55 @@ TEST(RuleFileFis, NamesWithControlCharactersAreRefused) {
   EXPECT_NE(error.message.find("quoted string"), std::string::npos) << error.to_string();
 }
 
+// MATLAB evaluates a range's bounds (MATLAB's own sltbu.fis writes Range=[-pi/4 pi/4]): constant
+// expressions with MATLAB's precedence (^ above unary minus) and row splitting (a blank between
+// two operands separates elements, a blank around a binary operator does not).
+TEST(RuleFileFis, RangesMayBeConstantExpressionsAsMatlabEvaluatesThem) {
+  const double pi = 3.141592653589793;
+  const struct {
+    const char* range;
+    double min, max;
+  } cases[] = {
+      {"[-pi/4 pi/4]", -pi / 4, pi / 4},
+      {"[ -pi / 4 , pi/4 ]", -pi / 4, pi / 4},
+      {"[0 2*pi]", 0, 2 * pi},
+      {"[-2^2 2^-1]", -4, 0.5},
+      {"[(1 - 3) 1 + 2]", -2, 3},
+      {"[-sqrt(2) exp(1)]", -std::sqrt(2.0), std::exp(1.0)},
+      {"[-1e-1 .5e1]", -0.1, 5},
+      {"[2^3^2/-64 fix(-2.5)+3]", -1, 1},  // MATLAB: (2^3)^2 = 64; fix rounds towards 0
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.range);
+    const auto model = load_text("range.fis", replace(rulebase("paper.fis"), "Range=[-0.3 0.3]",
+                                                      std::string("Range=") + c.range));
+    ASSERT_TRUE(model);
+    EXPECT_EQ(model->inputs[0].min, c.min);
+    EXPECT_EQ(model->inputs[0].max, c.max);
+  }
+  const struct {
+    const char* range;
+    const char* message;
+  } bad[] = {
+      {"[1 -2]", "Range must be finite with min < max"},  // two elements: 1 and -2
+      {"[1 - 2]", "Range must hold two numbers"},         // one element: -1
+      {"[-pi/4 foo]", "got 'foo' (unknown name 'foo')"},
+      {"[0 bar(1)]", "(unknown function 'bar')"},
+      {"[0 (1]", "(missing ')')"},
+      {"[0 1/0]", "Range must be finite"},
+  };
+  for (const auto& b : bad) {
+    SCOPED_TRACE(b.range);
+    auto model = std::make_unique<Model>();
+    LoadError error;
+    const std::string text =
+        replace(rulebase("paper.fis"), "Range=[-0.3 0.3]", std::string("Range=") + b.range);
+    ASSERT_FALSE(fuzzypid::rulefile::parse_fis(text, "range.fis", *model, error));
+    EXPECT_EQ(error.line, line_of(text, std::string("Range=") + b.range)) << error.to_string();
+    EXPECT_NE(error.message.find(b.message), std::string::npos) << error.to_string();
+  }
+}
+
 TEST(RuleFileFis, ZeroPaddedMatlab1xListsAndUnusedInputsLoad) {
   const auto padded = load_text("padded.fis", corpus("matlab1x_tank_padded.fis"));
   ASSERT_TRUE(padded);
