@@ -112,7 +112,8 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
        ";\n  m.num_rules = " + num(m.num_rules) + ";\n  m.num_blocks = " + num(m.num_blocks) +
        ";\n  m.num_tokens = " + num(m.num_tokens) +
        ";\n  m.num_conclusions = " + num(m.num_conclusions) +
-       ";\n  m.num_points = " + num(m.num_points) + ";\n  m.chained = " + b(m.chained) + ";\n";
+       ";\n  m.num_points = " + num(m.num_points) + ";\n  m.chained = " + b(m.chained) +
+       ";\n  m.power_hedges = " + b(m.power_hedges) + ";\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
     const std::string v = "  m.inputs[" + num(i) + "]";
@@ -136,6 +137,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
     h += v + ".resolution = " + std::to_string(out.resolution) + ";\n";
     h += v + ".exact_centroid = " + b(out.exact_centroid) + ";\n";
     h += v + ".aggregation = " + enum_lit("SNorm", out.aggregation) + ";\n";
+    h += v + ".merge_equal_singletons = " + b(out.merge_equal_singletons) + ";\n";
     h += v + ".num_terms = " + num(out.num_terms) + ";\n";
     for (std::size_t t = 0; t < out.num_terms; ++t) {
       const auto& term_o = out.terms[t];
@@ -170,18 +172,18 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
          ", " + num(rule.first_conclusion) + ", " + num(rule.num_conclusions) + ", " +
          num(rule.block) + ", " + lit(rule.weight) + "};\n";
   }
-  // Tokens: {kind, input, term, num_hedges, hedges}.
+  // Tokens: {kind, input, term, num_hedges, hedges, power_tenths}.
   for (std::size_t k = 0; k < m.num_tokens; ++k) {
     const auto& t = m.tokens[k];
     h += "  m.tokens[" + num(k) + "] = {static_cast<fuzzypid::fuzzy::Token::Kind>(" +
          num(static_cast<unsigned>(t.kind)) + "), " + num(t.input) + ", " + num(t.term) + ", " +
-         num(t.num_hedges) + ", " + hedges(t.hedges) + "};\n";
+         num(t.num_hedges) + ", " + hedges(t.hedges) + ", " + num(t.power_tenths) + "};\n";
   }
-  // Conclusions: {output, term, num_hedges, hedges}.
+  // Conclusions: {output, term, num_hedges, hedges, power_tenths}.
   for (std::size_t k = 0; k < m.num_conclusions; ++k) {
     const auto& c = m.conclusions[k];
     h += "  m.conclusions[" + num(k) + "] = {" + num(c.output) + ", " + num(c.term) + ", " +
-         num(c.num_hedges) + ", " + hedges(c.hedges) + "};\n";
+         num(c.num_hedges) + ", " + hedges(c.hedges) + ", " + num(c.power_tenths) + "};\n";
   }
   for (std::size_t k = 0; k < 2 * m.num_points; ++k)
     h += "  m.points[" + num(k) + "] = " + lit(m.points[k]) + ";\n";

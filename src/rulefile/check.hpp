@@ -29,6 +29,11 @@ bool size_to_file(const Builder& built, Model& model, LoadError& error);
 // returns false.
 bool check_export(const Model& model, std::string& error);
 
+// What a model read from a .fis as Octave computes it holds that fuzzylite's formats (.fll, .fcl)
+// cannot express: Octave's power hedges (.fis codes .dd other than .05, .2, .4) and Sugeno outputs
+// that merge equal singletons. Empty when there is none, else the first, named.
+std::string octave_only(const Model& model);
+
 // Variable and rule limits of the capacity, as messages name them.
 inline std::string capacity_text() {
   return std::to_string(Builder::Capacity::inputs) + " inputs, " +

@@ -528,6 +528,7 @@ bool parse_fcl(std::string_view text, const std::string& source, Model& model, L
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
+  if (error = octave_only(m); !error.empty()) return false;
   for (std::size_t i = 0; i < m.num_inputs + m.num_outputs; ++i) {
     const bool input = i < m.num_inputs;
     if (input ? m.inputs[i].enabled : m.outputs[i - m.num_inputs].enabled) continue;

@@ -278,13 +278,22 @@ class FisParser {
       return true;
     }
     if (key == "Range") {
-      Scanner sc(value);
-      std::vector<std::string_view> words;
-      if (!sc.list(words) || !sc.at_end())
+      // MATLAB evaluates the bounds: numbers or constant expressions (`[-pi/4 pi/4]`).
+      const std::string_view trimmed = text::trim(value);
+      if (trimmed.size() < 2 || trimmed.front() != '[' || trimmed.back() != ']' ||
+          trimmed.find(']') != trimmed.size() - 1)
         return fail("Range must be [min max], got '" + std::string(value) + "'");
-      if (words.size() != 2 || !text::parse_number(words[0], v.min) ||
-          !text::parse_number(words[1], v.max))
+      const auto bounds = text::matlab_row_elements(trimmed.substr(1, trimmed.size() - 2));
+      if (bounds.size() != 2)
         return fail("Range must hold two numbers, got '" + std::string(value) + "'");
+      for (std::size_t k = 0; k < 2; ++k) {
+        double& bound = k == 0 ? v.min : v.max;
+        std::string why;
+        if (!text::parse_number(bounds[k], bound) &&
+            !text::evaluate_matlab_constant(bounds[k], bound, why))
+          return fail("Range must hold two numbers or constant expressions, got '" +
+                      std::string(bounds[k]) + "' (" + why + ")");
+      }
       // min == max is allowed where the range is unused (Sugeno outputs; EngineModel::validate).
       if (!(std::isfinite(v.min) && std::isfinite(v.max) && v.min <= v.max))
         return fail("Range must be finite with min < max, got '" + std::string(value) + "'");
@@ -385,8 +394,13 @@ class FisParser {
     return true;
   }
 
-  // MATLAB's index code as fuzzylite reads it: sign = not, integer part = term (0 = none),
-  // fraction = hedge (.01 seldom, .05 somewhat, .2 very, .3 extremely, .4 very very, .99 any).
+  // A rule's index code as Octave's fuzzy-logic-toolkit reads it (get_mf_index_and_hedge): sign =
+  // not, integer part = term (0 = none), fraction .dd = hedge, the degree raised to dd/10 (dd =
+  // round(100 * fraction), 1..100; MATLAB has no hedges). Where that power is one of fuzzylite's hedges it
+  // is written as one: .05 somewhat (mu^0.5), .2 very (mu^2), .4 very very (mu^4); the others
+  // (.3 = mu^3, .01 = mu^0.1, ...) are Octave's power hedge. On a conclusion every .dd is the
+  // power hedge, Octave's w^(1 / (dd/10)) (Sugeno outputs only). 0.99 without a term is
+  // fuzzylite's `any` (its FisExporter's extension; Octave reads a degree of 0).
   bool decode(double code, std::size_t index, std::size_t num_terms, int& term, Token& t,
               bool output) {
     const double a = std::fabs(code);
@@ -394,28 +408,25 @@ class FisParser {
     const double frac = a - whole;
     term = static_cast<int>(whole) - 1;
     t.num_hedges = 0;
+    t.power_tenths = 0;
     if (code < 0) t.hedges[t.num_hedges++] = Hedge::Not;
     const auto near = [&](double v) { return std::fabs(frac - v) < 1e-6; };
-    if (near(0.0) || near(1.0)) {
+    const int dd = static_cast<int>(std::round(100 * frac));
+    if (near(0.0) || near(1.0) || dd == 0) {
       if (near(1.0)) ++term;
-    } else if (near(0.01)) {
-      t.hedges[t.num_hedges++] = Hedge::Seldom;
-    } else if (near(0.05)) {
-      t.hedges[t.num_hedges++] = Hedge::Somewhat;
-    } else if (near(0.2)) {
-      t.hedges[t.num_hedges++] = Hedge::Very;
-    } else if (near(0.3)) {
-      t.hedges[t.num_hedges++] = Hedge::Extremely;
-    } else if (near(0.4)) {
-      t.hedges[t.num_hedges++] = Hedge::Very;
-      t.hedges[t.num_hedges++] = Hedge::Very;
-    } else if (near(0.99) && term == -1 && !output) {
+    } else if (dd == 99 && term == -1 && !output) {
       t.hedges[t.num_hedges++] = Hedge::Any;
       t.term = Token::kAnyTerm;
       return true;
+    } else if (!output && dd == 5) {
+      t.hedges[t.num_hedges++] = Hedge::Somewhat;
+    } else if (!output && dd == 20) {
+      t.hedges[t.num_hedges++] = Hedge::Very;
+    } else if (!output && dd == 40) {
+      t.hedges[t.num_hedges++] = Hedge::Very;
+      t.hedges[t.num_hedges++] = Hedge::Very;
     } else {
-      return fail("rule index " + text::format_number(code) +
-                  " has an unknown hedge code (fractions .01 .05 .2 .3 .4, or 0.99 for any)");
+      t.power_tenths = static_cast<std::uint8_t>(dd);
     }
     if (term < 0 || term >= static_cast<int>(num_terms))
       return fail("rule names term " + std::to_string(term + 1) + " of " +
@@ -527,6 +538,12 @@ class FisParser {
       out.default_value = v.default_value;
       out.resolution = options_.fis_resolution;
       out.exact_centroid = options_.exact_centroid && !weighted;
+      // Octave combines a Sugeno output's singletons at equal values with AggMethod (sum: the
+      // plain weighted average, as fuzzylite; max, probor, ...: the singleton's degree is their
+      // aggregation). fuzzylite ignores AggMethod under a weighted DefuzzMethod.
+      out.merge_equal_singletons = weighted && has_aggregation_ &&
+                                   aggregation_ != SNorm::UnboundedSum && out.num_terms > 0 &&
+                                   out.terms[0].kind != fuzzy::OutputTermKind::Membership;
       if (!weighted && !has_aggregation_)
         return fail_at(agg_line_, "AggMethod='' but output '" + v.name +
                                       "' has an integral DefuzzMethod, which needs one");
@@ -592,7 +609,7 @@ class FisParser {
       std::vector<Token> tokens;
       for (std::size_t i = 0; i < num_inputs_; ++i) {
         if (rt.antecedent[i] == 0) continue;
-        Token t{Token::Kind::Proposition, static_cast<std::uint8_t>(i), 0, 0, {}};
+        Token t{Token::Kind::Proposition, static_cast<std::uint8_t>(i), 0, 0, {}, 0};
         int term = 0;
         if (!decode(rt.antecedent[i], i, model_.inputs[i].num_terms, term, t, false)) return false;
         tokens.push_back(t);
@@ -608,7 +625,10 @@ class FisParser {
         Token t{};
         int term = 0;
         if (!decode(rt.consequent[o], o, model_.outputs[o].num_terms, term, t, true)) return false;
-        Conclusion c{static_cast<std::uint8_t>(o), t.term, t.num_hedges, t.hedges};
+        if (t.power_tenths != 0 && !fuzzy::is_sugeno(model_.outputs[o].defuzzifier))
+          return fail("a hedge on a Mamdani conclusion (" + text::format_number(rt.consequent[o]) +
+                      ": Octave raises the output's set to the power) is not supported");
+        Conclusion c{static_cast<std::uint8_t>(o), t.term, t.num_hedges, t.hedges, t.power_tenths};
         conclusions.push_back(c);
       }
       if (conclusions.empty()) return fail("rule has no consequent (all indices 0)");
@@ -686,25 +706,30 @@ bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<dou
       negate = true;
       ++h;
     }
-    if (h < t.num_hedges) {
+    // The codes Octave reads as the same power (decode); seldom and extremely have none (.01 and
+    // .3 are Octave's mu^0.1 and mu^3).
+    if (t.power_tenths != 0 && h == t.num_hedges) {
+      code += t.power_tenths / 100.0;
+    } else if (h < t.num_hedges && t.power_tenths == 0) {
       const std::size_t rest = t.num_hedges - h;
       const Hedge first = t.hedges[h];
       if (rest == 2 && first == Hedge::Very && t.hedges[h + 1] == Hedge::Very) {
         code += 0.4;
-      } else if (rest == 1 && first == Hedge::Seldom) {
-        code += 0.01;
       } else if (rest == 1 && first == Hedge::Somewhat) {
         code += 0.05;
       } else if (rest == 1 && first == Hedge::Very) {
         code += 0.2;
-      } else if (rest == 1 && first == Hedge::Extremely) {
-        code += 0.3;
       } else if (rest == 1 && first == Hedge::Any) {
         code = 0.99;
       } else {
-        why = "a rule has hedges .fis cannot encode";
+        why =
+            "a rule has hedges .fis cannot encode (Octave reads .01 as mu^0.1 and .3 as mu^3, "
+            "not seldom and extremely)";
         return false;
       }
+    } else if (h < t.num_hedges) {
+      why = "a rule has hedges .fis cannot encode";
+      return false;
     }
     codes[t.input] = negate ? -code : code;
   }
@@ -791,8 +816,35 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
        (block.has_disjunction ? fuzzy::names(block.disjunction).fis : "") + "'\n";
   s += std::string("ImpMethod='") +
        (block.has_implication ? fuzzy::names(block.implication).fis : "") + "'\n";
-  s += std::string("AggMethod='") +
-       (first.has_aggregation ? fuzzy::names(first.aggregation).fis : "") + "'\n";
+  std::string aggregation = first.has_aggregation ? fuzzy::names(first.aggregation).fis : "";
+  if (sugeno) {
+    // Under a weighted DefuzzMethod, AggMethod says whether equal singletons merge (Octave; our
+    // reader sets merge_equal_singletons for any s-norm but sum): only 'sum' writes an output
+    // that weighs every conclusion (fuzzylite's weighted average, whatever its aggregation).
+    bool merging = false, plain = false, differ = false;
+    SNorm merge_with = SNorm::Maximum;
+    for (std::size_t o = 0; o < m.num_outputs; ++o) {
+      const auto& v = m.outputs[o];
+      if (v.num_terms == 0 || v.terms[0].kind == fuzzy::OutputTermKind::Membership) continue;
+      if (v.merge_equal_singletons) {
+        differ = differ || (merging && v.aggregation != merge_with);
+        merging = true;
+        merge_with = v.aggregation;
+      } else if (v.has_aggregation && v.aggregation != SNorm::UnboundedSum) {
+        plain = true;
+      }
+    }
+    if ((merging && plain) || differ) {
+      error =
+          ".fis has one AggMethod: some Sugeno outputs merge equal singletons with their "
+          "aggregation (Octave's) and others weigh every conclusion, or they merge with "
+          "different aggregations";
+      return false;
+    }
+    if (merging) aggregation = fuzzy::names(merge_with).fis;
+    if (plain) aggregation = "sum";
+  }
+  s += "AggMethod='" + aggregation + "'\n";
   s += std::string("DefuzzMethod='") + fuzzy::names(first.defuzzifier).fis + "'\n";
   // A disabled variable is written with fuzzylite's Enabled=0 (MATLAB has no such key).
   const auto variable = [&](const char* kind, std::size_t index, const fuzzy::Name& name, double lo,
@@ -857,7 +909,7 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
     for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
       const auto& c = m.conclusions[rule.first_conclusion + k];
       degree_hedges += c.num_hedges;
-      outs[c.output] = c.term + 1.0;
+      outs[c.output] = c.term + 1.0 + c.power_tenths / 100.0;  // Octave's hedge .dd
     }
     if (degree_hedges > 0) {
       error =

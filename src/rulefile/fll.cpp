@@ -460,6 +460,7 @@ bool parse_fll(std::string_view text, const std::string& source, Model& model, L
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
+  if (error = octave_only(m); !error.empty()) return false;
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";

@@ -50,6 +50,7 @@ AntecedentKey antecedent_key(const Model& m, std::size_t r) {
     std::vector<int> hedges;
     for (std::size_t h = 0; h < t.num_hedges; ++h)
       hedges.push_back(static_cast<int>(t.hedges[h]));
+    hedges.push_back(1000 + t.power_tenths);  // Octave's power hedge (1000: none)
     key.items.emplace_back(static_cast<int>(t.kind), t.input, t.term, hedges);
   }
   if (key.connective != 3) {
@@ -71,6 +72,7 @@ std::pair<int, std::vector<int>> conclusion_on(const Model& m, std::size_t r, st
     std::vector<int> hedges;
     for (std::size_t h = 0; h < c.num_hedges; ++h)
       hedges.push_back(static_cast<int>(c.hedges[h]));
+    hedges.push_back(1000 + c.power_tenths);  // Octave's power hedge (1000: none)
     return {c.term, hedges};
   }
   return {-1, {}};

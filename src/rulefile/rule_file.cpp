@@ -59,6 +59,27 @@ bool check_export(const Model& model, std::string& error) {
   return !e;
 }
 
+std::string octave_only(const Model& m) {
+  for (std::size_t o = 0; o < m.num_outputs; ++o)
+    if (m.outputs[o].merge_equal_singletons)
+      return "output '" + std::string(text::name_of(m.outputs[o].name)) +
+             "' merges equal singletons with its aggregation (Octave's Sugeno aggregation of a "
+             ".fis), which fuzzylite's formats cannot express";
+  for (std::size_t r = 0; r < m.num_rules; ++r) {
+    const auto& rule = m.rules[r];
+    bool power = false;
+    for (std::size_t k = 0; k < rule.num_tokens; ++k)
+      power = power || m.tokens[rule.first_token + k].power_tenths != 0;
+    for (std::size_t k = 0; k < rule.num_conclusions; ++k)
+      power = power || m.conclusions[rule.first_conclusion + k].power_tenths != 0;
+    if (power)
+      return "rule " + std::to_string(r + 1) +
+             " has Octave's power hedge (a .fis code .dd other than .05, .2, .4), which "
+             "fuzzylite's formats cannot express";
+  }
+  return {};
+}
+
 namespace {
 
 // A rule base with the default capacity's 2,048 rules is well under 1 MiB; anything larger is

@@ -131,7 +131,8 @@ class Parser {
             static_cast<std::uint8_t>(input),
             0,
             0,
-            {}};
+            {},
+            0};
     Hedge h{};
     while (hedge(h)) {
       if (t.num_hedges == fuzzy::kMaxHedges)
@@ -171,7 +172,7 @@ class Parser {
     if (output < 0) return "rule names unknown output variable '" + var + "'";
     if (!is("is")) return "expected 'is' after '" + var + "'";
     ++k_;
-    Conclusion c{static_cast<std::uint8_t>(output), 0, 0, {}};
+    Conclusion c{static_cast<std::uint8_t>(output), 0, 0, {}, 0};
     Hedge h{};
     while (hedge(h)) {
       if (c.num_hedges == fuzzy::kMaxHedges)

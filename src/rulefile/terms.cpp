@@ -15,7 +15,7 @@ using fuzzy::Shape;
 struct Spec {
   Shape shape;
   const char* fll;              // fuzzylite class name
-  const char* fis;              // .fis name
+  const char* fis;              // .fis name (nullptr: no .fis form)
   std::size_t n;                // parameters (without height)
   std::array<int, 4> from_fll;  // internal p[k] = fll[from_fll[k]]
   std::array<int, 4> from_fis;  // internal p[k] = fis[from_fis[k]]
@@ -40,7 +40,19 @@ constexpr Spec kSpecs[] = {
     {Shape::Concave, "Concave", "concavemf", 2, {0, 1, -1, -1}, {0, 1, -1, -1}},
     {Shape::Spike, "Spike", "spikemf", 2, {0, 1, -1, -1}, {0, 1, -1, -1}},
     {Shape::Binary, "Binary", "binarymf", 2, {0, 1, -1, -1}, {0, 1, -1, -1}},
+    // fuzzylite 8's; neither MATLAB nor fuzzylite's FisImporter has them.
+    {Shape::Arc, "Arc", nullptr, 2, {0, 1, -1, -1}, {}},
+    {Shape::SemiEllipse, "SemiEllipse", nullptr, 2, {0, 1, -1, -1}, {}},
 };
+
+// The spec a file's type name means in that format, or nullptr.
+const Spec* find_spec(Format format, std::string_view type) {
+  for (const Spec& s : kSpecs) {
+    const char* name = format == Format::Fis ? s.fis : s.fll;
+    if (name != nullptr && type == name) return &s;
+  }
+  return nullptr;
+}
 
 std::string count_error(std::string_view type, std::size_t expected, std::size_t got) {
   return "'" + std::string(type) + "' takes " + std::to_string(expected) + " parameters, got " +
@@ -72,6 +84,8 @@ std::string shape_error(std::string_view type, Shape s) {
       return t + "needs finite parameters with inflection != end";
     case Shape::Rectangle:
       return t + "needs start <= end";
+    case Shape::SemiEllipse:
+      return t + "needs finite start != end";
     case Shape::Discrete:
       return t + "needs finite (x, y) pairs with x strictly increasing";
     default:
@@ -82,8 +96,7 @@ std::string shape_error(std::string_view type, Shape s) {
 }  // namespace
 
 bool is_membership_name(Format format, std::string_view type) {
-  for (const Spec& s : kSpecs)
-    if (type == (format == Format::Fis ? s.fis : s.fll)) return true;
+  if (find_spec(format, type) != nullptr) return true;
   if (format == Format::Fis) return type == "linsmf" || type == "linzmf" || type == "discretemf";
   return type == "Discrete";
 }
@@ -127,13 +140,15 @@ std::string make_membership(Format format, std::string_view type, const std::vec
     term = type == "linsmf" ? fuzzy::Term<double>::make(Shape::Ramp, p[0], p[1])
                             : fuzzy::Term<double>::make(Shape::Ramp, p[1], p[0]);
   } else {
-    const Spec* spec = nullptr;
-    for (const Spec& s : kSpecs)
-      if (type == (fis ? s.fis : s.fll)) spec = &s;
+    const Spec* spec = find_spec(format, type);
     if (spec == nullptr) {
       if (type == (fis ? "function" : "Function"))
         return "'" + std::string(type) +
                "' terms (formulas evaluated at run time) are not supported";
+      if (fis && (type == "arcmf" || type == "semiellipsemf"))
+        return "'" + std::string(type) +
+               "': fuzzylite 8's Arc and SemiEllipse have no .fis form (neither MATLAB nor "
+               "fuzzylite's FisImporter reads them); write them in .fll or .fcl";
       return "unsupported membership function '" + std::string(type) + "'";
     }
     std::size_t n = p.size();
@@ -182,7 +197,7 @@ std::string write_membership(Format format, const fuzzy::Term<double>& t, const 
     const Spec* spec = nullptr;
     for (const Spec& s : kSpecs)
       if (s.shape == t.shape) spec = &s;
-    if (spec == nullptr) return {};  // Singleton
+    if (spec == nullptr || (fis && spec->fis == nullptr)) return {};  // Singleton; Arc in .fis
     type = fis ? spec->fis : spec->fll;
     values.assign(spec->n, 0.0);
     const auto& from = fis ? spec->from_fis : spec->from_fll;

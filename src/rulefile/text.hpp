@@ -26,6 +26,16 @@ std::vector<std::string_view> split_words(std::string_view s);
 // A whole-token number: decimal or exponent notation, inf/-inf (any case); false otherwise.
 // NaN is accepted only when allow_nan.
 bool parse_number(std::string_view s, double& value, bool allow_nan = false);
+// A constant expression as MATLAB evaluates it, the way a .fis may write a range's bounds
+// (MATLAB's readfis evaluates them: `Range=[-pi/4 pi/4]`): numbers, pi, Inf, + - * / ^, unary
+// + and -, parentheses, and the functions sqrt exp log log10 log2 abs sin cos tan asin acos atan
+// sinh cosh tanh floor ceil round fix. MATLAB's precedence: ^ (left to right) above unary minus
+// (-2^2 is -4) above * / above + -. False, with the reason in `why`, on anything else.
+bool evaluate_matlab_constant(std::string_view s, double& value, std::string& why);
+// The elements of the inside of a MATLAB row `[a b c]`, as MATLAB splits it: at commas, and at
+// blanks outside parentheses that stand between two operands ("-pi/4 pi/4" is two elements,
+// "1 - 2" one, "1 -2" two).
+std::vector<std::string_view> matlab_row_elements(std::string_view inner);
 // A whole-token non-negative integer.
 bool parse_count(std::string_view s, std::size_t& value);
 // %.17g, with inf, -inf and nan spelled the way the formats read them.

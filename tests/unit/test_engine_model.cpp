@@ -50,6 +50,37 @@ TEST(EngineModel, AnOutputPropositionMarksTheModelChainedAndNamesAKnownOutputTer
   EXPECT_TRUE(says(m->validate(), "unknown output in its antecedent"));
 }
 
+// Octave's power hedges (a .fis code .dd) mark the model, so that evaluation takes the instance
+// that computes them; a conclusion may hold one on a Sugeno output only.
+TEST(EngineModel, APowerHedgeMarksTheModelAndConcludesOnSugenoOutputsOnly) {
+  auto m = ramp_model();
+  EXPECT_FALSE(m->power_hedges);
+  Token cubed = proposition(0, 1);
+  cubed.power_tenths = 30;
+  auto rooted = conclusion(0, 0);
+  rooted.power_tenths = 20;
+  ASSERT_TRUE(m->add_rule(&cubed, 1, &rooted, 1));
+  EXPECT_TRUE(m->power_hedges);
+  EXPECT_FALSE(m->validate());
+  m->power_hedges = false;  // a model edited by hand without the flag
+  EXPECT_TRUE(says(m->validate(), "with power_hedges set"));
+  m->power_hedges = true;
+  m->tokens[m->rules[2].first_token].power_tenths = 101;
+  EXPECT_TRUE(says(m->validate(), "a power hedge must be .01 to 1.00"));
+  m->tokens[m->rules[2].first_token].power_tenths = 30;
+  auto& y = m->outputs[0];  // made a Mamdani output
+  y.defuzzifier = fuzzypid::fuzzy::Defuzzifier::Centroid;
+  y.min = 0;
+  y.max = 4;
+  for (std::size_t t = 0; t < 2; ++t) {
+    y.terms[t].kind = fuzzypid::fuzzy::OutputTermKind::Membership;
+    y.terms[t].membership = fuzzypid::fuzzy::Term<double>::triangle(0.0, 1.0 + t, 4.0);
+  }
+  EXPECT_TRUE(says(m->validate(), "concludes on Sugeno outputs only"));
+  m->conclusions[m->rules[2].first_conclusion].power_tenths = 0;
+  EXPECT_FALSE(m->validate());
+}
+
 TEST(EngineModel, AZeroWidthRangeIsValidOnlyWhereNothingReadsIt) {
   auto m = ramp_model();
   m->outputs[0].min = m->outputs[0].max = 0.0;

@@ -306,6 +306,146 @@ TEST(Term, ValidRejectsUnorderedNonFiniteAndDegenerateParameters) {
   EXPECT_FALSE(Term<double>::singleton(kNaN).valid());
 }
 
+struct TermCase {
+  const char* what;
+  Term<double> term;
+  double x;
+  double expected;
+};
+
+// fuzzylite 8's Arc (start end [height]): a quarter circle of radius r = end - start centred at
+// end, h sqrt(r^2 - (x - end)^2) / |r| between start and end, h beyond end, 0 before start.
+TEST(Arc, MatchesItsClosedFormIncludingBothDirectionsNaNAndInfinity) {
+  const auto rising = Term<double>::make(Shape::Arc, 0.0, 2.0);
+  const auto falling = Term<double>::make(Shape::Arc, 2.0, 0.0);
+  const auto half = Term<double>::make(Shape::Arc, 0.0, 2.0, 0, 0, 0.5);
+  const auto flat = Term<double>::make(Shape::Arc, 1.0, 1.0);
+  const TermCase cases[] = {
+      {"rising: 0 at start", rising, 0.0, 0.0},
+      {"rising: sqrt(4 - 1) / 2", rising, 1.0, std::sqrt(3.0) / 2.0},
+      {"rising: sqrt(4 - 1.6^2) / 2", rising, 0.4, 0.6},
+      {"rising: 1 at end", rising, 2.0, 1.0},
+      {"rising: 1 beyond end", rising, 3.0, 1.0},
+      {"rising: 0 before start", rising, -1.0, 0.0},
+      {"rising: +inf", rising, kInf, 1.0},
+      {"rising: -inf", rising, -kInf, 0.0},
+      {"rising: NaN", rising, kNaN, 0.0},
+      {"falling: 0 at start", falling, 2.0, 0.0},
+      {"falling: sqrt(4 - 1.6^2) / 2", falling, 1.6, 0.6},
+      {"falling: 1 at end", falling, 0.0, 1.0},
+      {"falling: 1 beyond end", falling, -1.0, 1.0},
+      {"falling: 0 before start", falling, 3.0, 0.0},
+      {"falling: -inf", falling, -kInf, 1.0},
+      {"falling: +inf", falling, kInf, 0.0},
+      {"falling: NaN", falling, kNaN, 0.0},
+      {"height 0.5 scales", half, 1.0, 0.5 * std::sqrt(3.0) / 2.0},
+      {"height 0.5 beyond end", half, kInf, 0.5},
+      {"start = end: 0 there", flat, 1.0, 0.0},
+      {"start = end: 0 beyond", flat, kInf, 0.0},
+      {"start = end: 0 before", flat, -kInf, 0.0},
+  };
+  for (const TermCase& c : cases)
+    EXPECT_NEAR(c.term(c.x), c.expected, 1e-15) << c.what << ", " << describe(c.x);
+}
+
+TEST(Arc, LiesOnItsCircleOnRandomPoints) {
+  const std::uint64_t seed = 27;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 10000; ++k) {
+    const double s = u(rng), e = u(rng), h = 0.1 + 0.9 * unit(rng);
+    const auto arc = Term<double>::make(Shape::Arc, s, e, 0, 0, h);
+    ASSERT_TRUE(arc.valid());
+    const double x = std::fmin(s, e) + std::fabs(e - s) * unit(rng);
+    const double r = e - s;
+    // (mu / h)^2 + ((x - end) / r)^2 = 1 on the arc
+    ASSERT_NEAR(std::pow(arc(x) / h, 2) + std::pow((x - e) / r, 2), 1.0, 1e-9) << describe(x);
+    ASSERT_EQ(arc(s), 0.0);
+    ASSERT_EQ(arc(e), h);
+  }
+}
+
+// fuzzylite 8 takes the arc on [start, c] with c = start + (end - start), which rounds to either
+// side of end: between c and end it gives 0 (and at start, where r^2 - (x - c)^2 may round below
+// 0, NaN). The arc reaches its height at end whatever the rounding.
+TEST(Arc, ReachesItsHeightAtItsEndWhenStartPlusRadiusRoundsBelowIt) {
+  const double s = -1.092, e = 4.431;
+  ASSERT_LT(s + (e - s), e);  // c is an ulp below end
+  const auto arc = Term<double>::make(Shape::Arc, s, e);
+  EXPECT_EQ(arc(e), 1.0);  // fuzzylite 8: 0
+  EXPECT_EQ(arc(s), 0.0);
+  EXPECT_NEAR(arc(4.43), 0.9999999836084539, 1e-15);  // fuzzylite 8's value
+}
+
+// fuzzylite 8's SemiEllipse (start end [height]): the upper half of the ellipse over [s, e] with
+// half-axes r = (e - s) / 2 and h, centred at c = s + r; start and end in either order.
+TEST(SemiEllipse, MatchesItsClosedFormIncludingNaNAndInfinity) {
+  const auto se = Term<double>::make(Shape::SemiEllipse, 1.0, 5.0);
+  const auto reversed = Term<double>::make(Shape::SemiEllipse, 5.0, 1.0);
+  const auto low = Term<double>::make(Shape::SemiEllipse, 1.0, 5.0, 0, 0, 0.25);
+  const TermCase cases[] = {
+      {"1 at the centre", se, 3.0, 1.0},
+      {"0 at start", se, 1.0, 0.0},
+      {"0 at end", se, 5.0, 0.0},
+      {"sqrt(4 - 1) / 2", se, 2.0, std::sqrt(3.0) / 2.0},
+      {"sqrt(4 - 1.2^2) / 2", se, 4.2, 0.8},
+      {"0 before", se, 0.0, 0.0},
+      {"0 after", se, 6.0, 0.0},
+      {"+inf", se, kInf, 0.0},
+      {"-inf", se, -kInf, 0.0},
+      {"NaN", se, kNaN, 0.0},
+      {"reversed: same set", reversed, 4.2, 0.8},
+      {"reversed: +inf", reversed, kInf, 0.0},
+      {"height 0.25 at the centre", low, 3.0, 0.25},
+      {"height 0.25 scales", low, 2.0, 0.25 * std::sqrt(3.0) / 2.0},
+  };
+  for (const TermCase& c : cases)
+    EXPECT_NEAR(c.term(c.x), c.expected, 1e-15) << c.what << ", " << describe(c.x);
+}
+
+// fuzzylite 8 gives NaN at an end of 8 % of random semi-ellipses, where r^2 - (x - c)^2 rounds
+// below 0; the set is 0 there. Elsewhere the rounding of c leaves at most sqrt(2 r ulp(c)) / r at
+// an end, as in fuzzylite 8.
+TEST(SemiEllipse, IsNeverNaNAtItsEndsWhereTheSquareRootsArgumentRoundsBelowZero) {
+  const double s = -5.67, e = -1.56;
+  const double r = (e - s) / 2, c = s + r;
+  ASSERT_LT(r * r - (e - c) * (e - c), 0.0);  // the case
+  const auto se = Term<double>::make(Shape::SemiEllipse, s, e);
+  EXPECT_EQ(se(e), 0.0);  // fuzzylite 8: NaN
+  EXPECT_EQ(se(s), 0.0);
+  const std::uint64_t seed = 28;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-10.0, 10.0);
+  for (int k = 0; k < 10000; ++k) {
+    const double a = u(rng), b = u(rng);
+    const auto t = Term<double>::make(Shape::SemiEllipse, a, b);
+    const double x = std::fmin(a, b) + std::fabs(b - a) * (u(rng) + 10.0) / 20.0;
+    const double half = std::fabs(b - a) / 2, centre = std::fmin(a, b) + half;
+    // 0 up to the rounding of c (an ulp of the larger end), never NaN
+    const double ulp =
+        std::numeric_limits<double>::epsilon() * std::fmax(std::fabs(a), std::fabs(b));
+    const double bound = 2.0 * std::sqrt(2.0 * half * ulp) / half;
+    ASSERT_LE(t(a), bound) << a << " " << b;
+    ASSERT_LE(t(b), bound) << a << " " << b;
+    ASSERT_NEAR(std::pow(t(x), 2) + std::pow((x - centre) / half, 2), 1.0, 1e-9);
+  }
+}
+
+TEST(Term, ArcAndSemiEllipseCentresAndValidity) {
+  EXPECT_EQ(Term<double>::make(Shape::Arc, 0.0, 2.0).center(), 2.0);
+  EXPECT_EQ(Term<double>::make(Shape::Arc, 2.0, 0.0).center(), 0.0);
+  EXPECT_EQ(Term<double>::make(Shape::SemiEllipse, 1.0, 5.0).center(), 3.0);
+  EXPECT_TRUE(Term<double>::make(Shape::Arc, 1.0, 1.0).valid());  // 0 everywhere, as fuzzylite 8
+  EXPECT_FALSE(Term<double>::make(Shape::Arc, 0.0, kInf).valid());
+  EXPECT_FALSE(Term<double>::make(Shape::Arc, kNaN, 1.0).valid());
+  EXPECT_FALSE(Term<double>::make(Shape::SemiEllipse, 1.0, 1.0).valid());  // 0 / 0
+  EXPECT_FALSE(Term<double>::make(Shape::SemiEllipse, -kInf, 1.0).valid());
+  EXPECT_FALSE(Term<double>::make(Shape::SemiEllipse, 0.0, 1.0, 0, 0, -0.5).valid());
+}
+
 // The paper's seven input sets, each evaluated through its own Term.
 std::array<double, 7> paper_degrees(double x) {
   const auto v = fuzzypid::paper::make_system<double>().e;

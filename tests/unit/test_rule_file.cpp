@@ -481,8 +481,8 @@ TEST(RuleFile, MalformedFisFilesNameTheLine) {
        "Range must hold two numbers"},
       {"range not a list", replace(good, "Range=[-0.3 0.3]", "Range=-0.3 0.3"), "Range=-0.3 0.3",
        "Range must be [min max]"},
-      {"unknown hedge code", replace(good, "1 1, 7 1 5 (1) : 1", "1.7 1, 7 1 5 (1) : 1"),
-       "1.7 1, 7", "unknown hedge code"},
+      {"hedge without a term", replace(good, "1 1, 7 1 5 (1) : 1", "0.5 1, 7 1 5 (1) : 1"),
+       "0.5 1, 7", "rule names term 0 of input 1"},
       {"unsupported method", replace(good, "AndMethod='min'", "AndMethod='my_and'"), "my_and",
        "unsupported AndMethod 'my_and'"},
       {"defuzz vs type", replace(good, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'"),
@@ -559,6 +559,9 @@ TEST(RuleFile, MalformedFllFilesNameTheLine) {
        "expected 'key: value'"},
       {"unsupported term", replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Foo -0.3 -0.2"),
        "NM Foo", "unsupported membership function 'Foo'"},
+      {"semi-ellipse of zero width",
+       replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM SemiEllipse -0.2 -0.2"), "NM SemiEllipse",
+       "'SemiEllipse' needs finite start != end"},
       {"function term", replace(good, "NM Triangle -0.3 -0.2 -0.1", "NM Function sin(e)"),
        "NM Function", "'Function' terms (formulas evaluated at run time) are not supported"},
       {"unsupported norm", replace(good, "conjunction: Minimum", "conjunction: FancyProduct"),
@@ -824,6 +827,55 @@ TEST(RuleFileFis, NamesWithControlCharactersAreRefused) {
   EXPECT_NE(error.message.find("quoted string"), std::string::npos) << error.to_string();
 }
 
+// MATLAB evaluates a range's bounds (MATLAB's own sltbu.fis writes Range=[-pi/4 pi/4]): constant
+// expressions with MATLAB's precedence (^ above unary minus) and row splitting (a blank between
+// two operands separates elements, a blank around a binary operator does not).
+TEST(RuleFileFis, RangesMayBeConstantExpressionsAsMatlabEvaluatesThem) {
+  const double pi = 3.141592653589793;
+  const struct {
+    const char* range;
+    double min, max;
+  } cases[] = {
+      {"[-pi/4 pi/4]", -pi / 4, pi / 4},
+      {"[ -pi / 4 , pi/4 ]", -pi / 4, pi / 4},
+      {"[0 2*pi]", 0, 2 * pi},
+      {"[-2^2 2^-1]", -4, 0.5},
+      {"[(1 - 3) 1 + 2]", -2, 3},
+      {"[-sqrt(2) exp(1)]", -std::sqrt(2.0), std::exp(1.0)},
+      {"[-1e-1 .5e1]", -0.1, 5},
+      {"[2^3^2/-64 fix(-2.5)+3]", -1, 1},  // MATLAB: (2^3)^2 = 64; fix rounds towards 0
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.range);
+    const auto model = load_text("range.fis", replace(rulebase("paper.fis"), "Range=[-0.3 0.3]",
+                                                      std::string("Range=") + c.range));
+    ASSERT_TRUE(model);
+    EXPECT_EQ(model->inputs[0].min, c.min);
+    EXPECT_EQ(model->inputs[0].max, c.max);
+  }
+  const struct {
+    const char* range;
+    const char* message;
+  } bad[] = {
+      {"[1 -2]", "Range must be finite with min < max"},  // two elements: 1 and -2
+      {"[1 - 2]", "Range must hold two numbers"},         // one element: -1
+      {"[-pi/4 foo]", "got 'foo' (unknown name 'foo')"},
+      {"[0 bar(1)]", "(unknown function 'bar')"},
+      {"[0 (1]", "(missing ')')"},
+      {"[0 1/0]", "Range must be finite"},
+  };
+  for (const auto& b : bad) {
+    SCOPED_TRACE(b.range);
+    auto model = std::make_unique<Model>();
+    LoadError error;
+    const std::string text =
+        replace(rulebase("paper.fis"), "Range=[-0.3 0.3]", std::string("Range=") + b.range);
+    ASSERT_FALSE(fuzzypid::rulefile::parse_fis(text, "range.fis", *model, error));
+    EXPECT_EQ(error.line, line_of(text, std::string("Range=") + b.range)) << error.to_string();
+    EXPECT_NE(error.message.find(b.message), std::string::npos) << error.to_string();
+  }
+}
+
 TEST(RuleFileFis, ZeroPaddedMatlab1xListsAndUnusedInputsLoad) {
   const auto padded = load_text("padded.fis", corpus("matlab1x_tank_padded.fis"));
   ASSERT_TRUE(padded);
@@ -999,11 +1051,11 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
       const Token tokens[3] = {{Token::Kind::Proposition, 0, i, 0, {}},
                                {Token::Kind::Proposition, 1, j, 0, {}},
                                {Token::Kind::And, 0, 0, 0, {}}};
-      const fuzzypid::fuzzy::Conclusion c{0, static_cast<std::uint8_t>((i + j) / 2), 0, {}};
+      const fuzzypid::fuzzy::Conclusion c{0, static_cast<std::uint8_t>((i + j) / 2), 0, {}, 0};
       ASSERT_TRUE(small->add_rule(tokens, 3, &c, 1));
     }
   const Token one{Token::Kind::Proposition, 0, 0, 0, {}};
-  const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}};
+  const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}, 0};
   EXPECT_FALSE(small->add_rule(&one, 1, &c, 1)) << "a 50th rule exceeds SmallCapacity";
   EXPECT_FALSE(small->validate());
   fuzzypid::fuzzy::Engine<float, fuzzypid::fuzzy::SmallCapacity> engine(*small);

@@ -47,6 +47,14 @@ LoadError refusal(const std::string& name, const std::string& text) {
   return error;
 }
 
+std::string corpus_file(const std::string& name) {
+  std::ifstream in(FUZZYPID_RULEFILES_DIR "/corpus/" + name);
+  std::ostringstream all;
+  all << in.rdbuf();
+  EXPECT_FALSE(all.str().empty()) << name;
+  return all.str();
+}
+
 std::string replace(std::string s, const std::string& from, const std::string& to) {
   const std::size_t at = s.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -524,7 +532,7 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
   double worst = 0.0;
   int cases = 0;
   for (const Shape shape :
-       {Shape::Ramp, Shape::Sigmoid, Shape::SShape, Shape::ZShape, Shape::Concave}) {
+       {Shape::Ramp, Shape::Sigmoid, Shape::SShape, Shape::ZShape, Shape::Concave, Shape::Arc}) {
     for (int k = 0; k < 20000; ++k) {
       Term<double> t{};
       t.shape = shape;
@@ -552,7 +560,8 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
       ++cases;
       ASSERT_LE(d, 1e-12) << "shape " << static_cast<int>(shape) << " p " << t.p[0] << " " << t.p[1]
                           << " h " << h << " w " << w << " z " << z;
-      if (shape == Shape::Ramp || shape == Shape::SShape || shape == Shape::ZShape) {
+      if (shape == Shape::Ramp || shape == Shape::SShape || shape == Shape::ZShape ||
+          shape == Shape::Arc) {
         EXPECT_GE(z, std::fmin(t.p[0], t.p[1]));
         EXPECT_LE(z, std::fmax(t.p[0], t.p[1]));
       }
@@ -572,6 +581,85 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
     EXPECT_EQ(z, shape == Shape::ZShape ? 2.0 : shape == Shape::Sigmoid ? hi : 6.0);
   }
   std::printf("Tsukamoto: %d inverses, max |mu(z(w)) - w| = %.3g\n", cases, worst);
+}
+
+// fuzzylite 8's Arc and SemiEllipse in .fll (and .fcl, under the same names), as inputs and as
+// Tsukamoto outputs; .fis has no form for them. At x = 0.45 in the corpus file:
+//   near  = SemiEllipse(0, 0.6):   sqrt(0.3^2 - 0.15^2) / 0.3 = sqrt(3) / 2 = w1
+//   far   = Arc(0.3, 1):           sqrt(0.7^2 - 0.55^2) / 0.7, weight 0.75 -> w2
+//   down  = Arc(9.5, 0.5), h = 1:  z1 = 0.5 + sqrt(9^2 - (9 w1)^2) = 0.5 + 4.5 = 5
+//   up    = Arc(1, 9), h = 0.8:    z2 = 9 - sqrt(8^2 - (8 w2 / 0.8)^2)
+//   tsu   = (w1 z1 + w2 z2) / (w1 + w2)
+TEST(RuleFileFll, ArcAndSemiEllipseAreFuzzylite8sTermsWithTheArcsExactInverse) {
+  const std::string text = corpus_file("fuzzylite8_arc_semi_ellipse.fll");
+  const auto model = load("arc.fll", text);
+  ASSERT_TRUE(model);
+  const double w1 = std::sqrt(3.0) / 2.0;
+  const double w2 = 0.75 * std::sqrt(0.49 - 0.55 * 0.55) / 0.7;
+  const double z1 = 5.0;
+  const double z2 = 9.0 - std::sqrt(64.0 - std::pow(8.0 * w2 / 0.8, 2));
+  const auto& up = model->outputs[1].terms[0].membership;
+  EXPECT_NEAR(up(z2, nullptr), w2, 1e-15);  // mu(z) = w
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.45;
+  double y[2] = {};
+  ASSERT_EQ(engine->evaluate(&x, y), Status::Ok);
+  EXPECT_NEAR(y[1], (w1 * z1 + w2 * z2) / (w1 + w2), 1e-14);
+
+  // The same system written as .fcl reads back to the same bits; .fis refuses it by term.
+  std::string fcl, fis, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, why)) << why;
+  EXPECT_NE(fcl.find("TERM near := SemiEllipse 0 0.59999999999999998;"), std::string::npos) << fcl;
+  const auto again = load("arc.fcl", fcl);
+  ASSERT_TRUE(again);
+  auto engine2 = std::make_unique<Engine<double>>(*again);
+  for (double xi = -0.1; xi <= 1.1; xi += 0.01) {
+    double a[2] = {}, b[2] = {};
+    ASSERT_EQ(engine->evaluate(&xi, a), engine2->evaluate(&xi, b));
+    EXPECT_EQ(a[0], b[0]);
+    EXPECT_EQ(a[1], b[1]);
+  }
+  // steer alone (.fis has one defuzzifier for all outputs)
+  std::string steer = replace(replace(text, " and tsu is down", ""), " and tsu is up", "");
+  steer.erase(steer.find("OutputVariable: tsu"),
+              steer.find("RuleBlock:") - steer.find("OutputVariable: tsu"));
+  const auto steer_only = load("steer.fll", steer);
+  ASSERT_TRUE(steer_only);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*steer_only, fis, why));
+  EXPECT_NE(why.find("input term 'near' has a shape or height .fis cannot express"),
+            std::string::npos)
+      << why;
+  const LoadError error = refusal("arc.fis", R"([System]
+Name='arc'
+Type='mamdani'
+NumInputs=1
+NumOutputs=1
+NumRules=1
+AndMethod='min'
+OrMethod='max'
+ImpMethod='min'
+AggMethod='max'
+DefuzzMethod='centroid'
+
+[Input1]
+Name='x'
+Range=[0 1]
+NumMFs=1
+MF1='far':'arcmf',[0.3 1]
+
+[Output1]
+Name='y'
+Range=[0 1]
+NumMFs=1
+MF1='one':'trimf',[0 0.5 1]
+
+[Rules]
+1, 1 (1) : 1
+)");
+  EXPECT_EQ(error.line, 17) << error.to_string();
+  EXPECT_NE(error.message.find("'arcmf': fuzzylite 8's Arc and SemiEllipse have no .fis form"),
+            std::string::npos)
+      << error.to_string();
 }
 
 // Bisector as fuzzylite 8 computes it: the sample where the running area is nearest half the
@@ -773,6 +861,192 @@ TEST(RuleFileFuzzyliteDifferences, Matlab1xZeroPaddingIsNotATermHeight) {
   fair->getInputVariable(0)->setValue(e);
   fair->process();
   EXPECT_EQ(fair->getOutputVariable(0)->getValue(), u);
+}
+
+// .fis hedges as Octave's fuzzy-logic-toolkit computes them (MATLAB has none; docs/rule_files.md):
+// a code's fraction .dd raises the antecedent's degree to dd/10, then `not`; on a Sugeno
+// conclusion it gives the height w^(1/(dd/10)). octave_hedge_powers_sugeno.fis, in closed form:
+//   rule 1  x is .3 low                  w1 = low(x)^3                       -> a = 2
+//   rule 2  x is .01 high                w2 = high(x)^0.1                    -> b = 6
+//   rule 3  y is not .3 high, weight .5  w3 = 0.5 (1 - high(y)^3), .2: sqrt(w3) -> c = x + 2y + 3
+//   rule 4  x is .2 low and y is high    w4 = min(low(x)^2, high(y)), .3: w4^(1/3) -> a = 2
+// Octave 7.3 with the toolkit 0.4.6 (the command in docs/rule_files.md) gives 4.292353232088578,
+// 3.9820679834114792 and 4.8453042715850039 at the three points below.
+TEST(RuleFileFisOctave, HedgesArePowersOfTheDegreeAndSugenoConclusionsTakeTheirRoot) {
+  const auto model = load("powers.fis", corpus_file("octave_hedge_powers_sugeno.fis"));
+  ASSERT_TRUE(model);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const auto closed_form = [](double x, double y) {
+    const double low_x = 1 - x, high_x = x, high_y = y;
+    const double w1 = std::pow(low_x, 3.0), w2 = std::pow(high_x, 0.1);
+    const double w3 = std::sqrt(0.5 * (1 - std::pow(high_y, 3.0)));
+    const double w4 = std::cbrt(std::fmin(low_x * low_x, high_y));
+    return (w1 * 2 + w2 * 6 + w3 * (x + 2 * y + 3) + w4 * 2) / (w1 + w2 + w3 + w4);
+  };
+  const double octave[3] = {4.292353232088578, 3.9820679834114792, 4.8453042715850039};
+  const double points[3][2] = {{0.5, 0.5}, {0.3, 0.8}, {0.9, 0.1}};
+  for (int k = 0; k < 3; ++k) {
+    double z = 0;
+    ASSERT_EQ(engine->evaluate(points[k], &z), Status::Ok);
+    EXPECT_NEAR(z, closed_form(points[k][0], points[k][1]), 1e-14) << k;
+    EXPECT_NEAR(z, octave[k], 1e-14) << k;
+  }
+  // A custom hedge .15 is mu^1.5 (fuzzylite has no such code).
+  const auto custom = load("custom.fis", replace(corpus_file("octave_hedge_powers_sugeno.fis"),
+                                                 "1.2 2, 1.3", "1.15 2, 1.3"));
+  ASSERT_TRUE(custom);
+  auto engine2 = std::make_unique<Engine<double>>(*custom);
+  const double xy[2] = {0.5, 0.5};
+  double z = 0;
+  ASSERT_EQ(engine2->evaluate(xy, &z), Status::Ok);
+  const double w[4] = {0.125, std::pow(0.5, 0.1), std::sqrt(0.4375),
+                       std::cbrt(std::fmin(std::pow(0.5, 1.5), 0.5))};
+  EXPECT_NEAR(z, (w[0] * 2 + w[1] * 6 + w[2] * 4.5 + w[3] * 2) / (w[0] + w[1] + w[2] + w[3]),
+              1e-14);
+}
+
+// The hedges survive a .fis round trip; fuzzylite's formats have no power hedge and refuse it,
+// and fuzzylite's `seldom` and `extremely` have no .fis code Octave reads as such.
+TEST(RuleFileFisOctave, PowerHedgesRoundTripThroughFisOnly) {
+  const auto model = load("powers.fis", corpus_file("octave_hedge_powers_sugeno.fis"));
+  ASSERT_TRUE(model);
+  std::string fis, fll, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, why)) << why;
+  EXPECT_NE(fis.find("0 -2.2999999999999998, 3.2000000000000002 (0.5) : 1"), std::string::npos)
+      << fis;
+  const auto again = load("again.fis", fis);
+  ASSERT_TRUE(again);
+  auto a = std::make_unique<Engine<double>>(*model);
+  auto b = std::make_unique<Engine<double>>(*again);
+  for (double x = 0.0; x <= 1.0; x += 0.05)
+    for (double y = 0.0; y <= 1.0; y += 0.05) {
+      const double in[2] = {x, y};
+      double za = 0, zb = 0;
+      ASSERT_EQ(a->evaluate(in, &za), b->evaluate(in, &zb));
+      ASSERT_EQ(za, zb) << x << " " << y;
+    }
+  EXPECT_FALSE(fuzzypid::rulefile::to_fll(*model, fll, why));
+  EXPECT_EQ(why,
+            "rule 1 has Octave's power hedge (a .fis code .dd other than .05, .2, .4), which "
+            "fuzzylite's formats cannot express");
+  const auto extremely = load("x.fll", R"(Engine: e
+InputVariable: x
+  range: 0 1
+  term: low Triangle -1 0 1
+OutputVariable: z
+  range: 0 1
+  defuzzifier: WeightedAverage
+  term: a Constant 2
+RuleBlock: b
+  activation: General
+  rule: if x is extremely low then z is a
+)");
+  ASSERT_TRUE(extremely);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*extremely, fis, why));
+  EXPECT_NE(why.find("Octave reads .01 as mu^0.1 and .3 as mu^3"), std::string::npos) << why;
+}
+
+// Octave's aggregate_output_sugeno: with AggMethod='max', conclusions at the same value are one
+// singleton of the largest height. octave_sugeno_max_aggregation.fis at x = 0.25: low 0.75,
+// mid 0.5, high 0.25; `small` (1) from rules 1 and 2 and `also_small` (1) from rule 4 (0.5 * 0.5)
+// are one singleton of height 0.75, `big` (9) has 0.25: (0.75 + 2.25) / 1 = 3. At x = 0.6: low
+// 0.4, mid 0.8, high 0.6: (0.8 + 5.4) / 1.4. fuzzylite weighs every conclusion:
+// (0.75 + 0.5 + 2.25 + 0.25) / 1.75. Octave gives 3 and 4.4285714285714279.
+TEST(RuleFileFisOctave, SugenoMaxAggregationMergesSingletonsOfEqualValue) {
+  const std::string text = corpus_file("octave_sugeno_max_aggregation.fis");
+  const auto model = load("max.fis", text);
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->outputs[0].merge_equal_singletons);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  double x = 0.25, z = 0;
+  ASSERT_EQ(engine->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 3.0, 1e-15);
+  x = 0.6;
+  ASSERT_EQ(engine->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 6.2 / 1.4, 1e-15);
+
+  // wtsum: the same merged singletons, summed.
+  const auto sum =
+      load("wtsum.fis", replace(text, "DefuzzMethod='wtaver'", "DefuzzMethod='wtsum'"));
+  ASSERT_TRUE(sum);
+  auto engine_sum = std::make_unique<Engine<double>>(*sum);
+  ASSERT_EQ(engine_sum->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 0.8 * 1 + 0.6 * 9, 1e-15);
+
+  // AggMethod='sum' is the plain weighted average (Octave adds equal singletons up).
+  const auto plain = load("sum.fis", replace(text, "\nAggMethod='max'", "\nAggMethod='sum'"));
+  ASSERT_TRUE(plain);
+  EXPECT_FALSE(plain->outputs[0].merge_equal_singletons);
+  auto engine_plain = std::make_unique<Engine<double>>(*plain);
+  x = 0.25;
+  ASSERT_EQ(engine_plain->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 3.75 / 1.75, 1e-15);
+
+  // .fis writes AggMethod back and reads the same system; fuzzylite's formats cannot say it.
+  std::string fis, fll, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, why)) << why;
+  EXPECT_NE(fis.find("AggMethod='max'"), std::string::npos) << fis;
+  const auto again = load("again.fis", fis);
+  ASSERT_TRUE(again);
+  auto engine_again = std::make_unique<Engine<double>>(*again);
+  ASSERT_EQ(engine_again->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 3.0, 1e-15);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fll(*model, fll, why));
+  EXPECT_NE(why.find("output 'z' merges equal singletons"), std::string::npos) << why;
+}
+
+// A .fll Sugeno output with Maximum aggregation weighs every conclusion (fuzzylite); written to
+// .fis, where Octave would merge with AggMethod, it says 'sum', which means that.
+TEST(RuleFileFisOctave, AFuzzyliteSugenoOutputIsWrittenToFisWithAggMethodSum) {
+  const auto model = load("plain.fll", R"(Engine: e
+InputVariable: x
+  range: 0 1
+  term: low Triangle -1 0 1
+  term: mid Triangle 0 0.5 1
+OutputVariable: z
+  range: 0 10
+  aggregation: Maximum
+  defuzzifier: WeightedAverage
+  term: small Constant 1
+  term: big Constant 9
+RuleBlock: b
+  activation: General
+  rule: if x is low then z is small
+  rule: if x is mid then z is small
+  rule: if x is mid then z is big with 0.5
+)");
+  ASSERT_TRUE(model);
+  std::string fis, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, why)) << why;
+  EXPECT_NE(fis.find("AggMethod='sum'"), std::string::npos) << fis;
+  const auto again = load("again.fis", fis);
+  ASSERT_TRUE(again);
+  auto a = std::make_unique<Engine<double>>(*model);
+  auto b = std::make_unique<Engine<double>>(*again);
+  const double x = 0.25;
+  double za = 0, zb = 0;
+  ASSERT_EQ(a->evaluate(&x, &za), Status::Ok);
+  ASSERT_EQ(b->evaluate(&x, &zb), Status::Ok);
+  EXPECT_EQ(za, zb);
+  EXPECT_NEAR(za, (0.75 + 0.5 + 0.25 * 9) / (0.75 + 0.5 + 0.25), 1e-15);
+}
+
+// Octave raises a Mamdani output's set to the hedge's power (evalmf on the output range); the
+// engine hedges degrees, so such a conclusion is refused on its rule's line.
+TEST(RuleFileFisOctave, AHedgeOnAMamdaniConclusionIsRefusedOnItsLine) {
+  std::string text = corpus_file("octave_sugeno_max_aggregation.fis");
+  text = replace(text, "Type='sugeno'", "Type='mamdani'");
+  text = replace(text, "DefuzzMethod='wtaver'", "DefuzzMethod='centroid'");
+  text = replace(text, "MF1='small':'constant',[1]", "MF1='small':'trimf',[0 1 2]");
+  text = replace(text, "MF2='big':'constant',[9]", "MF2='big':'trimf',[8 9 10]");
+  text = replace(text, "MF3='also_small':'constant',[1]", "MF3='also_small':'trimf',[0 1 2]");
+  ASSERT_TRUE(load("mamdani.fis", text));
+  const LoadError error = refusal("mamdani.fis", replace(text, "3, 1 (1) : 1", "3, 1.2 (1) : 1"));
+  EXPECT_EQ(error.line, 36) << error.to_string();
+  EXPECT_NE(error.message.find("a hedge on a Mamdani conclusion (1.2: Octave raises the output's "
+                               "set to the power) is not supported"),
+            std::string::npos)
+      << error.to_string();
 }
 
 }  // namespace

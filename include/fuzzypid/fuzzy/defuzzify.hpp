@@ -59,7 +59,7 @@ struct AggregatedSet {
 template <class Scalar>
 constexpr bool is_monotonic(const Term<Scalar>& t) noexcept {
   return t.shape == Shape::Ramp || t.shape == Shape::Sigmoid || t.shape == Shape::SShape ||
-         t.shape == Shape::ZShape || t.shape == Shape::Concave;
+         t.shape == Shape::ZShape || t.shape == Shape::Concave || t.shape == Shape::Arc;
 }
 
 // True for the shapes the exact centroid integrates in closed form (at height 1).

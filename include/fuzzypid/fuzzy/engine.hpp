@@ -22,16 +22,22 @@
 //                    (General: every rule with strength > 0, in rule order; see RuleBlock)
 //   conclusions    = in rule order, each conclusion's hedges are applied (right to left) to the
 //                    running degree, which is then the degree of that conclusion (fuzzylite's
-//                    Consequent::modify)
+//                    Consequent::modify); a conclusion with Octave's power hedge .dd (a .fis)
+//                    has the degree w^(1/(dd/10)), then its hedges, and leaves the running
+//                    degree alone (eval_rules_sugeno). A proposition's power hedge raises the
+//                    term's degree to dd/10 before the other hedges (evalmf)
 //   Mamdani output: activations (term, degree, the block's implication), aggregated by the
 //     output's s-norm (folded from 0 in rule order), then centroid (sampled or exact), bisector,
 //     mean/smallest/largest of maximum. With Maximum aggregation and a Minimum/Product implication
 //     shared by all blocks, one activation per term holds the largest degree (exact, as both are
 //     monotone).
 //   Sugeno output (constant/linear terms): z_r = c or sum_i c_i x_i + c_0 per conclusion;
-//     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r).
-//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave terms): z_r
-//     is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as Sugeno.
+//     weighted average sum(w_r z_r) / sum(w_r) or weighted sum sum(w_r z_r). With
+//     merge_equal_singletons (Octave's aggregate_output_sugeno), conclusions of equal z are one
+//     singleton whose weight is the output's aggregation of theirs.
+//   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
+//     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
+//     Sugeno.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
 // and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
@@ -70,18 +76,51 @@ Scalar hedge_right_to_left(const std::array<Hedge, kMaxHedges>& hedges, std::siz
 // "variable is [hedges] term": the hedges right to left on the term's degree (an input's
 // membership, or an output's degree so far); 1 when the last hedge is `any` (fuzzylite's
 // Antecedent::activationDegree).
-template <class Scalar>
+template <bool Power, class Scalar>
 Scalar proposition(const WorkspaceView<Scalar>& ws, const Token& tok) noexcept {
   const std::size_t n = tok.num_hedges;
   if (n > 0 && tok.hedges[n - 1] == Hedge::Any)
     return hedge_right_to_left(tok.hedges, n - 1, Scalar(1));
   const Scalar* degrees = tok.kind == Token::Kind::OutputProposition ? ws.degree : ws.membership;
-  return hedge_right_to_left(tok.hedges, n, degrees[tok.input * ws.stride + tok.term]);
+  Scalar mu = degrees[tok.input * ws.stride + tok.term];
+  // Octave's evalmf: mu .^ (dd / 10), then `not`.
+  if constexpr (Power)
+    if (tok.power_tenths != 0)
+      mu = std::pow(mu, static_cast<Scalar>(tok.power_tenths) / Scalar(10));
+  return hedge_right_to_left(tok.hedges, n, mu);
+}
+
+// The degree of conclusion c of a rule of firing strength w. `running` is the rule's running
+// degree (w before its first conclusion): fuzzylite's hedges modify it for this conclusion and
+// the later ones (Consequent::modify); Octave's power hedge .dd gives w^(1 / (dd / 10)), then
+// `not`, for this conclusion only (eval_rules_sugeno).
+template <bool Power, class Scalar>
+Scalar conclusion_degree(const Conclusion& c, Scalar w, Scalar& running) noexcept {
+  if constexpr (Power) {
+    if (c.power_tenths != 0) {
+      const Scalar exponent = Scalar(1) / (static_cast<Scalar>(c.power_tenths) / Scalar(10));
+      return hedge_right_to_left(c.hedges, c.num_hedges, std::pow(w, exponent));
+    }
+  } else {
+    (void)w;
+  }
+  return running = hedge_right_to_left(c.hedges, c.num_hedges, running);
+}
+
+// z of a constant or linear term: c, or sum_i c_i x_i + c_0 over the inputs after locking.
+template <class Scalar, class Cap>
+Scalar sugeno_value(const OutputTerm<Scalar, Cap>& term, const Scalar* input,
+                    std::size_t num_inputs) noexcept {
+  if (term.kind != OutputTermKind::Linear) return term.coefficients[0];
+  Scalar z = Scalar(0);
+  for (std::size_t i = 0; i < num_inputs; ++i)
+    z += term.coefficients[i] * input[i];
+  return z + term.coefficients[num_inputs];
 }
 
 // Weight times the antecedent of rule r (postfix evaluation on ws.stack). `disabled`: the model
 // has disabled variables, whose propositions are 0.
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r,
                      bool disabled) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
@@ -98,7 +137,7 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
       const bool enabled = !disabled || (tok.kind == Token::Kind::OutputProposition
                                              ? model.outputs[tok.input].enabled
                                              : model.inputs[tok.input].enabled);
-      ws.stack[sp++] = enabled ? proposition(ws, tok) : Scalar(0);
+      ws.stack[sp++] = enabled ? proposition<Power>(ws, tok) : Scalar(0);
     }
   }
   return rule.weight * ws.stack[0];
@@ -106,15 +145,15 @@ Scalar rule_strength(const Model& model, const WorkspaceView<Scalar>& ws, std::s
 
 // Adds rule r's conclusions to the outputs' term degrees that chained antecedents read
 // (fuzzylite's Consequent::modify into Aggregated, then activationDegree).
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r) noexcept {
   const Rule<Scalar>& rule = model.rules[r];
-  Scalar degree = ws.strength[r];
+  Scalar running = ws.strength[r];
   for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
     const Conclusion& c = model.conclusions[rule.first_conclusion + k];
     const auto& out = model.outputs[c.output];
     if (!out.enabled) continue;
-    degree = hedge_right_to_left(c.hedges, c.num_hedges, degree);
+    const Scalar degree = conclusion_degree<Power>(c, ws.strength[r], running);
     Scalar& d = ws.degree[c.output * ws.stride + c.term];
     d = out.has_aggregation ? apply(out.aggregation, d, degree) : d + degree;
   }
@@ -130,6 +169,8 @@ void trigger(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t r)
 //   ZShape(s, e)     z = e - (e - s) sqrt(w / 2h)        if w <= h / 2      (z in [s, e])
 //                    z = s + (e - s) sqrt((h - w) / 2h)  otherwise
 //   Concave(i, e)    z = h (i - e) / w + 2e - i                            (z = e at w = h)
+//   Arc(s, e)        z = c -+ sqrt(r^2 - (w r / h)^2), r = e - s, c = s + r, - when s < e
+//                                                                          (z in [s, e])
 // A degree above the term's height (no z reaches it) is taken as h: the point where the term
 // reaches its height (fuzzylite 8 extrapolates Ramp and Concave there and gives NaN for the
 // others). A sigmoid reaches h only at infinity: at w >= h (and at w <= 0, where it reaches 0)
@@ -162,6 +203,13 @@ Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
       const Scalar z = h * (p[0] - p[1]) / w + Scalar(2) * p[1] - p[0];
       return p[0] <= p[1] ? detail::min(z, p[1]) : detail::max(z, p[1]);
     }
+    case Shape::Arc: {
+      const Scalar r = p[1] - p[0];
+      const Scalar c = p[0] + r;
+      const Scalar a = w * r / h;
+      const Scalar d = std::sqrt(detail::max(Scalar(0), r * r - a * a));
+      return within(p[0] < p[1] ? c - d : c + d);
+    }
     default:
       return t(w, points);
   }
@@ -191,7 +239,7 @@ bool compare(Comparison c, Scalar a, Scalar b) noexcept {
 // matters when antecedents test outputs: General, Threshold, First and Last evaluate and trigger
 // rule by rule (Last from the block's last rule up), so a rule sees the conclusions of the rules
 // triggered before it; Proportional, Highest and Lowest evaluate all of the block's rules first.
-template <class Scalar, class Model>
+template <bool Power, class Scalar, class Model>
 std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, std::size_t b,
                            std::size_t n, bool disabled) noexcept {
   const Scalar zero = Scalar(0);
@@ -200,7 +248,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
   const Scalar threshold = static_cast<Scalar>(block.threshold);
   const auto fire = [&](std::size_t r) {
     ws.order[n++] = static_cast<std::uint32_t>(r);
-    if (model.chained) trigger(model, ws, r);
+    if (model.chained) trigger<Power>(model, ws, r);
   };
   switch (block.activation) {
     case ActivationMethod::General:
@@ -212,7 +260,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       for (std::size_t k = 0; k < model.num_rules; ++k) {
         const std::size_t r = last ? model.num_rules - 1 - k : k;
         if (!in_block(r)) continue;
-        const Scalar w = ws.strength[r] = rule_strength(model, ws, r, disabled);
+        const Scalar w = ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
         bool fires = w > zero;
         if (block.activation == ActivationMethod::Threshold)
           fires = fires && compare(block.comparison, w, threshold);
@@ -228,7 +276,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
     case ActivationMethod::Proportional: {
       Scalar sum = zero;
       for (std::size_t r = 0; r < model.num_rules; ++r)
-        if (in_block(r)) sum += ws.strength[r] = rule_strength(model, ws, r, disabled);
+        if (in_block(r)) sum += ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
         ws.strength[r] = ws.strength[r] / sum;
@@ -246,7 +294,7 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
       std::size_t size = 0;
       for (std::size_t r = 0; r < model.num_rules; ++r) {
         if (!in_block(r)) continue;
-        ws.strength[r] = rule_strength(model, ws, r, disabled);
+        ws.strength[r] = rule_strength<Power>(model, ws, r, disabled);
         if (!(ws.strength[r] > zero)) continue;
         ws.heap[size++] = static_cast<std::uint32_t>(r);
         std::push_heap(ws.heap, ws.heap + size, before);
@@ -262,14 +310,12 @@ std::size_t activate_block(const Model& model, const WorkspaceView<Scalar>& ws, 
   return n;
 }
 
-}  // namespace engine_detail
-
-// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
-// have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
-// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
-template <class Scalar, class Cap>
-Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
-                const Scalar* inputs, Scalar* outputs) noexcept {
+// fuzzy::evaluate; Power: the model holds Octave's power hedges, whose std::pow calls the other
+// instance leaves out of its loops (a call there costs the common case a quarter of its speed on
+// a Cortex-M4F, measured by embedded.rule_file_cortex_m4_qemu).
+template <bool Power, class Scalar, class Cap>
+Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
+                     const Scalar* inputs, Scalar* outputs) noexcept {
   for (std::size_t o = 0; o < model.num_outputs; ++o)
     outputs[o] = Scalar(0);
   for (std::size_t i = 0; i < model.num_inputs; ++i)
@@ -292,7 +338,7 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
       ws.degree[k] = Scalar(0);
   std::size_t fired_rules = 0;
   for (std::size_t b = 0; b < model.num_blocks; ++b)
-    fired_rules = engine_detail::activate_block(model, ws, b, fired_rules, disabled);
+    fired_rules = engine_detail::activate_block<Power>(model, ws, b, fired_rules, disabled);
 
   const bool merged = model.merges_activations();
   Status status = Status::Ok;
@@ -301,37 +347,36 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     if (!out.enabled) continue;  // 0, written above
     const bool sugeno = is_sugeno(out.defuzzifier);
     const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
+    const bool singletons = sugeno && out.merge_equal_singletons;
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
     bool fired = false;
     Scalar sum = Scalar(0);
     Scalar weights = Scalar(0);
     std::size_t n = 0;
-    if (merge)
+    if (merge || singletons)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
     for (std::size_t f = 0; f < fired_rules; ++f) {
       const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
-      Scalar degree = ws.strength[r];
+      Scalar running = ws.strength[r];
       for (std::size_t k = 0; k < rule.num_conclusions; ++k) {
         const Conclusion& c = model.conclusions[rule.first_conclusion + k];
         if (disabled && !model.outputs[c.output].enabled) continue;
-        degree = engine_detail::hedge_right_to_left(c.hedges, c.num_hedges, degree);
+        const Scalar degree = engine_detail::conclusion_degree<Power>(c, ws.strength[r], running);
         if (c.output != o) continue;
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
-        if (sugeno) {
+        if (singletons) {
+          // A term's value z is the same in every rule: its degrees aggregate first (folded
+          // from 0, the identity of every s-norm), equal values of other terms below.
+          ws.level[c.term] = apply(out.aggregation, ws.level[c.term], degree);
+        } else if (sugeno) {
           // Membership terms of a sized model hold no coefficients.
-          Scalar z = Scalar(0);
-          if (term.kind == OutputTermKind::Membership) {
-            z = engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points);
-          } else if (term.kind == OutputTermKind::Linear) {
-            for (std::size_t i = 0; i < model.num_inputs; ++i)
-              z += term.coefficients[i] * ws.input[i];
-            z += term.coefficients[model.num_inputs];
-          } else {
-            z = term.coefficients[0];
-          }
+          const Scalar z =
+              term.kind == OutputTermKind::Membership
+                  ? engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points)
+                  : engine_detail::sugeno_value(term, ws.input, model.num_inputs);
           sum += degree * z;
           weights += degree;
         } else if (merge) {
@@ -341,7 +386,29 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
         }
       }
     }
-    if (fired && sugeno) {
+    if (fired && singletons) {
+      // Octave's aggregate_output_sugeno: the singletons of equal z are one, of the aggregation
+      // of their degrees (a term's value is recomputed rather than stored: no scratch beyond
+      // one level per term).
+      for (std::size_t t = 0; t < out.num_terms; ++t) {
+        if (!(ws.level[t] > Scalar(0))) continue;
+        const Scalar z = engine_detail::sugeno_value(out.terms[t], ws.input, model.num_inputs);
+        for (std::size_t u = 0; u < t; ++u)
+          if (ws.level[u] > Scalar(0) &&
+              engine_detail::sugeno_value(out.terms[u], ws.input, model.num_inputs) == z) {
+            ws.level[u] = apply(out.aggregation, ws.level[u], ws.level[t]);
+            ws.level[t] = Scalar(0);
+            break;
+          }
+      }
+      for (std::size_t t = 0; t < out.num_terms; ++t)
+        if (ws.level[t] > Scalar(0)) {
+          sum +=
+              ws.level[t] * engine_detail::sugeno_value(out.terms[t], ws.input, model.num_inputs);
+          weights += ws.level[t];
+        }
+      y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
+    } else if (fired && sugeno) {
       y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
     } else if (fired) {
       if (merge)
@@ -385,6 +452,18 @@ Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scala
     outputs[o] = y;
   }
   return status;
+}
+
+}  // namespace engine_detail
+
+// Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
+// have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
+// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
+template <class Scalar, class Cap>
+Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
+                const Scalar* inputs, Scalar* outputs) noexcept {
+  return model.power_hedges ? engine_detail::evaluate_with<true>(model, ws, inputs, outputs)
+                            : engine_detail::evaluate_with<false>(model, ws, inputs, outputs);
 }
 
 // A model with its own workspace. For a fixed capacity the workspace is fixed too and nothing

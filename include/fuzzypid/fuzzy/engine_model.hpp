@@ -164,6 +164,10 @@ struct OutputSpec {
   int resolution = 100;         // samples of the integral defuzzifiers
   bool exact_centroid = false;  // Centroid in closed form instead of sampled
   SNorm aggregation = SNorm::Maximum;
+  // Octave's Sugeno aggregation (aggregate_output_sugeno): conclusions whose values z are equal
+  // are one singleton, of the `aggregation` of their degrees, before the weighted average or sum.
+  // Constant/linear terms only; false: every conclusion is a singleton of its own (fuzzylite).
+  bool merge_equal_singletons = false;
   std::size_t num_terms = 0;
   typename Cap::template Array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
   typename Cap::template Array<Name, Cap::terms> term_names{};
@@ -180,14 +184,21 @@ struct Token {
   std::uint8_t term = 0;   // index into the input's terms, or kAnyTerm
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};  // as written, left to right
+  // Octave's .fis hedge .dd (dd = 1..100): the degree raised to dd/10 before the hedges (which
+  // then hold at most `not`); 0: none. fuzzylite has no such hedge (docs/rule_files.md).
+  std::uint8_t power_tenths = 0;
 };
 
-// "output is [hedges] term".
+// "output is [hedges] term". Without a power, the hedges act on the rule's running degree, which
+// later conclusions of the rule inherit (fuzzylite's Consequent::modify). With Octave's power
+// hedge .dd (Sugeno outputs only), the conclusion's degree is the rule's strength raised to
+// 1/(dd/10), then the hedges, and the running degree is left alone (Octave's eval_rules_sugeno).
 struct Conclusion {
   std::uint8_t output = 0;
   std::uint8_t term = 0;
   std::uint8_t num_hedges = 0;
   std::array<Hedge, kMaxHedges> hedges{};
+  std::uint8_t power_tenths = 0;  // Octave's .fis hedge .dd; 0: none
 };
 
 template <class Scalar>
@@ -268,6 +279,9 @@ struct EngineModel {
   std::size_t num_conclusions = 0;
   std::size_t num_points = 0;
   bool chained = false;  // some antecedent tests an output (set by add_rule)
+  // Some token or conclusion holds Octave's power hedge (set by add_rule): evaluation then takes
+  // the instance that computes them (fuzzy::evaluate).
+  bool power_hedges = false;
   template <class T, std::size_t N>
   using Array = typename Cap::template Array<T, N>;
   Array<InputSpec<Scalar, Cap>, Cap::inputs> inputs{};
@@ -296,10 +310,13 @@ struct EngineModel {
     r.weight = weight;
     for (std::size_t k = 0; k < n_tokens; ++k) {
       chained = chained || antecedent[k].kind == Token::Kind::OutputProposition;
+      power_hedges = power_hedges || antecedent[k].power_tenths != 0;
       tokens[num_tokens++] = antecedent[k];
     }
-    for (std::size_t k = 0; k < n_conclusions; ++k)
+    for (std::size_t k = 0; k < n_conclusions; ++k) {
+      power_hedges = power_hedges || then[k].power_tenths != 0;
       conclusions[num_conclusions++] = then[k];
+    }
     return true;
   }
 
@@ -450,13 +467,16 @@ struct EngineModel {
         if (membership != tsukamoto && sugeno)
           return {
               "Sugeno defuzzifiers need constant/linear terms (or, for Tsukamoto, monotonic "
-              "Ramp, Sigmoid, SShape, ZShape or Concave terms), not a mix",
+              "Ramp, Sigmoid, SShape, ZShape, Concave or Arc terms), not a mix",
               o, ModelError::Where::Output};
         if (!sugeno && !membership)
           return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
                   ModelError::Where::Output};
+        if (out.merge_equal_singletons && (membership || !out.has_aggregation))
+          return {"merging equal singletons needs constant/linear terms and an aggregation", o,
+                  ModelError::Where::Output};
         if (tsukamoto && !is_monotonic(term.membership))
-          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape or Concave", o,
+          return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape, Concave or Arc", o,
                   ModelError::Where::Output};
         if (membership && !term_ok(term.membership))
           return {"invalid output term parameters", o, ModelError::Where::Output};
@@ -488,6 +508,10 @@ struct EngineModel {
           const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
           if (!any && tok.term >= inputs[tok.input].num_terms)
             return {"rule names an unknown input term", r, ModelError::Where::Rule};
+          if (tok.power_tenths > 100 || (any && tok.power_tenths != 0) ||
+              (tok.power_tenths != 0 && !power_hedges))
+            return {"a power hedge must be .01 to 1.00 on a term, with power_hedges set", r,
+                    ModelError::Where::Rule};
           ++depth;
         } else if (tok.kind == Token::Kind::OutputProposition) {
           if (!chained || tok.input >= num_outputs || tok.num_hedges > kMaxHedges)
@@ -495,6 +519,10 @@ struct EngineModel {
           const bool any = tok.num_hedges > 0 && tok.hedges[tok.num_hedges - 1] == Hedge::Any;
           if (!any && tok.term >= outputs[tok.input].num_terms)
             return {"rule names an unknown output term in its antecedent", r,
+                    ModelError::Where::Rule};
+          if (tok.power_tenths > 100 || (any && tok.power_tenths != 0) ||
+              (tok.power_tenths != 0 && !power_hedges))
+            return {"a power hedge must be .01 to 1.00 on a term, with power_hedges set", r,
                     ModelError::Where::Rule};
           ++depth;
         } else {
@@ -518,6 +546,11 @@ struct EngineModel {
         if (!is_sugeno(outputs[c.output].defuzzifier) && !block.has_implication)
           return {"a Mamdani output needs an implication operator in the rule's block", r,
                   ModelError::Where::Rule};
+        if (c.power_tenths > 100 ||
+            (c.power_tenths != 0 && (!is_sugeno(outputs[c.output].defuzzifier) || !power_hedges)))
+          return {
+              "a power hedge (.01 to 1.00, with power_hedges set) concludes on Sugeno outputs only",
+              r, ModelError::Where::Rule};
       }
     }
     return {};
@@ -559,6 +592,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
   to.num_conclusions = from.num_conclusions;
   to.num_points = from.num_points;
   to.chained = from.chained;
+  to.power_hedges = from.power_hedges;
   if (!reserve_exact(to.inputs, from.num_inputs) || !reserve_exact(to.outputs, from.num_outputs) ||
       !reserve_exact(to.rules, from.num_rules) || !reserve_exact(to.blocks, from.num_blocks) ||
       !reserve_exact(to.tokens, from.num_tokens) ||
@@ -599,6 +633,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     b.defuzzifier = a.defuzzifier;
     b.resolution = a.resolution;
     b.exact_centroid = a.exact_centroid;
+    b.merge_equal_singletons = a.merge_equal_singletons;
     b.aggregation = a.aggregation;
     b.num_terms = a.num_terms;
     for (std::size_t t = 0; t < a.num_terms; ++t) {

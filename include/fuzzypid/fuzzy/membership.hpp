@@ -1,45 +1,47 @@
 // Membership functions: the degree to which a crisp value belongs to a fuzzy set.
 //
-// Every shape of fuzzylite 6 is here, with fuzzylite's formula evaluated in fuzzylite's operation
-// order (its tolerance macheps set to 0), so a loaded rule base reproduces fuzzylite bit for bit.
+// Every shape of fuzzylite 6 is here, and fuzzylite 8's Arc and SemiEllipse, with fuzzylite's
+// formula evaluated in fuzzylite's operation order (its tolerance macheps set to 0), so a loaded
+// rule base reproduces fuzzylite bit for bit.
 // Each term has a height h (fuzzylite's optional last parameter; 1 unless stated) that scales it.
 //
-//   shape              parameters p                     mu(x)                            MATLAB
-//   Triangle           a b c                            0 outside [a, c], 1 at b,        trimf
-//                                                       (x-a)/(b-a) rising, (c-x)/(c-b) falling
-//   Trapezoid          a b c d                          0 outside [a, d], 1 on [b, c],   trapmf
-//                                                       linear edges (an infinite foot = shoulder)
-//   Rectangle          start end                        1 on [start, end], else 0        -
-//   Gaussian           mean sigma                       exp(-(x-mean)^2 / (2 sigma^2))   gaussmf
-//   [sigma mean] GaussianProduct    meanA sigmaA meanB sigmaB        left half of A (x < meanA), 1,
-//   gauss2mf [sA mA sB mB]
-//                                                       right half of B (x > meanB)
-//   Bell               center width slope               1 / (1 + |(x-center)/width|^(2 slope))
-//                                                                                        gbellmf
-//                                                                                        [width
-//                                                                                        slope
-//                                                                                        center]
-//   PiShape            a b c d                          S from a to b, 1, Z from c to d  pimf
-//   SShape             start end                        spline 0 -> 1                    smf
-//   ZShape             start end                        spline 1 -> 0                    zmf
-//   Sigmoid            inflection slope                 1 / (1 + exp(-slope (x - infl))) sigmf
-//   [slope infl] SigmoidDifference  left rising falling right        |sig(rising, left) -
-//   sig(falling, right)|
-//                                                                                        dsigmf [a1
-//                                                                                        c1 a2 c2]
-//   SigmoidProduct     left rising falling right        sig(rising, left) sig(falling, right)
-//                                                                                        psigmf [a1
-//                                                                                        c1 a2 c2]
-//   Ramp               start end                        linear 0 at start -> 1 at end linsmf/linzmf
-//                                                       (falling when end < start)
-//   Cosine             center width                     (1 + cos(2 pi (x-center)/width)) / 2
-//                                                       on [center - width/2, center + width/2]
-//   Concave            inflection end                   (end-infl) / (2 end - infl - x) for x < end
-//                                                       (increasing; mirrored when infl > end),
-//                                                       else 1
-//   Spike              center width                     exp(-|10 (x - center) / width|)
-//   Binary             start direction                  1 on the side of start towards direction
-//   Discrete           x1 y1 x2 y2 ...                  linear interpolation, ends held
+//   shape              parameters p            mu(x) / h                                 MATLAB
+//   Triangle           a b c                   0 outside [a, c], 1 at b, (x-a)/(b-a)      trimf
+//                                              rising, (c-x)/(c-b) falling
+//   Trapezoid          a b c d                 0 outside [a, d], 1 on [b, c], linear      trapmf
+//                                              edges (an infinite foot = shoulder)
+//   Rectangle          start end               1 on [start, end], else 0                  -
+//   Gaussian           mean sigma              exp(-(x-mean)^2 / (2 sigma^2))             gaussmf
+//                                                                                  [sigma mean]
+//   GaussianProduct    meanA sigmaA            left half of A (x < meanA), 1, right half  gauss2mf
+//                      meanB sigmaB            of B (x > meanB)                  [sA mA sB mB]
+//   Bell               center width slope      1 / (1 + |(x-center)/width|^(2 slope))     gbellmf
+//                                                                        [width slope center]
+//   PiShape            a b c d                 S from a to b, 1, Z from c to d            pimf
+//   SShape             start end               spline 0 -> 1                              smf
+//   ZShape             start end               spline 1 -> 0                              zmf
+//   Sigmoid            inflection slope        1 / (1 + exp(-slope (x - infl)))           sigmf
+//                                                                                  [slope infl]
+//   SigmoidDifference  left rising             |sig(rising, left) - sig(falling, right)|  dsigmf
+//                      falling right                                             [a1 c1 a2 c2]
+//   SigmoidProduct     left rising             sig(rising, left) sig(falling, right)      psigmf
+//                      falling right                                             [a1 c1 a2 c2]
+//   Ramp               start end               linear 0 at start -> 1 at end (falling     linsmf/
+//                                              when end < start)                          linzmf
+//   Cosine             center width            (1 + cos(2 pi (x-center)/width)) / 2 on    -
+//                                              [center - width/2, center + width/2]
+//   Concave            inflection end          (end-infl) / (2 end - infl - x) for        -
+//                                              x < end (increasing; mirrored when
+//                                              infl > end), else 1
+//   Spike              center width            exp(-|10 (x - center) / width|)            -
+//   Binary             start direction         1 on the side of start towards direction   -
+//   Discrete           x1 y1 x2 y2 ...         linear interpolation, ends held            -
+//   Arc (fuzzylite 8)  start end               sqrt(r^2 - (x-c)^2) / |r| from start to    -
+//                                              end, r = end - start, c = start + r;
+//                                              1 beyond end, 0 before start
+//   SemiEllipse        start end               sqrt(r^2 - (x-c)^2) / r on [s, e] =        -
+//     (fuzzylite 8)                            [min, max of start, end], r = (e - s)/2,
+//                                              c = s + r; else 0
 //   LeftShoulder, RightShoulder, Singleton: the paper's partitions (no fuzzylite counterpart).
 //
 // Every function is noexcept and total. A NaN input has membership 0 (fuzzylite returns NaN; the
@@ -225,6 +227,38 @@ Scalar spike(Scalar center, Scalar width, Scalar h, Scalar x) noexcept {
   return h * std::exp(-std::fabs(Scalar(10) / width * (x - center)));
 }
 
+// fuzzylite 8's Arc: a quarter circle of radius r = end - start centred at c = start + r (= end
+// up to rounding), rising from 0 at start to h at end (falling when end < start), h beyond end,
+// 0 before start; 0 everywhere when start = end. fuzzylite 8 computes c = start + r and takes the
+// arc on [start, c]; so do we. Two roundings are kept away: a point within an ulp of the stretch's
+// ends where r^2 - (x - c)^2 rounds below 0 (fuzzylite 8: sqrt of a negative, NaN) gives the
+// arc's end value, and a point between c and end (an ulp wide, fuzzylite 8: 0) gives h.
+template <class Scalar>
+Scalar arc(Scalar start, Scalar end, Scalar h, Scalar x) noexcept {
+  if (x != x) return Scalar(0);
+  const Scalar r = end - start;
+  const Scalar c = start + r;
+  const bool rising = start < end;
+  if (!rising && !(start > end)) return h * Scalar(0);
+  if (rising ? x < start : x > start) return h * Scalar(0);
+  if (rising ? x > c : x < c) return h * Scalar(1);
+  return h * (std::sqrt(detail::max(Scalar(0), r * r - (x - c) * (x - c))) / std::fabs(r));
+}
+
+// fuzzylite 8's SemiEllipse: the upper half of an ellipse over [s, e] = [min(start, end),
+// max(start, end)] of height h, h sqrt(r^2 - (x - c)^2) / r with r = (e - s) / 2, c = s + r,
+// 0 outside [s, e]. A rounding of r^2 - (x - c)^2 below 0 at the ends gives 0 (fuzzylite 8: NaN).
+template <class Scalar>
+Scalar semi_ellipse(Scalar start, Scalar end, Scalar h, Scalar x) noexcept {
+  if (x != x) return Scalar(0);
+  const Scalar s = detail::min(start, end);
+  const Scalar e = detail::max(start, end);
+  if (!(x >= s && x <= e)) return h * Scalar(0);
+  const Scalar r = (e - s) / Scalar(2);
+  const Scalar c = s + r;
+  return h * (std::sqrt(detail::max(Scalar(0), r * r - (x - c) * (x - c))) / r);
+}
+
 // xy: count pairs (x ascending).
 template <class Scalar>
 constexpr Scalar discrete(const Scalar* xy, std::size_t count, Scalar h, Scalar x) noexcept {
@@ -330,6 +364,8 @@ enum class Shape : std::uint8_t {
   Spike,              // p = {center, width}
   Binary,             // p = {start, direction}
   Discrete,           // points[first .. first + count) of a pool of (x, y) pairs
+  Arc,                // p = {start, end}
+  SemiEllipse,        // p = {start, end}
 };
 
 // A membership function chosen at run time: one of the shapes above with its parameters and
@@ -415,6 +451,10 @@ struct Term {
         return shape::binary(p[0], p[1], h, x);
       case Shape::Discrete:
         return points == nullptr ? Scalar(0) : shape::discrete(points + 2 * first, count, h, x);
+      case Shape::Arc:
+        return shape::arc(p[0], p[1], h, x);
+      case Shape::SemiEllipse:
+        return shape::semi_ellipse(p[0], p[1], h, x);
     }
     return Scalar(0);
   }
@@ -436,12 +476,14 @@ struct Term {
       case Shape::Spike:
         return p[0];
       case Shape::RightShoulder:
+      case Shape::Arc:
         return p[1];
       case Shape::Bell:
         return p[2];
       case Shape::GaussianProduct:
         return (p[0] + p[2]) / Scalar(2);
       case Shape::Rectangle:
+      case Shape::SemiEllipse:
         return (p[0] + p[1]) / Scalar(2);
       default:
         return p[0];
@@ -495,6 +537,10 @@ struct Term {
         return two && p[0] != p[1];
       case Shape::Discrete:
         return count >= 1;
+      case Shape::Arc:  // start = end is 0 everywhere, as fuzzylite 8 computes it
+        return two;
+      case Shape::SemiEllipse:  // start = end would divide 0 by 0 (fuzzylite 8: NaN at start)
+        return two && p[0] != p[1];
     }
     return false;
   }
