@@ -15,29 +15,29 @@ fail() {
   exit 1
 }
 cond="$src/tests/sim/data/two_conditions.toml"
-tune="$fuzzypid tune --family pid --conditions $cond --budget 600 --population 20 --seed 1 --threads 2 --quiet"
+tune="$fuzzypid tune --family pid --conditions $cond --population 20 --seed 1 --threads 2 --quiet"
 # The smallest disk margin over the joints of a controller file's [margins].
 min_disk() {
   sed -n 's/^disk_margin = \[\(.*\)\]$/\1/p' "$1" | tr ',' '\n' | sort -g | head -n 1
 }
-$tune --out free.toml 2>err || fail "free tune: $(cat err)"
+$tune --budget 400 --out free.toml 2>err || fail "free tune: $(cat err)"
 free=$(min_disk free.toml)
 [ -n "$free" ] || fail "free.toml has no [margins] disk_margin"
 awk -v d="$free" 'BEGIN { exit !(d < 1.2) }' || fail "the free tune already keeps $free >= 1.2"
-$tune --min-disk-margin 1.2 --out kept.toml 2>err || fail "tune --min-disk-margin 1.2: $(cat err)"
+$tune --budget 400 --min-disk-margin 1.2 --out kept.toml 2>err || fail "tune --min-disk-margin 1.2: $(cat err)"
 kept=$(min_disk kept.toml)
 awk -v d="$kept" 'BEGIN { exit !(d >= 1.2) }' || fail "disk margin $kept < 1.2"
 grep -qx 'min_disk_margin = 1.2' kept.toml || fail "the requirement is not recorded"
 grep -qx 'certified = true' kept.toml || fail "not certified: $(grep verdict kept.toml)"
 grep -q '^assumptions = "linear joint' kept.toml || fail "no assumptions recorded"
 # Nothing reaches alpha = 1.99 (+-39 dB): exit 1, no file.
-$tune --min-disk-margin 1.99 --out never.toml 2>err
+$tune --budget 100 --min-disk-margin 1.99 --out never.toml 2>err
 code=$?
 [ "$code" -eq 1 ] || fail "impossible requirement: exit $code"
 grep -q "no candidate within the budget kept the required margins" err || fail "$(cat err)"
 [ -e never.toml ] && fail "impossible requirement: never.toml was written"
 # Bad values are usage errors.
-$tune --min-disk-margin -1 --out bad.toml 2>err
+$tune --budget 100 --min-disk-margin -1 --out bad.toml 2>err
 [ $? -eq 2 ] || fail "--min-disk-margin -1 accepted"
 # sim_ab prints the record.
 "$sim_ab" --controller kept.toml --out run 2>err >/dev/null || fail "sim_ab: $(cat err)"
