@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <thread>
@@ -392,8 +391,7 @@ int run_tune(const TuneOptions& t) {
   // included), recorded in [margins]; a result below a required margin is not written.
   {
     sim::CertifyOptions co;
-    for (const sim::Condition& c : training->conditions)
-      co.delay_s = std::max(co.delay_s, c.effects.delay_s);
+    co.delay_s = sim::largest_delay_s(training->conditions);
     const auto cert =
         sim::certify(result->controller, training->conditions, *experiments, co, error);
     if (!cert) {
@@ -417,13 +415,8 @@ int run_tune(const TuneOptions& t) {
         training->conditions.end() - static_cast<std::ptrdiff_t>(t.validation));
     const auto screened =
         opt.objective.requires_margins()
-            ? sim::certify(
-                  result->controller, trained, *experiments,
-                  tune::screening_options(std::accumulate(trained.begin(), trained.end(), 0.0,
-                                                          [](double d, const sim::Condition& c) {
-                                                            return std::max(d, c.effects.delay_s);
-                                                          })),
-                  error)
+            ? sim::certify(result->controller, trained, *experiments,
+                           tune::screening_options(sim::largest_delay_s(trained)), error)
             : std::nullopt;
     if (screened && tune::margin_shortfall(*screened, opt.objective) > 0.0) {
       std::fprintf(stderr,
@@ -527,8 +520,7 @@ std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
   const auto experiments = sim::ExperimentSet::create(conditions, sim::ExperimentOptions{}, error);
   if (!experiments) return std::nullopt;
   sim::CertifyOptions co;
-  for (const sim::Condition& c : conditions)
-    co.delay_s = std::max(co.delay_s, c.effects.delay_s);
+  co.delay_s = sim::largest_delay_s(conditions);
   const auto cert = sim::certify(spec, conditions, *experiments, co, error);
   if (!cert) return std::nullopt;
   ctl::MarginRecord r = sim::margin_record(*cert);

@@ -180,11 +180,9 @@ LoopResult run_loop(sim::ClosedLoop& loop, sim::FaultMonitor& faults,
       const double err = std::fabs(t.theta_d[j] - t.theta[j]);
       if (err > r.max_abs_error_rad) r.max_abs_error_rad = err;
     }
-    std::array<bool, robot::kNumJoints> at_limit{};
-    for (std::size_t j = 0; j < robot::kNumJoints; ++j)
-      at_limit[j] = loop.plant().saturated()[j] || std::fabs(loop.plant().applied_torque()[j]) >=
-                                                       (1.0 - 1e-9) * torque_limit_nm[j];
-    (void)faults.observe(t.t_s, t.theta_d, t.theta, loop.plant().applied_torque(), at_limit);
+    (void)faults.observe(t.t_s, t.theta_d, t.theta, loop.plant().applied_torque(),
+                         sim::at_torque_limit(loop.plant().applied_torque(),
+                                              loop.plant().saturated(), torque_limit_nm));
     const std::int64_t done = now_ns();
 
     g_compute.record(done - woke);

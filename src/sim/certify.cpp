@@ -104,7 +104,72 @@ GainBox gain_box(const ControllerSpec& spec, const std::vector<GainPoint>& point
   return box;
 }
 
+// u in torque per unit of the controller's output: J^ with acceleration gains, 1 with torque.
+double torque_per_unit(const ControllerSpec& spec, const PlantGroup& g) {
+  return spec.units.gains == controller::GainUnits::Acceleration ? g.nominal_inertia_kgm2 : 1.0;
+}
+
+// The loop of a group's plants with the controller's PID options and the delay; its gains, plant
+// gain and damping are left to the caller.
+JointLoop group_loop(const ControllerSpec& spec, const PlantGroup& g, double delay_s) {
+  JointLoop loop;
+  loop.tick_s = g.tick_s;
+  loop.derivative_filter_s = spec.pid.derivative_filter_s;
+  loop.derivative = spec.pid.derivative;
+  loop.torque_bandwidth_hz = g.torque_bandwidth_hz;
+  set_delay(loop, delay_s);
+  return loop;
+}
+
+// One switching loop per tick, J^ and kind of current loop (ideal or not) among a joint's plant
+// groups: the ranges of their plant gains, dampings and bandwidths merged, the gains in `box`.
+std::vector<SwitchingLoop> switching_loops(const ControllerSpec& spec,
+                                           const std::vector<PlantGroup>& groups,
+                                           const GainBox& box, double delay_s) {
+  std::vector<SwitchingLoop> sets;
+  std::vector<double> nominal;  // J^ of each set
+  for (const PlantGroup& g : groups) {
+    const double c_lo = torque_per_unit(spec, g) / g.inertia_max;
+    const double c_hi = torque_per_unit(spec, g) / g.inertia_min;
+    const double a_lo = g.damping_min / g.inertia_max, a_hi = g.damping_max / g.inertia_min;
+    const double w = g.torque_bandwidth_hz;
+    std::size_t k = 0;
+    while (k < sets.size() &&
+           !(sets[k].loop.tick_s == g.tick_s && nominal[k] == g.nominal_inertia_kgm2 &&
+             (sets[k].torque_bandwidth_max_hz > 0.0) == (w > 0.0)))
+      ++k;
+    if (k == sets.size()) {
+      SwitchingLoop set;
+      set.loop = group_loop(spec, g, delay_s);
+      set.gains = box;
+      set.plant_gain_min = c_lo;
+      set.plant_gain_max = c_hi;
+      set.damping_min_per_s = a_lo;
+      set.damping_max_per_s = a_hi;
+      set.torque_bandwidth_min_hz = set.torque_bandwidth_max_hz = w;
+      sets.push_back(set);
+      nominal.push_back(g.nominal_inertia_kgm2);
+      continue;
+    }
+    SwitchingLoop& s = sets[k];
+    s.plant_gain_min = std::min(s.plant_gain_min, c_lo);
+    s.plant_gain_max = std::max(s.plant_gain_max, c_hi);
+    s.damping_min_per_s = std::min(s.damping_min_per_s, a_lo);
+    s.damping_max_per_s = std::max(s.damping_max_per_s, a_hi);
+    s.torque_bandwidth_min_hz = std::min(s.torque_bandwidth_min_hz, w);
+    s.torque_bandwidth_max_hz = std::max(s.torque_bandwidth_max_hz, w);
+  }
+  return sets;
+}
+
 }  // namespace
+
+double largest_delay_s(const std::vector<Condition>& conditions) noexcept {
+  double d = 0.0;
+  for (const Condition& c : conditions)
+    d = std::max(d, c.effects.delay_s);
+  return d;
+}
 
 MarginSummary summarize(const Certificate& cert) {
   MarginSummary s;
@@ -231,19 +296,11 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
       inertias.erase(std::unique(inertias.begin(), inertias.end()), inertias.end());
       std::vector<double> dampings{g.damping_min, g.damping_max};
       dampings.erase(std::unique(dampings.begin(), dampings.end()), dampings.end());
-      const double torque_per_u = controller.units.gains == controller::GainUnits::Acceleration
-                                      ? g.nominal_inertia_kgm2
-                                      : 1.0;
       for (double j : inertias)
         for (double b : dampings) {
-          JointLoop plant;
-          plant.tick_s = g.tick_s;
-          plant.plant_gain = torque_per_u / j;
+          JointLoop plant = group_loop(controller, g, options.delay_s);
+          plant.plant_gain = torque_per_unit(controller, g) / j;
           plant.damping_per_s = b / j;
-          plant.derivative_filter_s = controller.pid.derivative_filter_s;
-          plant.derivative = controller.pid.derivative;
-          plant.torque_bandwidth_hz = g.torque_bandwidth_hz;
-          set_delay(plant, options.delay_s);
           // The plant's frequency response once; each gain triple only recombines it.
           const detail::PlantGrid grid = detail::plant_grid(plant, bulk);
           for (const GainPoint& p : (*points)[i]) {
@@ -276,53 +333,15 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
     jc.plant_groups = groups[i].size();
     jc.lyapunov.reason = "not computed";
     if (!options.lyapunov) continue;
-    // One certificate per tick, J^ and kind of current loop (ideal or not): the inertia,
-    // damping and bandwidth ranges of its plant groups merged.
-    std::vector<SwitchingLoop> sets;
-    std::vector<double> set_nominal;  // J^ of each set
-    for (const PlantGroup& g : groups[i]) {
-      const double torque_per_u = controller.units.gains == controller::GainUnits::Acceleration
-                                      ? g.nominal_inertia_kgm2
-                                      : 1.0;
-      const double c_lo = torque_per_u / g.inertia_max, c_hi = torque_per_u / g.inertia_min;
-      const double a_lo = g.damping_min / g.inertia_max, a_hi = g.damping_max / g.inertia_min;
-      const double w = g.torque_bandwidth_hz;
-      std::size_t k = 0;
-      while (k < sets.size() &&
-             !(sets[k].loop.tick_s == g.tick_s && set_nominal[k] == g.nominal_inertia_kgm2 &&
-               (sets[k].torque_bandwidth_max_hz > 0.0) == (w > 0.0)))
-        ++k;
-      if (k == sets.size()) {
-        SwitchingLoop set;
-        set.loop.tick_s = g.tick_s;
-        set.loop.derivative_filter_s = controller.pid.derivative_filter_s;
-        set.loop.derivative = controller.pid.derivative;
-        set_delay(set.loop, options.delay_s);
-        set.gains = jc.gain_box;
-        set.plant_gain_min = c_lo;
-        set.plant_gain_max = c_hi;
-        set.damping_min_per_s = a_lo;
-        set.damping_max_per_s = a_hi;
-        set.torque_bandwidth_min_hz = set.torque_bandwidth_max_hz = w;
-        sets.push_back(set);
-        set_nominal.push_back(g.nominal_inertia_kgm2);
-        continue;
-      }
-      SwitchingLoop* const it = &sets[k];
-      it->plant_gain_min = std::min(it->plant_gain_min, c_lo);
-      it->plant_gain_max = std::max(it->plant_gain_max, c_hi);
-      it->damping_min_per_s = std::min(it->damping_min_per_s, a_lo);
-      it->damping_max_per_s = std::max(it->damping_max_per_s, a_hi);
-      it->torque_bandwidth_min_hz = std::min(it->torque_bandwidth_min_hz, w);
-      it->torque_bandwidth_max_hz = std::max(it->torque_bandwidth_max_hz, w);
-    }
     bool first_set = true;
-    for (const SwitchingLoop& set : sets) {
+    for (const SwitchingLoop& set :
+         switching_loops(controller, groups[i], jc.gain_box, options.delay_s)) {
       const LyapunovCertificate lc = common_lyapunov(set);
       if (first_set || !lc.certified || lc.contraction > jc.lyapunov.contraction) jc.lyapunov = lc;
       first_set = false;
       if (!lc.certified) break;  // the joint is not certified: the first failing set says why
     }
+    jc.certified = jc.stable && jc.worst_disk.margins.disk_margin > 0.0 && jc.lyapunov.certified;
   }
   std::string failing;
   for (std::size_t i = 0; i < robot::kNumJoints && failing.empty(); ++i)

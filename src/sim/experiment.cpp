@@ -313,12 +313,8 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
     const TickResult r = loop->tick(k, advance);
     const bool controller_fault = is_fault(r.command.status);
     if (controller_fault) ++result.controller_faults;
-    // At a limit: clamped by the plant, or held there by the controller's own output limit (the
-    // plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
-    std::array<bool, kJoints> at_limit{};
-    for (std::size_t i = 0; i < kJoints; ++i)
-      at_limit[i] = loop->plant().saturated()[i] || std::fabs(loop->plant().applied_torque()[i]) >=
-                                                        (1.0 - 1e-9) * torque_limit_nm[i];
+    const std::array<bool, kJoints> at_limit =
+        at_torque_limit(loop->plant().applied_torque(), loop->plant().saturated(), torque_limit_nm);
     if (faults.observe(r.t_s, r.theta_d, r.theta, loop->plant().applied_torque(), at_limit) ||
         controller_fault)
       ++result.fault_ticks;

@@ -39,17 +39,16 @@ Zoh zoh(double a, double h) {
 }
 
 // A delay of (m + f) ticks: over each tick the plant sees u_{k−m−1} for f h, then u_{k−m}, so
-// x_{k+1} = Ad x_k + g1 u_{k−m} + g0 u_{k−m−1} (per unit of c).
+// x_{k+1} = Ad x_k + g1 u_{k−m} + g0 u_{k−m−1} (per unit of c; the whole ticks m only shift
+// which commands those are).
 struct DelayedInput {
-  int m = 0;
   double g1t = 0.0, g1w = 0.0;  // of u_{k−m}: ∫ over the last (1 − f) h
   double g0t = 0.0, g0w = 0.0;  // of u_{k−m−1}: over the first f h, carried to the tick's end
 };
 
-DelayedInput delayed_input(double a, double h, int m, double f) {
+DelayedInput delayed_input(double a, double h, double f) {
   const Zoh last = zoh(a, (1.0 - f) * h), first = zoh(a, f * h);
   DelayedInput d;
-  d.m = m;
   d.g1t = last.bt;
   d.g1w = last.bw;
   d.g0t = first.bt + last.p * first.bw;
@@ -132,7 +131,7 @@ DiscretePlant discretise(const JointLoop& loop, double plant_gain, double fracti
     return d;
   }
   const Zoh z = zoh(a, h);
-  const DelayedInput in = delayed_input(a, h, 0, fraction);
+  const DelayedInput in = delayed_input(a, h, fraction);
   d.phi = Eigen::Matrix2d{{1.0, z.p}, {0.0, z.q}};
   d.g1 = c * Eigen::Vector2d{in.g1t, in.g1w};
   d.g0 = c * Eigen::Vector2d{in.g0t, in.g0w};

@@ -442,8 +442,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   if (o.requires_margins()) {
     ranges = sim::plant_ranges(data.training, data.training_ex, error);
     if (!ranges) return std::nullopt;
-    for (const sim::Condition& c : data.training)
-      delay_s = std::max(delay_s, c.effects.delay_s);
+    delay_s = sim::largest_delay_s(data.training);
   }
   const double infeasible_cost = static_cast<double>(data.training.size() + 1) * o.fault_cost;
   const auto objective = [&](const std::vector<double>& x) {

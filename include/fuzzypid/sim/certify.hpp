@@ -78,6 +78,8 @@ struct JointCertificate {
   GainBox gain_box{};
   LyapunovCertificate lyapunov{};
   std::size_t plant_groups = 0;
+  // Stable at every evaluated loop with a positive disk margin, and the certificate above.
+  bool certified = false;
 };
 
 struct Certificate {
@@ -102,6 +104,9 @@ struct MarginSummary {
 
 // The record a controller file keeps of `cert` (its conditions and set left empty).
 [[nodiscard]] controller::MarginRecord margin_record(const Certificate& cert);
+
+// The delay certify assumes for a set of conditions: the largest of their delay_s, s (0: none).
+[[nodiscard]] double largest_delay_s(const std::vector<Condition>& conditions) noexcept;
 
 // The plants one joint meets at one tick, one nominal inertia J^ and one current loop: the ranges
 // of its effective inertia and viscous friction over the conditions.

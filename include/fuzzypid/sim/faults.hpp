@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -49,6 +50,17 @@ struct TrackingFaults {
   std::size_t ticks = 0;  // ticks on which any joint faulted (either kind)
   [[nodiscard]] bool any() const noexcept { return ticks != 0; }
 };
+
+// Which joints are at a torque limit: clamped by the plant, or held there by the controller's own
+// output limit (the plant's limit over J^_i, so that J^_i u_i lands on it up to rounding).
+[[nodiscard]] inline std::array<bool, robot::kNumJoints> at_torque_limit(
+    const robot::JointVector& applied_nm, const std::array<bool, robot::kNumJoints>& clamped,
+    const robot::JointVector& limit_nm) noexcept {
+  std::array<bool, robot::kNumJoints> out{};
+  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+    out[i] = clamped[i] || std::fabs(applied_nm[i]) >= (1.0 - 1e-9) * limit_nm[i];
+  return out;
+}
 
 class FaultMonitor {
  public:
