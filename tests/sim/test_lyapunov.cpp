@@ -215,6 +215,7 @@ TEST(CommonLyapunov, ABoxThatSwitchingDestabilisesIsRefusedAndHasADivergingSeque
   bool diverged = false;
   for (unsigned pattern = 0; pattern < 32 && !diverged; ++pattern) {
     std::vector<Tick> ticks;
+    ticks.reserve(500);
     for (int k = 0; k < 500; ++k)
       ticks.push_back({(pattern >> (k % 5)) & 1u ? s.gains.high : s.gains.low, 1.0});
     diverged = !(run(s, ticks) < 1e3);
