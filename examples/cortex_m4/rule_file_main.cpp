@@ -1,8 +1,8 @@
 // A 6-joint fuzzy PID whose supervisor is a rule file, in float, closed around the simulated plant
 // of harness.hpp, on a Cortex-M4F (QEMU mps2-an386, semihosting) or on the host. The controller
 // comes from a header written by export-header for tests/sim/data/engine_fuzzy.toml (the paper's
-// rules read from rulebases/paper.fll): the rule base is constexpr data for the fixed-capacity
-// engine, so the target holds no parser and no heap. Prints what main.cpp prints for its fuzzy
+// rules read from rulebases/paper.fll): the rule base written out as straight-line code, so the
+// target holds no parser, no interpreter and no heap. Prints what main.cpp prints for its fuzzy
 // controller: one line of six command bits per tick, then '#' summary lines (on the Cortex-M4F
 // with the instructions per 6-joint tick).
 //

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
+#include "straight_line_supervisor.hpp"
 
 namespace fuzzypid::codegen {
 
@@ -50,6 +51,21 @@ std::string comment_safe(std::string s) {
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';
   return s;
+}
+
+// A fuzzy::Name as a braced list of character literals (NUL-padded by the aggregate).
+std::string name_literal(const fuzzy::Name& n) {
+  std::string s = "{{";
+  for (std::size_t k = 0; k < n.size() && n[k] != '\0'; ++k) {
+    const auto c = static_cast<unsigned char>(n[k]);
+    char buf[16];
+    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\')
+      std::snprintf(buf, sizeof buf, "'%c', ", c);
+    else
+      std::snprintf(buf, sizeof buf, "'\\x%02x', ", c);
+    s += buf;
+  }
+  return s + "}}";
 }
 
 std::size_t at_least_one(std::size_t n) {
@@ -108,6 +124,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
        "RuleBaseCapacity>;\n\n";
   h += "template <class Scalar>\nconstexpr RuleBase<Scalar> make_rule_base() noexcept {\n";
   h += "  RuleBase<Scalar> m{};\n";
+  h += "  m.name = " + name_literal(m.name) + ";\n";
   h += "  m.num_inputs = " + num(m.num_inputs) + ";\n  m.num_outputs = " + num(m.num_outputs) +
        ";\n  m.num_rules = " + num(m.num_rules) + ";\n  m.num_blocks = " + num(m.num_blocks) +
        ";\n  m.num_tokens = " + num(m.num_tokens) +
@@ -117,16 +134,20 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
     const std::string v = "  m.inputs[" + num(i) + "]";
+    h += v + ".name = " + name_literal(in.name) + ";\n";
     h += v + ".min = " + lit(in.min) + ";\n" + v + ".max = " + lit(in.max) + ";\n";
     h += v + ".lock_range = " + b(in.lock_range) + ";\n";
     h += v + ".enabled = " + b(in.enabled) + ";\n";
     h += v + ".num_terms = " + num(in.num_terms) + ";\n";
-    for (std::size_t t = 0; t < in.num_terms; ++t)
+    for (std::size_t t = 0; t < in.num_terms; ++t) {
       h += v + ".terms[" + num(t) + "] = " + term(in.terms[t]) + ";\n";
+      h += v + ".term_names[" + num(t) + "] = " + name_literal(in.term_names[t]) + ";\n";
+    }
   }
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& out = m.outputs[o];
     const std::string v = "  m.outputs[" + num(o) + "]";
+    h += v + ".name = " + name_literal(out.name) + ";\n";
     h += v + ".min = " + lit(out.min) + ";\n" + v + ".max = " + lit(out.max) + ";\n";
     h += v + ".lock_range = " + b(out.lock_range) + ";\n";
     h += v + ".lock_previous = " + b(out.lock_previous) + ";\n";
@@ -142,6 +163,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
     for (std::size_t t = 0; t < out.num_terms; ++t) {
       const auto& term_o = out.terms[t];
       const std::string w = v + ".terms[" + num(t) + "]";
+      h += v + ".term_names[" + num(t) + "] = " + name_literal(out.term_names[t]) + ";\n";
       h += w + ".kind = " + enum_lit("OutputTermKind", term_o.kind) + ";\n";
       if (term_o.kind == fuzzy::OutputTermKind::Membership)
         h += w + ".membership = " + term(term_o.membership) + ";\n";
@@ -191,10 +213,22 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
   h += "// The rule base in flash (read-only data), shared by every joint.\n";
   h += "template <class Scalar>\ninline constexpr RuleBase<Scalar> kRuleBase = "
        "make_rule_base<Scalar>();\n\n";
+  // `m` is a valid supervisor (export-header checked it), so every name is found once.
+  SupervisorBinding binding;
+  for (std::size_t k = 0; k < 2; ++k)
+    binding.input_of[k] = static_cast<std::size_t>(control::supervisor_detail::index_named(
+        m.inputs, m.num_inputs, control::kSupervisorInputNames[k]));
+  for (std::size_t g = 0; g < 3; ++g)
+    binding.output_of[g] = static_cast<std::size_t>(control::supervisor_detail::index_named(
+        m.outputs, m.num_outputs, control::kSupervisorOutputNames[g]));
+  const std::string refusal = straight_line_refusal(m);
+  if (refusal.empty()) return h + straight_line_supervisor(m, binding);
+
   h += "// The supervisor FuzzyPid calls (the concept of fuzzypid/control/supervisor.hpp): the "
        "rule\n"
        "// base at (e, ec) gives (dKp, dKi, dKd), as control::EngineSupervisor with a fixed\n"
-       "// workspace per joint.\n";
+       "// workspace per joint. Interpreted, not straight-line code: " +
+       comment_safe(refusal) + ".\n";
   std::string supervisor = R"(template <class Scalar>
 class Supervisor {
  public:
@@ -225,16 +259,9 @@ template <class Scalar>
 inline constexpr Supervisor<Scalar> kSupervisor{};
 
 )";
-  // `m` is a valid supervisor (export-header checked it), so every name is found once.
-  const auto index = [&](const auto& vars, std::size_t n, const char* name) {
-    return num(static_cast<std::size_t>(control::supervisor_detail::index_named(vars, n, name)));
-  };
-  const std::string in = index(m.inputs, m.num_inputs, control::kSupervisorInputNames[0]) + ", " +
-                         index(m.inputs, m.num_inputs, control::kSupervisorInputNames[1]);
-  std::string out;
-  for (std::size_t g = 0; g < 3; ++g)
-    out +=
-        (g > 0 ? ", " : "") + index(m.outputs, m.num_outputs, control::kSupervisorOutputNames[g]);
+  const std::string in = num(binding.input_of[0]) + ", " + num(binding.input_of[1]);
+  const std::string out = num(binding.output_of[0]) + ", " + num(binding.output_of[1]) + ", " +
+                          num(binding.output_of[2]);
   supervisor.replace(supervisor.find("@IN@"), 4, in);
   supervisor.replace(supervisor.find("@OUT@"), 5, out);
   h += supervisor;

@@ -3,15 +3,21 @@
 // controllers equal to the files' bit for bit on x86, and compile for float as well.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
+#include <type_traits>
+#include <vector>
 
+#include "engine_constructs_fuzzy.hpp"
 #include "engine_disabled_fuzzy.hpp"
 #include "engine_fuzzy.hpp"
 #include "engine_lock_fuzzy.hpp"
 #include "engine_tip_fuzzy.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
+#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
@@ -140,6 +146,116 @@ TEST(ExportHeader, AnExportedRuleBaseKeepsADisabledInput) {
                            engine_disabled_fuzzy::make_controller<double>(3.0), "/tests/sim/data/");
   EXPECT_GT(fired, 0);
   EXPECT_LT(fired, 400 * 6 / 2) << "most ticks lie in the gap";
+}
+
+template <class Scalar>
+bool same_scalar_bits(Scalar a, Scalar b) {
+  static_assert(sizeof(Scalar) <= sizeof(std::uint64_t));
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof a);
+  std::memcpy(&y, &b, sizeof b);
+  return x == y;
+}
+
+// The (e, ec) a straight-line supervisor is checked at: seeded uniform values across and beyond
+// the universe, every breakpoint of a term in `points` exactly (where a branch of a shape
+// changes), and non-finite values.
+template <class Scalar>
+std::vector<std::array<Scalar, 2>> probe_inputs(const std::vector<double>& points,
+                                                std::uint64_t seed) {
+  std::vector<std::array<Scalar, 2>> in;
+  sim::Random rng(seed);
+  for (int k = 0; k < 20000; ++k)
+    in.push_back(
+        {static_cast<Scalar>(rng.uniform(-1.5, 1.5)), static_cast<Scalar>(rng.uniform(-1.5, 1.5))});
+  for (const double a : points)
+    for (const double b : points)
+      in.push_back({static_cast<Scalar>(a), static_cast<Scalar>(b)});
+  const Scalar inf = std::numeric_limits<Scalar>::infinity();
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  for (const Scalar bad : {inf, -inf, nan}) {
+    in.push_back({bad, Scalar(0)});
+    in.push_back({Scalar(0), bad});
+  }
+  return in;
+}
+
+// The generated straight-line Supervisor against control::EngineSupervisor on the same constexpr
+// rule base (the interpreter), one workspace each carried across the whole sequence (so
+// lock-previous is exercised): every status and every output bit must agree. Returns how many
+// inferences fired some rule.
+template <class Scalar, class Straight, class Model>
+int expect_straight_line_equals_engine(const Straight& straight, const Model& model,
+                                       const std::vector<double>& points, std::uint64_t seed) {
+  const control::EngineSupervisor<Scalar, typename Model::Capacity> engine(&model);
+  EXPECT_TRUE(engine.valid());
+  auto engine_ws = engine.make_workspace();
+  auto straight_ws = straight.make_workspace();
+  int fired = 0;
+  for (const auto& x : probe_inputs<Scalar>(points, seed)) {
+    std::array<Scalar, 3> a{}, b{};
+    const Status sa = engine.infer(x[0], x[1], engine_ws, a);
+    const Status sb = straight.infer(x[0], x[1], straight_ws, b);
+    EXPECT_EQ(sa, sb) << "at e = " << x[0] << ", ec = " << x[1];
+    for (std::size_t g = 0; g < 3; ++g)
+      EXPECT_TRUE(same_scalar_bits(a[g], b[g]))
+          << "gain " << g << " at e = " << x[0] << ", ec = " << x[1] << ": engine " << a[g]
+          << ", straight-line " << b[g];
+    if (sa != sb || !same_scalar_bits(a[0], b[0]) || !same_scalar_bits(a[1], b[1]) ||
+        !same_scalar_bits(a[2], b[2]))
+      return fired;
+    fired += sa == Status::Ok ? 1 : 0;
+  }
+  return fired;
+}
+
+// A Sugeno rule base is exported as straight-line code (no interpreter, no workspace); the others
+// keep the interpreted engine (a Mamdani output; a disabled input).
+TEST(ExportHeader, ASugenoRuleBaseIsExportedAsStraightLineCode) {
+  static_assert(std::is_empty_v<engine_fuzzy::Supervisor<float>::Workspace>);
+  static_assert(std::is_empty_v<engine_constructs_fuzzy::Supervisor<double>::Workspace> == false,
+                "lock-previous keeps the outputs' last values per joint");
+  static_assert(std::is_same_v<engine_tip_fuzzy::Supervisor<float>::Workspace,
+                               fuzzy::EngineWorkspace<float, engine_tip_fuzzy::RuleBaseCapacity>>);
+  static_assert(
+      std::is_same_v<engine_disabled_fuzzy::Supervisor<float>::Workspace,
+                     fuzzy::EngineWorkspace<float, engine_disabled_fuzzy::RuleBaseCapacity>>);
+  static_assert(control::is_supervisor_v<engine_fuzzy::Supervisor<float>, float>);
+  static_assert(control::is_supervisor_v<engine_constructs_fuzzy::Supervisor<double>, double>);
+}
+
+// The paper's rules (rulebases/paper.fll): the straight-line code computes the engine's result bit
+// for bit, in double and in float, across the universe, beyond it and at every breakpoint.
+TEST(ExportHeader, TheStraightLinePaperSupervisorEqualsTheEngineBitForBit) {
+  const std::vector<double> points = {-0.4, -0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3, 0.4};
+  EXPECT_GT(expect_straight_line_equals_engine<double>(engine_fuzzy::kSupervisor<double>,
+                                                       engine_fuzzy::kRuleBase<double>, points, 7),
+            19000);
+  EXPECT_GT(expect_straight_line_equals_engine<float>(engine_fuzzy::kSupervisor<float>,
+                                                      engine_fuzzy::kRuleBase<float>, points, 8),
+            19000);
+}
+
+// constructs_supervisor.fll: hedges in antecedents and conclusions, `any`, `or`, weights, a
+// product conjunction, a Threshold block, linear terms, weighted sum, lock-range, a numeric
+// default and lock-previous, bit for bit against the engine; lock_previous_supervisor.fll too.
+// Inferences that fire nothing (the gaps) are part of the sequence.
+TEST(ExportHeader, StraightLineCodeEqualsTheEngineOnEveryConstructItWrites) {
+  const std::vector<double> points = {-1.5, -1.0, -0.6, -0.5, -0.3, 0.0, 0.3, 0.5, 0.8, 1.0, 1.5};
+  for (const std::uint64_t seed : {11u, 12u}) {
+    const int fired_double = expect_straight_line_equals_engine<double>(
+        engine_constructs_fuzzy::kSupervisor<double>, engine_constructs_fuzzy::kRuleBase<double>,
+        points, seed);
+    EXPECT_GT(fired_double, 10000);
+    const int fired_float = expect_straight_line_equals_engine<float>(
+        engine_constructs_fuzzy::kSupervisor<float>, engine_constructs_fuzzy::kRuleBase<float>,
+        points, seed);
+    EXPECT_GT(fired_float, 10000);
+  }
+  EXPECT_GT(expect_straight_line_equals_engine<double>(engine_lock_fuzzy::kSupervisor<double>,
+                                                       engine_lock_fuzzy::kRuleBase<double>,
+                                                       {-0.1, 0.0, 0.1}, 13),
+            1000);
 }
 
 TEST(ExportHeader, AnExportedRuleBaseIsConstexprDataSizedToTheFile) {
