@@ -225,7 +225,7 @@ class FllParser {
     out.defuzzifier = d;
     if (words.size() > 2) return fail("defuzzifier takes at most one parameter");
     if (!fuzzy::is_sugeno(d)) {
-      out.resolution = 100;
+      out.resolution = 1000;  // fuzzylite 8's default (fuzzylite 6 writes it always)
       if (words.size() == 2) {
         std::size_t r = 0;
         if (!text::parse_count(words[1], r) || r < 1 || r > 100000000)
@@ -271,11 +271,11 @@ class FllParser {
     auto& names = input ? model_.inputs[model_.num_inputs - 1].term_names
                         : model_.outputs[model_.num_outputs - 1].term_names;
     // Two terms may share a name (fuzzylite's exports of MATLAB files do): a rule naming it means
-    // the first, as fuzzylite's Variable::getTerm resolves it.
+    // the last, as fuzzylite 8 resolves it (fuzzylite 6 took the first; docs/rule_files.md).
     for (std::size_t t = 0; t < count; ++t)
       if (text::name_of(names[t]) == name) {
         warn("term '" + name + "' repeats the name of an earlier term of the variable; rules " +
-             "naming it mean the first");
+             "naming it mean the last, as fuzzylite 8 reads them");
         break;
       }
     if (count == Cap::terms)
@@ -347,7 +347,8 @@ class FllParser {
     }
     if (key == "activation") return activation(value, b);
     if (key == "rule") {
-      const std::string why = rules::parse_rule(value, model_, model_.num_blocks - 1, false);
+      const std::string why = rules::parse_rule(value, model_, model_.num_blocks - 1, false,
+                                                rules::DuplicateTerm::Last);
       if (!why.empty()) return fail(why);
       lines_.rules.push_back(line_);
       return true;

@@ -35,8 +35,8 @@ std::vector<std::string> tokenize(std::string_view text) {
 
 class Parser {
  public:
-  Parser(std::vector<std::string> words, Builder& model, bool any_case)
-      : w_(std::move(words)), model_(model), any_case_(any_case) {}
+  Parser(std::vector<std::string> words, Builder& model, bool any_case, DuplicateTerm duplicate)
+      : w_(std::move(words)), model_(model), any_case_(any_case), duplicate_(duplicate) {}
 
   std::string parse(std::size_t block) {
     if (!is("if")) return "rule must start with 'if'";
@@ -152,12 +152,11 @@ class Parser {
     const auto& term_names =
         output ? model_.outputs[index].term_names : model_.inputs[index].term_names;
     const std::string& term = w_[k_++];
-    for (std::size_t j = 0; j < num_terms; ++j) {
-      if (text::name_of(term_names[j]) == term) {
-        t.term = static_cast<std::uint8_t>(j);
-        tokens_.push_back(t);
-        return {};
-      }
+    const int j = find_term(term_names, num_terms, term);
+    if (j >= 0) {
+      t.term = static_cast<std::uint8_t>(j);
+      tokens_.push_back(t);
+      return {};
     }
     return "rule names unknown term '" + term + "' of " + (output ? "output" : "input") + " '" +
            var + "'";
@@ -183,22 +182,34 @@ class Parser {
     if (k_ >= w_.size()) return "rule ends after '" + var + " is'";
     const auto& out = model_.outputs[static_cast<std::size_t>(output)];
     const std::string& term = w_[k_++];
-    for (std::size_t j = 0; j < out.num_terms; ++j) {
-      if (text::name_of(out.term_names[j]) == term) {
-        c.term = static_cast<std::uint8_t>(j);
-        for (const Conclusion& other : conclusions_)
-          if (other.output == c.output)
-            return "output '" + var + "' concluded twice in one rule (not supported)";
-        conclusions_.push_back(c);
-        return {};
-      }
+    const int j = find_term(out.term_names, out.num_terms, term);
+    if (j >= 0) {
+      c.term = static_cast<std::uint8_t>(j);
+      for (const Conclusion& other : conclusions_)
+        if (other.output == c.output)
+          return "output '" + var + "' concluded twice in one rule (not supported)";
+      conclusions_.push_back(c);
+      return {};
     }
     return "rule names unknown term '" + term + "' of output '" + var + "'";
+  }
+
+  // The index of the term named `name` (the first or the last of several), -1 when none is.
+  template <class Names>
+  int find_term(const Names& names, std::size_t n, const std::string& name) const {
+    int found = -1;
+    for (std::size_t j = 0; j < n; ++j)
+      if (text::name_of(names[j]) == name) {
+        found = static_cast<int>(j);
+        if (duplicate_ == DuplicateTerm::First) break;
+      }
+    return found;
   }
 
   std::vector<std::string> w_;
   Builder& model_;
   bool any_case_;
+  DuplicateTerm duplicate_;
   std::size_t k_ = 0;
   double weight_ = 1.0;
   std::vector<Token> tokens_;
@@ -255,8 +266,8 @@ ExportNames export_names(const Model& m) {
 }
 
 std::string parse_rule(std::string_view rule_text, Builder& model, std::size_t block,
-                       bool any_case) {
-  return Parser(tokenize(rule_text), model, any_case).parse(block);
+                       bool any_case, DuplicateTerm duplicate) {
+  return Parser(tokenize(rule_text), model, any_case, duplicate).parse(block);
 }
 
 std::string write_rule(const Model& m, std::size_t r, const ExportNames& names) {

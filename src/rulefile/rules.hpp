@@ -19,10 +19,16 @@
 
 namespace fuzzypid::rulefile::rules {
 
+// Which term a name means when several terms of a variable share it: the first (fuzzylite 6's
+// Variable::getTerm; .fcl) or the last (fuzzylite 8, whose variables look terms up by name in a
+// map filled in file order; .fll).
+enum class DuplicateTerm { First, Last };
+
 // Parses one rule and appends it to `model` in block `block`. Keywords and hedges are matched in
 // any case when `any_case` (FCL), else in lower case (fuzzylite). Returns an empty string on
 // success, else the reason naming the offending word.
-std::string parse_rule(std::string_view text, Builder& model, std::size_t block, bool any_case);
+std::string parse_rule(std::string_view text, Builder& model, std::size_t block, bool any_case,
+                       DuplicateTerm duplicate = DuplicateTerm::First);
 
 // The names variables and terms get in .fll/.fcl text: sanitised the way fuzzylite does (only
 // letters, digits, '_' and '.'), "unnamed" when nothing is left, '_' appended to a rule keyword or

@@ -765,22 +765,51 @@ TEST(RuleFileFis, RuleLinesBeyondAStaleNumRulesAreRead) {
   EXPECT_EQ(model->num_rules, 2u);
 }
 
-TEST(RuleFileFll, TermsSharingANameAreKeptAndRulesMeanTheFirstAsInFuzzylite) {
-  fl::fuzzylite::setMachEps(0.0);
+// fuzzylite 8 looks a term up by name in a map filled in file order, so of two terms sharing a
+// name a rule means the last (fuzzylite 6 took the first). The file loads with a warning naming
+// the rule; the value is the last term's (9), not the first's (10 x = 3).
+TEST(RuleFileFll, TermsSharingANameAreKeptAndRulesMeanTheLastAsInFuzzylite8) {
   const std::string fll =
       replace(kHold, "  term: k Linear 10 0\n", "  term: k Linear 10 0\n  term: k Constant 9\n");
-  const auto model = load("same.fll", fll);
-  ASSERT_TRUE(model);
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  ASSERT_TRUE(fuzzypid::rulefile::parse_fll(fll, "same.fll", *model, error)) << error.to_string();
+  ASSERT_EQ(error.warnings.size(), 1u);
+  EXPECT_NE(error.warnings[0].find("mean the last, as fuzzylite 8"), std::string::npos)
+      << error.warnings[0];
   EXPECT_EQ(model->outputs[0].num_terms, 2u);
-  EXPECT_EQ(model->conclusions[0].term, 0u);
-  std::unique_ptr<fl::Engine> oracle(fl::FllImporter().fromString(fll));
+  EXPECT_EQ(model->conclusions[0].term, 1u);
   auto engine = std::make_unique<Engine<double>>(*model);
   const double x = 0.3;
   double y = 0;
   ASSERT_EQ(engine->evaluate(&x, &y), Status::Ok);
-  oracle->getInputVariable(0)->setValue(x);
-  oracle->process();
-  EXPECT_EQ(y, oracle->getOutputVariable(0)->getValue());
+  EXPECT_EQ(y, 9.0);
+}
+
+// An integral defuzzifier written without its resolution takes fuzzylite 8's default, 1000
+// samples (fuzzylite 6's was 100, but its exporter always writes the number).
+TEST(RuleFileFll, AnIntegralDefuzzifierWithoutResolutionTakesFuzzylite8sDefault) {
+  const std::string base = R"(Engine: r
+InputVariable: x
+  range: 0 1
+  term: on Triangle 0 0.5 1
+OutputVariable: y
+  range: 0 1
+  aggregation: Maximum
+  defuzzifier: Centroid
+  default: nan
+  term: a Triangle 0 0.3 1
+RuleBlock: rules
+  implication: Minimum
+  activation: General
+  rule: if x is on then y is a
+)";
+  const auto model = load("r.fll", base);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->outputs[0].resolution, 1000);
+  const auto explicit_100 = load("r.fll", replace(base, "Centroid\n", "Centroid 100\n"));
+  ASSERT_TRUE(explicit_100);
+  EXPECT_EQ(explicit_100->outputs[0].resolution, 100);
 }
 
 // Where fuzzylite's FisImporter departs from MATLAB, fuzzypid keeps MATLAB's meaning.
