@@ -265,8 +265,8 @@ ExportNames export_names(const Model& m) {
   return n;
 }
 
-std::string parse_rule(std::string_view rule_text, Builder& model, std::size_t block,
-                       bool any_case, DuplicateTerm duplicate) {
+std::string parse_rule(std::string_view rule_text, Builder& model, std::size_t block, bool any_case,
+                       DuplicateTerm duplicate) {
   return Parser(tokenize(rule_text), model, any_case, duplicate).parse(block);
 }
 

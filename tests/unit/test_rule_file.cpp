@@ -203,8 +203,10 @@ TEST(RuleFile, FllMamdaniAndSugenoEqualFuzzylite) {
   const std::string ops = fixture("mamdani_ops.fll");
   double d = compare_with_fuzzylite(Format::Fll, ops, kPoints, 20);
   std::cout << "mamdani_ops.fll: " << d << "\n";
+  // A resolution is written every time: without one fuzzylite 6 samples 100 points and fuzzypid,
+  // as fuzzylite 8, 1000 (RuleFileFll.AnIntegralDefuzzifierWithoutResolutionTakesFuzzylite8sDefault).
   for (const char* defuzz : {"Bisector 150", "MeanOfMaximum 300", "SmallestOfMaximum 100",
-                             "LargestOfMaximum 100", "Centroid"}) {
+                             "LargestOfMaximum 100", "Centroid 100"}) {
     SCOPED_TRACE(defuzz);
     d = std::max(d, compare_with_fuzzylite(
                         Format::Fll,
