@@ -38,6 +38,11 @@
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
 //     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
 //     Sugeno.
+//   Function terms (fuzzy/formula.hpp): an input's term is its formula at x = x_i and the inputs'
+//     values (after locking); a Takagi-Sugeno output's term gives z_r = its formula at the inputs'
+//     values. A formula value that is not finite (a domain error: sqrt(-1), 1 / 0) is
+//     Status::NumericOverflow: an input term's makes every output 0, an output term's makes that
+//     output 0.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
 // and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
@@ -56,6 +61,7 @@
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_model.hpp"
 #include "fuzzypid/fuzzy/engine_workspace.hpp"
+#include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
@@ -215,6 +221,39 @@ Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
   }
 }
 
+// The memberships of the enabled inputs' Function terms (out of line and cold: the paths of models
+// without formulas stay as they are). False when one is not finite.
+template <class Scalar, class Cap>
+[[gnu::cold]] [[gnu::noinline]] bool formula_memberships(const EngineModel<Scalar, Cap>& model,
+                                                         const WorkspaceView<Scalar>& ws) noexcept {
+  for (std::size_t i = 0; i < model.num_inputs; ++i) {
+    const auto& in = model.inputs[i];
+    if (!in.enabled) continue;
+    for (std::size_t t = 0; t < in.num_terms; ++t) {
+      const Term<Scalar>& term = in.terms[t];
+      if (term.shape != Shape::Function) continue;
+      const Scalar mu =
+          evaluate_formula(model.steps.data() + term.first, term.count, ws.input[i], ws.input);
+      if (!detail::is_finite(mu)) return false;
+      ws.membership[i * ws.stride + t] = mu;
+    }
+  }
+  return true;
+}
+
+// z of a Takagi-Sugeno Function term at the inputs' values; NaN, with `status` NumericOverflow,
+// when not finite.
+template <class Scalar, class Cap>
+[[gnu::cold]] [[gnu::noinline]] Scalar formula_value(const EngineModel<Scalar, Cap>& model,
+                                                     const Term<Scalar>& term, const Scalar* input,
+                                                     Status& status) noexcept {
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
+  if (detail::is_finite(z)) return z;
+  status = Status::NumericOverflow;
+  return nan;
+}
+
 template <class Scalar>
 bool compare(Comparison c, Scalar a, Scalar b) noexcept {
   switch (c) {
@@ -331,6 +370,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     for (std::size_t t = 0; t < in.num_terms; ++t)
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
+  if (model.num_steps > 0 && !engine_detail::formula_memberships(model, ws))
+    return Status::NumericOverflow;  // the outputs are 0, written above
 
   const bool disabled = model.has_disabled_variables();
   if (model.chained)
@@ -376,6 +417,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
           const Scalar z =
               term.kind == OutputTermKind::Membership
                   ? engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points)
+              : term.kind == OutputTermKind::Function
+                  ? engine_detail::formula_value(model, term.membership, ws.input, status)
                   : engine_detail::sugeno_value(term, ws.input, model.num_inputs);
           sum += degree * z;
           weights += degree;
@@ -447,7 +490,7 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (detail::is_finite(y)) ws.previous[o] = y;
     if (y != y) {
       y = Scalar(0);
-      status = Status::NoRuleFired;
+      status = worst(status, Status::NoRuleFired);
     }
     outputs[o] = y;
   }
@@ -458,7 +501,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
 
 // Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
 // have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
-// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
+// input, NumericOverflow when a Function term's formula was not finite (see above), NoRuleFired
+// when some output fell back to 0 because no rule fired for it, else Ok.
 template <class Scalar, class Cap>
 Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
                 const Scalar* inputs, Scalar* outputs) noexcept {
