@@ -241,17 +241,20 @@ template <class Scalar, class Cap>
   return true;
 }
 
-// z of a Takagi-Sugeno Function term at the inputs' values; NaN, with `status` NumericOverflow,
-// when not finite.
+// z of each Function term of a Takagi-Sugeno output at the inputs' values, into level[t] (out of
+// line and cold, and before the conclusions' loop, which then only reads them); NaN when not
+// finite (the output is then NaN, which evaluate_with reports as NumericOverflow).
 template <class Scalar, class Cap>
-[[gnu::cold]] [[gnu::noinline]] Scalar formula_value(const EngineModel<Scalar, Cap>& model,
-                                                     const Term<Scalar>& term, const Scalar* input,
-                                                     Status& status) noexcept {
+[[gnu::cold]] [[gnu::noinline]] void formula_values(const EngineModel<Scalar, Cap>& model,
+                                                    const OutputSpec<Scalar, Cap>& out,
+                                                    const Scalar* input, Scalar* level) noexcept {
   const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
-  const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
-  if (detail::is_finite(z)) return z;
-  status = Status::NumericOverflow;
-  return nan;
+  for (std::size_t t = 0; t < out.num_terms; ++t) {
+    const Term<Scalar>& term = out.terms[t].membership;
+    if (out.terms[t].kind != OutputTermKind::Function) continue;
+    const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
+    level[t] = detail::is_finite(z) ? z : nan;
+  }
 }
 
 template <class Scalar>
@@ -382,6 +385,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     fired_rules = engine_detail::activate_block<Power>(model, ws, b, fired_rules, disabled);
 
   const bool merged = model.merges_activations();
+  // Some term is a Function (a loop invariant; a constant for a constexpr model without one).
+  const bool formulas = model.num_steps > 0;
   Status status = Status::Ok;
   for (std::size_t o = 0; o < model.num_outputs; ++o) {
     const OutputSpec<Scalar, Cap>& out = model.outputs[o];
@@ -397,6 +402,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (merge || singletons)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
+    // Takagi-Sugeno outputs neither merge nor take singletons: level holds their formulas' z.
+    if (formulas && sugeno) engine_detail::formula_values(model, out, ws.input, ws.level);
     for (std::size_t f = 0; f < fired_rules; ++f) {
       const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
@@ -417,8 +424,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
           const Scalar z =
               term.kind == OutputTermKind::Membership
                   ? engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points)
-              : term.kind == OutputTermKind::Function
-                  ? engine_detail::formula_value(model, term.membership, ws.input, status)
+              : formulas && term.kind == OutputTermKind::Function
+                  ? ws.level[c.term]
                   : engine_detail::sugeno_value(term, ws.input, model.num_inputs);
           sum += degree * z;
           weights += degree;
@@ -490,7 +497,9 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (detail::is_finite(y)) ws.previous[o] = y;
     if (y != y) {
       y = Scalar(0);
-      status = worst(status, Status::NoRuleFired);
+      // A fired Takagi-Sugeno output is NaN only where a formula was not finite (formula_value).
+      status = worst(status,
+                     fired && sugeno && formulas ? Status::NumericOverflow : Status::NoRuleFired);
     }
     outputs[o] = y;
   }
