@@ -103,6 +103,8 @@ std::string check_rule_base_float_range(const Model& m) {
   }
   for (std::size_t k = 0; k < 2 * m.num_points; ++k)
     if (bad(m.points[k])) return "a Discrete point of the rule file" + tail;
+  for (std::size_t k = 0; k < m.num_steps; ++k)
+    if (bad(m.steps[k].value)) return "a number in a formula of the rule file" + tail;
   return {};
 }
 
@@ -119,7 +121,8 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
   h += "using RuleBaseCapacity = fuzzypid::fuzzy::EngineCapacity<" + num(m.num_inputs) + ", " +
        num(m.num_outputs) + ", " + num(terms) + ", " + num(at_least_one(m.num_rules)) + ", " +
        num(m.num_blocks) + ", " + num(at_least_one(m.num_tokens)) + ", " +
-       num(at_least_one(m.num_conclusions)) + ", " + num(at_least_one(m.num_points)) + ">;\n\n";
+       num(at_least_one(m.num_conclusions)) + ", " + num(at_least_one(m.num_points)) +
+       (m.num_steps > 0 ? ", " + num(m.num_steps) : std::string()) + ">;\n\n";
   h += "template <class Scalar>\nusing RuleBase = fuzzypid::fuzzy::EngineModel<Scalar, "
        "RuleBaseCapacity>;\n\n";
   h += "template <class Scalar>\nconstexpr RuleBase<Scalar> make_rule_base() noexcept {\n";
@@ -131,6 +134,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
        ";\n  m.num_conclusions = " + num(m.num_conclusions) +
        ";\n  m.num_points = " + num(m.num_points) + ";\n  m.chained = " + b(m.chained) +
        ";\n  m.power_hedges = " + b(m.power_hedges) + ";\n";
+  if (m.num_steps > 0) h += "  m.num_steps = " + num(m.num_steps) + ";\n";
   for (std::size_t i = 0; i < m.num_inputs; ++i) {
     const auto& in = m.inputs[i];
     const std::string v = "  m.inputs[" + num(i) + "]";
@@ -165,7 +169,8 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
       const std::string w = v + ".terms[" + num(t) + "]";
       h += v + ".term_names[" + num(t) + "] = " + name_literal(out.term_names[t]) + ";\n";
       h += w + ".kind = " + enum_lit("OutputTermKind", term_o.kind) + ";\n";
-      if (term_o.kind == fuzzy::OutputTermKind::Membership)
+      if (term_o.kind == fuzzy::OutputTermKind::Membership ||
+          term_o.kind == fuzzy::OutputTermKind::Function)
         h += w + ".membership = " + term(term_o.membership) + ";\n";
       for (std::size_t c = 0; c < term_o.coefficients.size(); ++c)
         h += w + ".coefficients[" + num(c) + "] = " + lit(term_o.coefficients[c]) + ";\n";
@@ -209,6 +214,12 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
   }
   for (std::size_t k = 0; k < 2 * m.num_points; ++k)
     h += "  m.points[" + num(k) + "] = " + lit(m.points[k]) + ";\n";
+  // Formula steps (Function terms): {op, input, value}.
+  for (std::size_t k = 0; k < m.num_steps; ++k) {
+    const auto& st = m.steps[k];
+    h += "  m.steps[" + num(k) + "] = {static_cast<fuzzypid::fuzzy::FormulaOp>(" +
+         num(static_cast<unsigned>(st.op)) + "), " + num(st.input) + ", " + lit(st.value) + "};\n";
+  }
   h += "  return m;\n}\n\n";
   h += "// The rule base in flash (read-only data), shared by every joint.\n";
   h += "template <class Scalar>\ninline constexpr RuleBase<Scalar> kRuleBase = "

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "formula.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "rules.hpp"
 #include "terms.hpp"
@@ -382,7 +383,12 @@ class FclParser {
     std::string type;
     std::vector<double> p;
     double single = 0;
-    if (text::parse_number(spec, single)) {
+    const auto spec_words = text::split_words(spec);
+    if (!spec_words.empty() && spec_words[0] == "Function") {
+      // Compiled in finish(), when every variable a formula may name is known.
+      formulas_.push_back({input, current_, count, name,
+                           std::string(text::trim(std::string_view(spec).substr(8))), line_});
+    } else if (text::parse_number(spec, single)) {
       type = "Constant";
       p.push_back(single);
     } else {
@@ -400,16 +406,14 @@ class FclParser {
       }
       for (std::size_t k = first; k < words.size(); ++k) {
         double x = 0;
-        if (!text::parse_number(words[k], x, true)) {
-          if (type == "Function")
-            return fail("term '" + name +
-                        "': 'Function' terms (formulas evaluated at run time) are not supported");
+        if (!text::parse_number(words[k], x, true))
           return fail("term '" + name + "': '" + std::string(words[k]) + "' is not a number");
-        }
         p.push_back(x);
       }
     }
-    if (input) {
+    if (type.empty()) {
+      // a Function term, compiled in finish()
+    } else if (input) {
       if (type == "Constant" || type == "Linear")
         return fail("term '" + name + "': a " + (type == "Constant" ? "singleton" : "Linear") +
                     " term is not a membership function of an input");
@@ -502,6 +506,7 @@ class FclParser {
       if (!fuzzy::is_sugeno(out.defuzzifier) && !accu_seen_[o])
         return fail_at(lines_.outputs[o], "output needs an ACCU (aggregation) method");
     }
+    if (!formula::compile_all(formulas_, model_, error_)) return false;
     return check_model(model_, lines_, error_);
   }
 
@@ -511,6 +516,7 @@ class FclParser {
   Block block_ = Block::None;
   std::size_t current_ = 0;
   int line_ = 0;
+  std::vector<formula::Pending> formulas_;  // Function terms, compiled in finish()
   std::vector<bool> method_seen_, accu_seen_;
   SNorm block_accu_ = SNorm::Maximum;
   bool has_block_accu_ = false;

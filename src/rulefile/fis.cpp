@@ -336,8 +336,7 @@ class FisParser {
       for (std::string_view word : words) {
         double x = 0;
         if (!text::parse_number(word, x, true)) {
-          if (mf.type == "function")
-            return fail("'function' terms (formulas evaluated at run time) are not supported");
+          if (mf.type == "function") return fail(std::string(terms::kFisFunction));
           return fail(std::string(key) + " '" + mf.name + "': '" + std::string(word) +
                       "' is not a number");
         }
@@ -862,7 +861,9 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       const std::string w = terms::write_membership(terms::Format::Fis, in.terms[t], m);
       if (w.empty()) {
         error = "input term '" + std::string(text::name_of(in.term_names[t])) +
-                "' has a shape or height .fis cannot express";
+                (in.terms[t].shape == fuzzy::Shape::Function
+                     ? "': " + std::string(terms::kFisFunction)
+                     : "' has a shape or height .fis cannot express");
         return false;
       }
       s += "MF" + std::to_string(t + 1) + "=" + text::quoted(text::name_of(in.term_names[t])) +
@@ -887,7 +888,9 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       }
       if (w.empty()) {
         error = "output term '" + std::string(text::name_of(v.term_names[t])) +
-                "' has a shape or height .fis cannot express";
+                (term.membership.shape == fuzzy::Shape::Function
+                     ? "': " + std::string(terms::kFisFunction)
+                     : "' has a shape or height .fis cannot express");
         return false;
       }
       s += "MF" + std::to_string(t + 1) + "=" + text::quoted(text::name_of(v.term_names[t])) + ":" +

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "formula.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "rules.hpp"
 #include "terms.hpp"
@@ -256,14 +257,10 @@ class FllParser {
       return fail("term name '" + std::string(words[0]) + "' is empty or a rule keyword");
     if (name.size() > fuzzy::kMaxNameLength) return fail("term name longer than 31 bytes");
     std::vector<double> p;
-    for (std::size_t k = 2; k < words.size(); ++k) {
+    for (std::size_t k = 2; k < words.size() && type != "Function"; ++k) {
       double x = 0;
-      if (!text::parse_number(words[k], x, true)) {
-        if (type == "Function")
-          return fail("term '" + name +
-                      "': 'Function' terms (formulas evaluated at run time) are not supported");
+      if (!text::parse_number(words[k], x, true))
         return fail("term '" + name + "': '" + std::string(words[k]) + "' is not a number");
-      }
       p.push_back(x);
     }
     std::size_t& count = input ? model_.inputs[model_.num_inputs - 1].num_terms
@@ -280,7 +277,13 @@ class FllParser {
       }
     if (count == Cap::terms)
       return fail("more terms in a variable than the capacity (" + capacity_text() + ")");
-    if (input) {
+    if (type == "Function") {
+      // Compiled in finish(), when every variable a formula may name is known.
+      const std::string_view rest =
+          value.substr(static_cast<std::size_t>(words[1].data() + words[1].size() - value.data()));
+      formulas_.push_back({input, input ? model_.num_inputs - 1 : model_.num_outputs - 1, count,
+                           name, std::string(text::trim(rest)), line_});
+    } else if (input) {
       if (type == "Constant" || type == "Linear")
         return fail("term '" + name + "': '" + std::string(type) +
                     "' is an output term (not a membership function of an input)");
@@ -421,6 +424,7 @@ class FllParser {
       model_.num_blocks = 1;
       model_.blocks[0] = fuzzy::RuleBlock{};
     }
+    if (!formula::compile_all(formulas_, model_, error_)) return false;
     for (std::size_t o = 0; o < model_.num_outputs; ++o) {
       const auto& out = model_.outputs[o];
       const int at = lines_.outputs[o];
@@ -441,6 +445,7 @@ class FllParser {
   const LoadOptions& options_;
   Section section_ = Section::None;
   int line_ = 0;
+  std::vector<formula::Pending> formulas_;  // Function terms, compiled in finish()
   bool seen_engine_ = false;
   bool block_enabled_ = true;
   std::size_t block_first_rule_ = 0, block_first_token_ = 0, block_first_conclusion_ = 0;

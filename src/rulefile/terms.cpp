@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "formula.hpp"
 #include "text.hpp"
 
 namespace fuzzypid::rulefile::terms {
@@ -142,9 +143,7 @@ std::string make_membership(Format format, std::string_view type, const std::vec
   } else {
     const Spec* spec = find_spec(format, type);
     if (spec == nullptr) {
-      if (type == (fis ? "function" : "Function"))
-        return "'" + std::string(type) +
-               "' terms (formulas evaluated at run time) are not supported";
+      if (fis && type == "function") return std::string(kFisFunction);
       if (fis && (type == "arcmf" || type == "semiellipsemf"))
         return "'" + std::string(type) +
                "': fuzzylite 8's Arc and SemiEllipse have no .fis form (neither MATLAB nor "
@@ -181,6 +180,11 @@ std::string write_membership(Format format, const fuzzy::Term<double>& t, const 
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> values;
   std::string type;
+  if (t.shape == Shape::Function) {
+    if (fis) return {};  // kFisFunction
+    const std::string f = formula::write(t, model);
+    return f.empty() ? std::string() : "Function " + f;
+  }
   if (t.shape == Shape::Discrete) {
     type = fis ? "discretemf" : "Discrete";
     for (std::size_t k = 0; k < 2 * t.count; ++k)

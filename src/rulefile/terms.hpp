@@ -24,6 +24,14 @@ enum class Format { Fis, Fll, Fcl };
 std::string make_membership(Format format, std::string_view type, const std::vector<double>& p,
                             Builder& model, fuzzy::Term<double>& term);
 
+// Why .fis has no Function terms: fuzzylite's FisImporter joins the words of 'function',[...]
+// without a blank ("sin x" becomes "sinx"), and MATLAB's and Octave's custom membership functions
+// are names of .m files, not formulas.
+inline constexpr std::string_view kFisFunction =
+    "'function' (a fuzzylite formula) is not read from a .fis: fuzzylite's FisImporter removes "
+    "its blanks ('sin x' becomes 'sinx') and MATLAB/Octave custom membership functions are .m "
+    "function names, not formulas; write Function terms in .fll or .fcl";
+
 // True when `type` names a membership function in that format (to tell a bad type from others).
 bool is_membership_name(Format format, std::string_view type);
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/paper.hpp"
@@ -617,6 +618,157 @@ TEST(Triangle, AnOpenRightSideHoldsOneBeyondThePeak) {
   const Triangle<double> left{-kInf, -1.0, 0.0};
   EXPECT_EQ(left(-1e300), 1.0);
   EXPECT_EQ(left(-0.5), 0.5);
+}
+
+// --- Formulas (Function terms): compiled postfix programs --------------------------------------
+
+using fuzzypid::fuzzy::evaluate_formula;
+using fuzzypid::fuzzy::formula_depth;
+using fuzzypid::fuzzy::FormulaOp;
+using Step = fuzzypid::fuzzy::FormulaStep<double>;
+
+Step num(double v) {
+  return {FormulaOp::Number, 0, v};
+}
+Step op(FormulaOp o, std::uint8_t input = 0) {
+  return {o, input, 0.0};
+}
+
+double run(const std::vector<Step>& steps, double x = 0.0, const double* inputs = nullptr) {
+  EXPECT_GT(formula_depth(steps.data(), steps.size(), 2, true), 0u);
+  return evaluate_formula(steps.data(), steps.size(), x, inputs);
+}
+
+// splitmix64: a generator whose sequence is the same on every platform.
+struct SplitMix {
+  std::uint64_t s;
+  double uniform(double lo, double hi) {
+    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+};
+
+TEST(Formula, EvaluatesPostfixStepsAsTheirClosedForm) {
+  // (x + 2 in0) ^ 2 / (1 + |in1|) - sin(x) * atan2(in0, in1) + fmod(x, 0.7)
+  const std::vector<Step> f = {op(FormulaOp::X),
+                               num(2),
+                               op(FormulaOp::Input, 0),
+                               op(FormulaOp::Multiply),
+                               op(FormulaOp::Add),
+                               num(2),
+                               op(FormulaOp::Power),
+                               num(1),
+                               op(FormulaOp::Input, 1),
+                               op(FormulaOp::Abs),
+                               op(FormulaOp::Add),
+                               op(FormulaOp::Divide),
+                               op(FormulaOp::X),
+                               op(FormulaOp::Sin),
+                               op(FormulaOp::Input, 0),
+                               op(FormulaOp::Input, 1),
+                               op(FormulaOp::Atan2),
+                               op(FormulaOp::Multiply),
+                               op(FormulaOp::Subtract),
+                               op(FormulaOp::X),
+                               num(0.7),
+                               op(FormulaOp::Fmod),
+                               op(FormulaOp::Add)};
+  ASSERT_EQ(formula_depth(f.data(), f.size(), 2, true), 4u);
+  const std::uint64_t seed = 20240527;
+  SplitMix rng{seed};
+  for (int n = 0; n < 100000; ++n) {
+    const double x = rng.uniform(-50, 50);
+    const double in[2] = {rng.uniform(-10, 10), rng.uniform(-10, 10)};
+    const double expected = std::pow(x + 2 * in[0], 2.0) / (1 + std::fabs(in[1])) -
+                            std::sin(x) * std::atan2(in[0], in[1]) + std::fmod(x, 0.7);
+    ASSERT_DOUBLE_EQ(evaluate_formula(f.data(), f.size(), x, in), expected)
+        << "seed " << seed << ", sample " << n << ", x = " << x;
+  }
+}
+
+// numpy's meanings (fuzzylite 8), where C's differ: %, round, the comparisons, NaN as true.
+TEST(Formula, OperationsMeanWhatNumpyComputes) {
+  const auto bin = [](FormulaOp o, double a, double b) { return run({num(a), num(b), op(o)}); };
+  const auto un = [](FormulaOp o, double a) { return run({num(a), op(o)}); };
+  EXPECT_EQ(bin(FormulaOp::Modulo, -7, 3), 2.0);  // the sign of the divisor
+  EXPECT_EQ(bin(FormulaOp::Modulo, 7, -3), -2.0);
+  EXPECT_EQ(bin(FormulaOp::Modulo, 5.5, 2), 1.5);
+  EXPECT_TRUE(std::signbit(bin(FormulaOp::Modulo, 6, -3)));  // -0.0
+  EXPECT_TRUE(std::isnan(bin(FormulaOp::Modulo, 1, 0)));
+  EXPECT_EQ(bin(FormulaOp::Fmod, -7, 3), -1.0);  // the sign of the dividend
+  EXPECT_EQ(un(FormulaOp::Round, 2.5), 2.0);     // ties to even
+  EXPECT_EQ(un(FormulaOp::Round, 3.5), 4.0);
+  EXPECT_EQ(un(FormulaOp::Round, -2.5), -2.0);
+  EXPECT_EQ(un(FormulaOp::Round, 2.4999999999999996), 2.0);
+  EXPECT_EQ(un(FormulaOp::Round, -2.6), -3.0);
+  EXPECT_TRUE(std::signbit(un(FormulaOp::Round, -0.4)));
+  EXPECT_EQ(un(FormulaOp::Round, 1e300), 1e300);
+  EXPECT_EQ(bin(FormulaOp::Power, 2, 10), 1024.0);
+  EXPECT_EQ(bin(FormulaOp::Eq, kNaN, kNaN), 1.0);  // NaN equals NaN, as np.isclose(equal_nan)
+  EXPECT_EQ(bin(FormulaOp::Neq, kNaN, kNaN), 0.0);
+  EXPECT_EQ(bin(FormulaOp::Ge, kNaN, kNaN), 1.0);
+  EXPECT_EQ(bin(FormulaOp::Le, kNaN, 1), 0.0);
+  EXPECT_EQ(bin(FormulaOp::Gt, kNaN, 0), 0.0);
+  EXPECT_EQ(bin(FormulaOp::Lt, -kInf, 0), 1.0);
+  EXPECT_EQ(bin(FormulaOp::Ge, 2, 1), 1.0);
+  EXPECT_EQ(bin(FormulaOp::Le, 2, 1), 0.0);
+  EXPECT_EQ(un(FormulaOp::Not, 0), 1.0);
+  EXPECT_EQ(un(FormulaOp::Not, kNaN), 0.0);  // NaN is true
+  EXPECT_EQ(bin(FormulaOp::And, kNaN, 2), 1.0);
+  EXPECT_EQ(bin(FormulaOp::And, 0, 2), 0.0);
+  EXPECT_EQ(bin(FormulaOp::Or, 0, 0), 0.0);
+  EXPECT_EQ(bin(FormulaOp::Or, 0, -1), 1.0);
+  EXPECT_TRUE(std::isnan(bin(FormulaOp::Min, kNaN, 1)));  // Python's min(a, b): b < a ? b : a
+  EXPECT_EQ(bin(FormulaOp::Min, 1, kNaN), 1.0);
+  EXPECT_EQ(bin(FormulaOp::Max, 1, 2), 2.0);
+  EXPECT_EQ(un(FormulaOp::Negate, 3), -3.0);
+  EXPECT_EQ(un(FormulaOp::Plus, -3), -3.0);
+  EXPECT_EQ(run({op(FormulaOp::Pi)}), 3.141592653589793);
+}
+
+TEST(Formula, DomainErrorsGiveTheirIeeeValues) {
+  EXPECT_TRUE(std::isnan(run({num(-1), op(FormulaOp::Sqrt)})));
+  EXPECT_TRUE(std::isnan(run({num(2), op(FormulaOp::Acos)})));
+  EXPECT_EQ(run({num(0), op(FormulaOp::Log)}), -kInf);
+  EXPECT_EQ(run({num(1), num(0), op(FormulaOp::Divide)}), kInf);
+  EXPECT_TRUE(std::isnan(run({num(-8), num(1.0 / 3), op(FormulaOp::Power)})));
+  EXPECT_EQ(run({num(1), op(FormulaOp::Atanh)}), kInf);
+}
+
+TEST(Formula, DepthRefusesMalformedProgramsAndDeepStacks) {
+  const auto depth = [](const std::vector<Step>& s, bool x_allowed = true) {
+    return formula_depth(s.data(), s.size(), 2, x_allowed);
+  };
+  EXPECT_EQ(depth({}), 0u);
+  EXPECT_EQ(depth({num(1), op(FormulaOp::Add)}), 0u);       // an operand missing
+  EXPECT_EQ(depth({num(1), num(2)}), 0u);                   // two values left
+  EXPECT_EQ(depth({op(FormulaOp::Input, 2)}), 0u);          // no third input
+  EXPECT_EQ(depth({op(FormulaOp::X)}, false), 0u);          // x where not allowed
+  EXPECT_EQ(depth({op(static_cast<FormulaOp>(200))}), 0u);  // no such operation
+  EXPECT_EQ(depth({num(1), op(FormulaOp::Negate)}), 1u);
+  std::vector<Step> deep;
+  for (std::size_t k = 0; k < fuzzypid::fuzzy::kMaxFormulaDepth; ++k)
+    deep.push_back(num(1));
+  for (std::size_t k = 1; k < fuzzypid::fuzzy::kMaxFormulaDepth; ++k)
+    deep.push_back(op(FormulaOp::Add));
+  EXPECT_EQ(depth(deep), fuzzypid::fuzzy::kMaxFormulaDepth);
+  EXPECT_EQ(run(deep), static_cast<double>(fuzzypid::fuzzy::kMaxFormulaDepth));
+  deep.insert(deep.begin(), num(1));
+  deep.push_back(op(FormulaOp::Add));
+  EXPECT_EQ(depth(deep), 0u);  // one value deeper than the evaluation's stack
+}
+
+// A Function term alone has no formula to read (the engine evaluates it with the model's pool).
+TEST(Formula, AFunctionTermIsValidWithStepsAndZeroAlone) {
+  Term<double> t{};
+  t.shape = Shape::Function;
+  EXPECT_FALSE(t.valid());
+  t.count = 3;
+  EXPECT_TRUE(t.valid());
+  EXPECT_EQ(t(0.5), 0.0);
 }
 
 }  // namespace

@@ -1078,4 +1078,268 @@ TEST(RuleFileFisOctave, AHedgeOnAMamdaniConclusionIsRefusedOnItsLine) {
       << error.to_string();
 }
 
+// --- Function terms: fuzzylite 8's formulas -----------------------------------------------------
+
+// Inputs a on [-5, 5] and b on [-2, 2]; input term f of `a` is the formula `input`, output z
+// (WeightedSum) concludes Function `output` when a is f (and `one` = Constant 1 when a is all).
+std::string formula_file(const std::string& input, const std::string& output) {
+  return "Engine: formulas\nInputVariable: a\n  range: -5 5\n  term: f Function " + input +
+         "\n  term: all Rectangle -1e9 1e9\nInputVariable: b\n  range: -2 2\n  term: any_b "
+         "Rectangle -1e9 1e9\nOutputVariable: z\n  range: -1e9 1e9\n  aggregation: none\n  "
+         "defuzzifier: WeightedSum TakagiSugeno\n  default: nan\n  term: g Function " +
+         output +
+         "\n  term: one Constant 1\nRuleBlock: rules\n  conjunction: Minimum\n  implication: none\n"
+         "  rule: if a is f then z is one\n  rule: if a is all then z is g\n";
+}
+
+// z = mu_f(a) * 1 + g(a, b) (a rule of strength <= 0 does not fire: formulas here are > 0).
+double evaluate_at(const Model& model, double a, double b, Status* status = nullptr) {
+  Engine<double> engine(model);
+  const double in[2] = {a, b};
+  double out[1] = {};
+  const Status s = engine.evaluate(in, out);
+  if (status != nullptr) *status = s;
+  return out[0];
+}
+
+std::string refusal_of(const std::string& input, const std::string& output = "a + b") {
+  return refusal("f.fll", formula_file(input, output)).to_string();
+}
+
+// The precedence and associativity of fuzzylite 8's FunctionFactory: ! ~ (100, right), ^ ** .-
+// .+ (90, right), * / % (80), + - (70), and (60), or (50); functions bind as prefix operators.
+TEST(RuleFileFunction, FormulasFollowFuzzylite8sPrecedenceAndAssociativity) {
+  const struct {
+    const char* formula;
+    double at_a_2;  // input term's value at a = 2 (b = 0.5), + 1 for the output's g = 1
+  } cases[] = {
+      {"1 + 2 * x", 5},
+      {"(1 + 2) * x", 6},
+      {"2 ^ 3 ^ 0.5 / x", 1.6609985427419565},
+      {"x ^ 2 ^ 0", 2},
+      {"x ** 3", 8},
+      {"10 - x - 3", 5},
+      {"12 / x / 3", 2},
+      {".- x ^ 2 + 10", 6},
+      {"~ x + 5", 3},
+      {"~ x ^ 2 + 5", 9},
+      {".+ x", 2},
+      {"7 % x * 2", 2},
+      {"sin x + 1", 1.9092974268256817},
+      {"max(x, b) + min(1, 2)", 3},
+      {"max 3 x", 3},
+      {"pi + x", 5.1415926535897931},
+      {"x + b * 2", 3},
+      {"gt(x, 1) or 0 and 0", 1},
+      {"atan2(b, x) + 1", 1.2449786631268641},
+      {"1e1 / x", 5},
+      {"0.25 + .5 + x", 2.75},
+  };
+  for (const auto& c : cases) {
+    const auto model = load("f.fll", formula_file(c.formula, "1"));
+    ASSERT_TRUE(model) << c.formula;
+    EXPECT_NEAR(evaluate_at(*model, 2, 0.5), c.at_a_2 + 1, 1e-15) << c.formula;
+  }
+}
+
+TEST(RuleFileFunction, MalformedFormulasAreRefusedWithTheReason) {
+  const struct {
+    std::string formula, why;
+  } cases[] = {
+      {"- x", "'-' takes 2 operands but has 1"},  // fuzzylite's minus is binary: write .- or ~
+      {"x * -1", "'*' takes 2 operands"},
+      {"(x + 1", "mismatching parentheses"},
+      {"x + 1)", "mismatching parentheses"},
+      {"max(1, 2, 3)", "2 values where one expression was expected"},
+      {"x b", "2 values where one"},
+      {"1, 2", "',' outside the parentheses"},
+      {"y + 1", "unknown name 'y'"},
+      {"x > 0", "unknown name '>'"},
+      {"1e-3 * x", "unknown name '1e'"},  // the exponent's sign is an operator, as in fuzzylite
+      {"inf + x", "unknown name 'inf'"},
+      {"z + x", "names output 'z'"},
+      {"", "needs a formula"},
+      {std::string(4097, '1'), "longer than 4096 bytes"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = refusal_of(c.formula);
+    EXPECT_NE(e.find("f.fll:4: term 'f': "), std::string::npos) << c.formula << ": " << e;
+    EXPECT_NE(e.find(c.why), std::string::npos) << c.formula << ": " << e;
+  }
+  // 40 nested right operands need 41 values at once: deeper than the evaluation's stack.
+  std::string deep = "x";
+  for (int k = 0; k < 40; ++k)
+    deep = "1 + (" + deep + ")";
+  EXPECT_NE(refusal_of(deep).find("needs more than 32 values"), std::string::npos);
+  std::string left_deep = "x";  // 300 left-nested operations need 2 values: read
+  for (int k = 0; k < 300; ++k)
+    left_deep = "(" + left_deep + " + 0.001)";
+  const auto model = load("f.fll", formula_file(left_deep, "1"));
+  ASSERT_TRUE(model);
+  EXPECT_NEAR(evaluate_at(*model, 2, 0), 3.3, 1e-12);
+  // The pool holds 4096 steps in all.
+  std::string huge = "x";
+  for (int k = 0; k < 1100; ++k)
+    huge += " + 1";
+  EXPECT_NE(refusal_of(huge).find("longer than 4096 bytes"), std::string::npos);
+  std::string many = "1";  // 2,999 steps in each of two formulas
+  for (int k = 0; k < 1499; ++k)
+    many += "+1";
+  EXPECT_NE(refusal_of(many, many).find("formulas exceed the capacity (4096 steps"),
+            std::string::npos);
+  // An output's x is its activation degree, where fuzzylite 6 and 8 differ.
+  EXPECT_NE(refusal_of("x", "x + a").find("x in an output's formula"), std::string::npos);
+  // A variable named x would hide it (fuzzylite raises when evaluating).
+  EXPECT_NE(
+      refusal("f.fll", replace(formula_file("x", "a"), "InputVariable: b", "InputVariable: x"))
+          .to_string()
+          .find("hides the formula's x"),
+      std::string::npos);
+}
+
+// Formulas over 100,000 seeded random inputs against their closed forms: input terms read x (their
+// input's value) and the other inputs, output terms the inputs.
+TEST(RuleFileFunction, LoadedFormulasEvaluateToTheirClosedForms) {
+  const auto model = load("f.fll", formula_file("exp(~((x - b) ^ 2) / 2) + abs(sin(x * b)) + 0.001",
+                                                "a * b - cos(a) / (2 + b) + sqrt(a ^ 2 + 1)"));
+  ASSERT_TRUE(model);
+  Engine<double> engine(*model);
+  std::uint64_t state = 977;  // splitmix64, the same sequence everywhere
+  const auto uniform = [&](double lo, double hi) {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+  };
+  for (int n = 0; n < 100000; ++n) {
+    const double in[2] = {uniform(-6, 6), uniform(-2.5, 2.5)};
+    const double a = in[0], b = in[1];
+    const double mu = std::exp(-std::pow(a - b, 2.0) / 2) + std::fabs(std::sin(a * b)) + 0.001;
+    const double g = a * b - std::cos(a) / (2 + b) + std::sqrt(std::pow(a, 2.0) + 1);
+    double out[1] = {};
+    ASSERT_EQ(engine.evaluate(in, out), Status::Ok);
+    ASSERT_NEAR(out[0], mu + g, 1e-12 * (1 + std::fabs(mu + g)))
+        << "seed 977, sample " << n << ": a = " << a << ", b = " << b;
+  }
+}
+
+// A formula that is not finite (a domain error) is a fault: NumericOverflow with the outputs 0.
+TEST(RuleFileFunction, ANonFiniteFormulaValueIsNumericOverflow) {
+  Status s = Status::Ok;
+  const auto input_side = load("f.fll", formula_file("sqrt(x)", "1"));
+  ASSERT_TRUE(input_side);
+  EXPECT_EQ(evaluate_at(*input_side, 4, 0, &s), 3.0);
+  EXPECT_EQ(s, Status::Ok);
+  EXPECT_EQ(evaluate_at(*input_side, -1, 0, &s), 0.0);
+  EXPECT_EQ(s, Status::NumericOverflow);
+  const auto output_side = load("f.fll", formula_file("1", "1 / b"));
+  ASSERT_TRUE(output_side);
+  EXPECT_EQ(evaluate_at(*output_side, 1, 0.5, &s), 3.0);
+  EXPECT_EQ(evaluate_at(*output_side, 1, 0, &s), 0.0);
+  EXPECT_EQ(s, Status::NumericOverflow);
+}
+
+// .fll and .fcl write formulas back fully parenthesised; they read back to the same steps.
+TEST(RuleFileFunction, FormulasRoundTripThroughFllAndFclButNotFis) {
+  const auto model =
+      load("f.fll", formula_file("(.- x) % 3 + 2 ^ .5 ^ 2 * pi + !(x) - fabs(b) / 1e7",
+                                 "round(a / 2) + atan2(b, a) * 0.1 - max(a, b) ** 2"));
+  ASSERT_TRUE(model);
+  for (const char* ext : {".fll", ".fcl"}) {
+    std::string text, error;
+    ASSERT_TRUE(ext == std::string(".fll") ? fuzzypid::rulefile::to_fll(*model, text, error)
+                                           : fuzzypid::rulefile::to_fcl(*model, text, error))
+        << error;
+    const auto back = load(std::string("back") + ext, text);
+    ASSERT_TRUE(back) << text;
+    ASSERT_EQ(back->num_steps, model->num_steps) << text;
+    for (std::size_t k = 0; k < model->num_steps; ++k)
+      EXPECT_EQ(back->steps[k], model->steps[k]) << ext << " step " << k << "\n" << text;
+    for (double a = -5.5; a <= 5.5; a += 0.37)
+      EXPECT_EQ(evaluate_at(*back, a, 0.3), evaluate_at(*model, a, 0.3)) << ext << " a = " << a;
+  }
+  std::string text, error;
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*model, text, error));
+  EXPECT_NE(error.find("input term 'f': 'function' (a fuzzylite formula) is not read from a .fis"),
+            std::string::npos)
+      << error;
+}
+
+TEST(RuleFileFunction, FclReadsFunctionTerms) {
+  const auto model = load("f.fcl", R"(FUNCTION_BLOCK f
+VAR_INPUT
+  a : REAL;
+  b : REAL;
+END_VAR
+VAR_OUTPUT
+  z : REAL;
+END_VAR
+FUZZIFY a
+  TERM f := Function max(0, 1 - abs(x - b));
+  RANGE := (-5 .. 5);
+END_FUZZIFY
+FUZZIFY b
+  TERM all := Rectangle -1e9 1e9;
+END_FUZZIFY
+DEFUZZIFY z
+  TERM g := Function 2 * a + b;
+  METHOD : COGS;
+  DEFAULT := 0;
+END_DEFUZZIFY
+RULEBLOCK rules
+  AND : MIN;
+  RULE 1 : IF a IS f AND b IS all THEN z IS g;
+END_RULEBLOCK
+END_FUNCTION_BLOCK
+)");
+  ASSERT_TRUE(model);
+  EXPECT_DOUBLE_EQ(evaluate_at(*model, 1.0, 0.5), 2.5);  // one rule: z = g = 2 a + b
+  Engine<double> engine(*model);
+  const double in[2] = {1.0, 0.5};
+  double out[1] = {};
+  ASSERT_EQ(engine.evaluate(in, out), Status::Ok);
+  EXPECT_DOUBLE_EQ(engine.rule_strength(0), 0.5);  // mu_f(1) = 1 - |1 - 0.5|
+}
+
+TEST(RuleFileFunction, FisFunctionTermsAreRefusedWithTheReason) {
+  const std::string e = refusal("f.fis", corpus_file("refuse_function_mf.fis")).to_string();
+  EXPECT_NE(e.find("fuzzylite's FisImporter removes its blanks"), std::string::npos) << e;
+  EXPECT_NE(e.find("write Function terms in .fll or .fcl"), std::string::npos) << e;
+}
+
+TEST(RuleFileFunction, AFunctionTermOfAMamdaniOutputIsRefused) {
+  std::string text = formula_file("x", "a");
+  text = replace(text, "WeightedSum TakagiSugeno", "Centroid 100");
+  text = replace(text, "aggregation: none", "aggregation: Maximum");
+  text = replace(text, "implication: none", "implication: Minimum");
+  text = replace(text, "term: one Constant 1", "term: one Triangle 0 1 2");
+  const std::string e = refusal("f.fll", text).to_string();
+  EXPECT_NE(e.find("output 'z': integral defuzzifiers need membership terms, not "
+                   "constant/linear/function ones"),
+            std::string::npos)
+      << e;
+}
+
+// mu(z) = w has no solution for a term of height 0 (fuzzylite 8 divides by it: inf or NaN).
+TEST(RuleFileTsukamoto, ATermOfHeightZeroIsRefusedAtLoad) {
+  const std::string e = refusal("t.fll", R"(Engine: t
+InputVariable: a
+  range: 0 1
+  term: lo Ramp 1 0
+OutputVariable: z
+  range: 0 1
+  aggregation: none
+  defuzzifier: WeightedAverage Tsukamoto
+  default: nan
+  term: up Ramp 0 1 0
+RuleBlock: rules
+  implication: none
+  rule: if a is lo then z is up
+)")
+                            .to_string();
+  EXPECT_NE(e.find("t.fll:5: output 'z': a Tsukamoto term needs a height > 0"), std::string::npos)
+      << e;
+}
+
 }  // namespace

@@ -38,6 +38,11 @@
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
 //     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
 //     Sugeno.
+//   Function terms (fuzzy/formula.hpp): an input's term is its formula at x = x_i and the inputs'
+//     values (after locking); a Takagi-Sugeno output's term gives z_r = its formula at the inputs'
+//     values. A formula value that is not finite (a domain error: sqrt(-1), 1 / 0) is
+//     Status::NumericOverflow: an input term's makes every output 0, an output term's makes that
+//     output 0.
 // The model is plain data; evaluation writes only into a separate workspace, is noexcept and
 // allocates nothing. An output no rule concluded on takes its previous value when lock_previous
 // and a previous evaluation with this workspace gave a finite value (kept in the workspace, so
@@ -56,6 +61,7 @@
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_model.hpp"
 #include "fuzzypid/fuzzy/engine_workspace.hpp"
+#include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
@@ -215,6 +221,42 @@ Scalar tsukamoto(const Term<Scalar>& t, Scalar w, Scalar min, Scalar max,
   }
 }
 
+// The memberships of the enabled inputs' Function terms (out of line and cold: the paths of models
+// without formulas stay as they are). False when one is not finite.
+template <class Scalar, class Cap>
+[[gnu::cold]] [[gnu::noinline]] bool formula_memberships(const EngineModel<Scalar, Cap>& model,
+                                                         const WorkspaceView<Scalar>& ws) noexcept {
+  for (std::size_t i = 0; i < model.num_inputs; ++i) {
+    const auto& in = model.inputs[i];
+    if (!in.enabled) continue;
+    for (std::size_t t = 0; t < in.num_terms; ++t) {
+      const Term<Scalar>& term = in.terms[t];
+      if (term.shape != Shape::Function) continue;
+      const Scalar mu =
+          evaluate_formula(model.steps.data() + term.first, term.count, ws.input[i], ws.input);
+      if (!detail::is_finite(mu)) return false;
+      ws.membership[i * ws.stride + t] = mu;
+    }
+  }
+  return true;
+}
+
+// z of each Function term of a Takagi-Sugeno output at the inputs' values, into level[t] (out of
+// line and cold, and before the conclusions' loop, which then only reads them); NaN when not
+// finite (the output is then NaN, which evaluate_with reports as NumericOverflow).
+template <class Scalar, class Cap>
+[[gnu::cold]] [[gnu::noinline]] void formula_values(const EngineModel<Scalar, Cap>& model,
+                                                    const OutputSpec<Scalar, Cap>& out,
+                                                    const Scalar* input, Scalar* level) noexcept {
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  for (std::size_t t = 0; t < out.num_terms; ++t) {
+    const Term<Scalar>& term = out.terms[t].membership;
+    if (out.terms[t].kind != OutputTermKind::Function) continue;
+    const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
+    level[t] = detail::is_finite(z) ? z : nan;
+  }
+}
+
 template <class Scalar>
 bool compare(Comparison c, Scalar a, Scalar b) noexcept {
   switch (c) {
@@ -331,6 +373,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     for (std::size_t t = 0; t < in.num_terms; ++t)
       ws.membership[i * ws.stride + t] = in.terms[t](x, points);
   }
+  if (model.num_steps > 0 && !engine_detail::formula_memberships(model, ws))
+    return Status::NumericOverflow;  // the outputs are 0, written above
 
   const bool disabled = model.has_disabled_variables();
   if (model.chained)
@@ -341,6 +385,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     fired_rules = engine_detail::activate_block<Power>(model, ws, b, fired_rules, disabled);
 
   const bool merged = model.merges_activations();
+  // Some term is a Function (a loop invariant; a constant for a constexpr model without one).
+  const bool formulas = model.num_steps > 0;
   Status status = Status::Ok;
   for (std::size_t o = 0; o < model.num_outputs; ++o) {
     const OutputSpec<Scalar, Cap>& out = model.outputs[o];
@@ -356,6 +402,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (merge || singletons)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
+    // Takagi-Sugeno outputs neither merge nor take singletons: level holds their formulas' z.
+    if (formulas && sugeno) engine_detail::formula_values(model, out, ws.input, ws.level);
     for (std::size_t f = 0; f < fired_rules; ++f) {
       const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
@@ -376,6 +424,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
           const Scalar z =
               term.kind == OutputTermKind::Membership
                   ? engine_detail::tsukamoto(term.membership, degree, out.min, out.max, points)
+              : formulas && term.kind == OutputTermKind::Function
+                  ? ws.level[c.term]
                   : engine_detail::sugeno_value(term, ws.input, model.num_inputs);
           sum += degree * z;
           weights += degree;
@@ -447,7 +497,9 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (detail::is_finite(y)) ws.previous[o] = y;
     if (y != y) {
       y = Scalar(0);
-      status = Status::NoRuleFired;
+      // A fired Takagi-Sugeno output is NaN only where a formula was not finite (formula_value).
+      status = worst(status,
+                     fired && sugeno && formulas ? Status::NumericOverflow : Status::NoRuleFired);
     }
     outputs[o] = y;
   }
@@ -458,7 +510,8 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
 
 // Evaluates `model` at inputs[0 .. num_inputs) into outputs[0 .. num_outputs). The model must
 // have passed validate() and `ws` must fit it. Returns NonFiniteInput (outputs 0) for a NaN/inf
-// input, NoRuleFired when some output fell back to 0 because no rule fired for it, else Ok.
+// input, NumericOverflow when a Function term's formula was not finite (see above), NoRuleFired
+// when some output fell back to 0 because no rule fired for it, else Ok.
 template <class Scalar, class Cap>
 Status evaluate(const EngineModel<Scalar, Cap>& model, const WorkspaceView<Scalar>& ws,
                 const Scalar* inputs, Scalar* outputs) noexcept {

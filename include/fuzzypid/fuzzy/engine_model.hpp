@@ -10,7 +10,7 @@
 //                        8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 blocks.
 //   SizedCapacity<Limits> arrays allocated once with the exact counts of one model (variables,
 //                        terms, coefficients, rules, blocks, antecedent tokens, conclusions, names,
-//                        Discrete points), bounded by the fixed capacity `Limits`; copying and
+//                        Discrete points, formula steps), bounded by the fixed capacity `Limits`; copying and
 //                        make_sized() allocate, evaluation does not. DefaultCapacity, what the
 //                        rule-file readers produce, is SizedCapacity<FixedCapacity>.
 // A sized model is filled through copy_model() from a fixed one (readers build into a
@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
+#include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
@@ -59,7 +60,8 @@ class SizedArray {
 
 // The compile-time capacity of an engine model, stored in fixed-size arrays.
 template <std::size_t Inputs, std::size_t Outputs, std::size_t Terms, std::size_t Rules,
-          std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points>
+          std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points,
+          std::size_t Steps = 1>
 struct EngineCapacity {
   static_assert(Inputs >= 1 && Inputs <= 255 && Outputs >= 1 && Outputs <= 255,
                 "inputs and outputs: 1..255");
@@ -73,6 +75,7 @@ struct EngineCapacity {
   static constexpr std::size_t tokens = Tokens;            // antecedent tokens of all rules
   static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
   static constexpr std::size_t points = Points;            // (x, y) pairs of all Discrete terms
+  static constexpr std::size_t steps = Steps;              // formula steps of all Function terms
   static constexpr std::size_t rule_tokens = 63;           // tokens of one antecedent
   static constexpr bool sized = false;
   template <class T, std::size_t N>
@@ -91,7 +94,7 @@ struct SizedCapacity : Limits {
   using Array = SizedArray<T>;
 };
 
-using FixedCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096>;
+using FixedCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096, 4096>;
 using DefaultCapacity = SizedCapacity<FixedCapacity>;
 using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
 
@@ -132,6 +135,7 @@ enum class OutputTermKind : std::uint8_t {
   Membership,  // a membership function (Mamdani)
   Constant,    // z = coefficients[0]
   Linear,      // z = sum_i coefficients[i] x_i + coefficients[num_inputs]
+  Function,    // z = a formula of the inputs: `membership` is its Shape::Function term
 };
 
 template <class Scalar, class Cap = DefaultCapacity>
@@ -278,7 +282,8 @@ struct EngineModel {
   std::size_t num_tokens = 0;
   std::size_t num_conclusions = 0;
   std::size_t num_points = 0;
-  bool chained = false;  // some antecedent tests an output (set by add_rule)
+  std::size_t num_steps = 0;  // formula steps of the Function terms
+  bool chained = false;       // some antecedent tests an output (set by add_rule)
   // Some token or conclusion holds Octave's power hedge (set by add_rule): evaluation then takes
   // the instance that computes them (fuzzy::evaluate).
   bool power_hedges = false;
@@ -290,7 +295,8 @@ struct EngineModel {
   Array<RuleBlock, Cap::blocks> blocks{};
   Array<Token, Cap::tokens> tokens{};
   Array<Conclusion, Cap::conclusions> conclusions{};
-  Array<Scalar, 2 * Cap::points> points{};  // (x, y) pairs of the Discrete terms
+  Array<Scalar, 2 * Cap::points> points{};         // (x, y) pairs of the Discrete terms
+  Array<FormulaStep<Scalar>, Cap::steps> steps{};  // the Function terms' formulas (formula.hpp)
 
   // Fixed-capacity models only: appends a rule to block `block` from its postfix antecedent and
   // its conclusions; false (model unchanged) when a capacity would be exceeded.
@@ -372,7 +378,8 @@ struct EngineModel {
   bool storage_holds_counts() const noexcept {
     if (inputs.size() < num_inputs || outputs.size() < num_outputs || rules.size() < num_rules ||
         blocks.size() < num_blocks || tokens.size() < num_tokens ||
-        conclusions.size() < num_conclusions || points.size() < 2 * num_points)
+        conclusions.size() < num_conclusions || points.size() < 2 * num_points ||
+        steps.size() < num_steps)
       return false;
     for (std::size_t i = 0; i < num_inputs; ++i)
       if (inputs[i].terms.size() < inputs[i].num_terms ||
@@ -396,14 +403,22 @@ struct EngineModel {
     if (num_rules > Cap::rules) return {"more rules than the capacity", 0};
     if (num_blocks < 1 || num_blocks > Cap::blocks)
       return {"number of rule blocks out of capacity", 0};
-    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions || num_points > Cap::points)
-      return {"rule or point storage out of capacity", 0};
+    if (num_tokens > Cap::tokens || num_conclusions > Cap::conclusions ||
+        num_points > Cap::points || num_steps > Cap::steps)
+      return {"rule, point or formula storage out of capacity", 0};
     if (!storage_holds_counts()) return {"storage smaller than the model's counts", 0};
     const auto range_ok = [](Scalar lo, Scalar hi) {
       return detail::is_finite(lo) && detail::is_finite(hi) && lo < hi;
     };
+    // A formula reads x (input terms) and the inputs' values, within its own steps.
+    const auto formula_ok = [&](const Term<Scalar>& t, bool x_allowed) {
+      return t.shape == Shape::Function && t.count >= 1 &&
+             static_cast<std::size_t>(t.first) + t.count <= num_steps &&
+             formula_depth(steps.data() + t.first, t.count, num_inputs, x_allowed) > 0;
+    };
     const auto term_ok = [&](const Term<Scalar>& t) {
       if (!t.valid()) return false;
+      if (t.shape == Shape::Function) return formula_ok(t, true);
       if (t.shape != Shape::Discrete) return true;
       if (static_cast<std::size_t>(t.first) + t.count > num_points) return false;
       for (std::size_t k = 0; k < t.count; ++k) {
@@ -470,13 +485,26 @@ struct EngineModel {
               "Ramp, Sigmoid, SShape, ZShape, Concave or Arc terms), not a mix",
               o, ModelError::Where::Output};
         if (!sugeno && !membership)
-          return {"integral defuzzifiers need membership terms, not constant/linear ones", o,
-                  ModelError::Where::Output};
-        if (out.merge_equal_singletons && (membership || !out.has_aggregation))
+          return {"integral defuzzifiers need membership terms, not constant/linear/function ones",
+                  o, ModelError::Where::Output};
+        if (out.merge_equal_singletons &&
+            (membership || !out.has_aggregation || term.kind == OutputTermKind::Function))
           return {"merging equal singletons needs constant/linear terms and an aggregation", o,
                   ModelError::Where::Output};
         if (tsukamoto && !is_monotonic(term.membership))
           return {"Tsukamoto terms must be Ramp, Sigmoid, SShape, ZShape, Concave or Arc", o,
+                  ModelError::Where::Output};
+        // mu(z) = w has no solution for w > 0 (fuzzylite 8 divides by the height: inf or NaN).
+        if (tsukamoto && !(term.membership.height > Scalar(0)))
+          return {"a Tsukamoto term needs a height > 0 (of height 0 it reaches no degree w > 0)", o,
+                  ModelError::Where::Output};
+        if (membership && term.membership.shape == Shape::Function)
+          return {
+              "a Function term of an output must be a Takagi-Sugeno term (a weighted "
+              "defuzzifier); an integral defuzzifier would sample it",
+              o, ModelError::Where::Output};
+        if (term.kind == OutputTermKind::Function && !formula_ok(term.membership, false))
+          return {"an output's formula must be well formed and read the inputs only (not x)", o,
                   ModelError::Where::Output};
         if (membership && !term_ok(term.membership))
           return {"invalid output term parameters", o, ModelError::Where::Output};
@@ -581,7 +609,8 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
   if (!from.storage_holds_counts() || from.num_inputs > To::inputs ||
       from.num_outputs > To::outputs || from.num_rules > To::rules ||
       from.num_blocks > To::blocks || from.num_tokens > To::tokens ||
-      from.num_conclusions > To::conclusions || from.num_points > To::points)
+      from.num_conclusions > To::conclusions || from.num_points > To::points ||
+      from.num_steps > To::steps)
     return false;
   to.name = from.name;
   to.num_inputs = from.num_inputs;
@@ -591,13 +620,14 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
   to.num_tokens = from.num_tokens;
   to.num_conclusions = from.num_conclusions;
   to.num_points = from.num_points;
+  to.num_steps = from.num_steps;
   to.chained = from.chained;
   to.power_hedges = from.power_hedges;
   if (!reserve_exact(to.inputs, from.num_inputs) || !reserve_exact(to.outputs, from.num_outputs) ||
       !reserve_exact(to.rules, from.num_rules) || !reserve_exact(to.blocks, from.num_blocks) ||
       !reserve_exact(to.tokens, from.num_tokens) ||
       !reserve_exact(to.conclusions, from.num_conclusions) ||
-      !reserve_exact(to.points, 2 * from.num_points))
+      !reserve_exact(to.points, 2 * from.num_points) || !reserve_exact(to.steps, from.num_steps))
     return false;
   for (std::size_t i = 0; i < from.num_inputs; ++i) {
     const auto& a = from.inputs[i];
@@ -658,6 +688,8 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     to.conclusions[k] = from.conclusions[k];
   for (std::size_t k = 0; k < 2 * from.num_points; ++k)
     to.points[k] = from.points[k];
+  for (std::size_t k = 0; k < from.num_steps; ++k)
+    to.steps[k] = from.steps[k];
   return true;
 }
 
@@ -678,7 +710,8 @@ std::size_t model_bytes(const EngineModel<Scalar, Cap>& m) noexcept {
     bytes += m.inputs.size() * sizeof(m.inputs[0]) + m.outputs.size() * sizeof(m.outputs[0]) +
              m.rules.size() * sizeof(m.rules[0]) + m.blocks.size() * sizeof(m.blocks[0]) +
              m.tokens.size() * sizeof(m.tokens[0]) +
-             m.conclusions.size() * sizeof(m.conclusions[0]) + m.points.size() * sizeof(Scalar);
+             m.conclusions.size() * sizeof(m.conclusions[0]) + m.points.size() * sizeof(Scalar) +
+             m.steps.size() * sizeof(m.steps[0]);
     for (const auto& in : m.inputs)
       bytes += in.terms.size() * sizeof(in.terms[0]) + in.term_names.size() * sizeof(Name);
     for (const auto& out : m.outputs) {

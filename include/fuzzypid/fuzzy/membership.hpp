@@ -42,6 +42,10 @@
 //   SemiEllipse        start end               sqrt(r^2 - (x-c)^2) / r on [s, e] =        -
 //     (fuzzylite 8)                            [min, max of start, end], r = (e - s)/2,
 //                                              c = s + r; else 0
+//   Function           a formula f             f(x) (height not applied, as fuzzylite): x  -
+//                                              and the inputs' values; steps of a compiled
+//                                              program in the model's pool (formula.hpp),
+//                                              evaluated by the engine, 0 from Term alone
 //   LeftShoulder, RightShoulder, Singleton: the paper's partitions (no fuzzylite counterpart).
 //
 // Every function is noexcept and total. A NaN input has membership 0 (fuzzylite returns NaN; the
@@ -366,17 +370,20 @@ enum class Shape : std::uint8_t {
   Discrete,           // points[first .. first + count) of a pool of (x, y) pairs
   Arc,                // p = {start, end}
   SemiEllipse,        // p = {start, end}
+  Function,           // steps[first .. first + count) of the model's formula pool (formula.hpp)
 };
 
 // A membership function chosen at run time: one of the shapes above with its parameters and
-// height. Discrete terms refer to a pool of points held by their owner (the engine model).
+// height. Discrete terms refer to a pool of points held by their owner (the engine model), Function
+// terms to a pool of formula steps (evaluated by the engine, which knows the inputs' values).
 template <class Scalar>
 struct Term {
   Shape shape = Shape::Triangle;
   std::array<Scalar, 4> p{};
   Scalar height = Scalar(1);
-  std::uint32_t first = 0;  // Discrete: index of its first (x, y) pair in the pool
-  std::uint32_t count = 0;  // Discrete: number of pairs
+  std::uint32_t first = 0;  // Discrete: index of its first (x, y) pair in the pool; Function:
+                            // of its first formula step
+  std::uint32_t count = 0;  // Discrete: number of pairs; Function: number of steps
 
   static constexpr Term triangle(Scalar a, Scalar b, Scalar c) noexcept {
     return {Shape::Triangle, {a, b, c, Scalar(0)}};
@@ -405,7 +412,8 @@ struct Term {
   }
 
   // Degree of membership of x (see the table at the top for the formulas). `points` is the pool
-  // of (x, y) pairs Discrete terms refer to (unused by the other shapes).
+  // of (x, y) pairs Discrete terms refer to (unused by the other shapes). A Function term is 0
+  // here: its formula reads the inputs' values, which only the engine holds (fuzzy/engine.hpp).
   Scalar operator()(Scalar x, const Scalar* points = nullptr) const noexcept {
     const Scalar h = height;
     switch (shape) {
@@ -455,6 +463,8 @@ struct Term {
         return shape::arc(p[0], p[1], h, x);
       case Shape::SemiEllipse:
         return shape::semi_ellipse(p[0], p[1], h, x);
+      case Shape::Function:
+        return Scalar(0);
     }
     return Scalar(0);
   }
@@ -541,6 +551,8 @@ struct Term {
         return two;
       case Shape::SemiEllipse:  // start = end would divide 0 by 0 (fuzzylite 8: NaN at start)
         return two && p[0] != p[1];
+      case Shape::Function:  // the steps are checked by the model that holds them
+        return count >= 1;
     }
     return false;
   }
