@@ -93,6 +93,8 @@ std::string membership_call(const fuzzy::Term<double>& t, const std::string& x) 
       return two("arc");
     case Shape::SemiEllipse:
       return two("semi_ellipse");
+    case Shape::Function:  // a formula: interpreted (fuzzy/formula.hpp)
+      return {};
   }
   return {};
 }
@@ -206,9 +208,13 @@ std::string straight_line_refusal(const Model& m) {
     if (!fuzzy::is_sugeno(out.defuzzifier))
       return which + " is not Takagi-Sugeno (weighted average or sum)";
     if (out.merge_equal_singletons) return which + " merges equal singletons (Octave's .fis)";
-    for (std::size_t t = 0; t < out.num_terms; ++t)
+    for (std::size_t t = 0; t < out.num_terms; ++t) {
       if (out.terms[t].kind == fuzzy::OutputTermKind::Membership)
         return which + " has a Tsukamoto term";
+      if (out.terms[t].kind != fuzzy::OutputTermKind::Constant &&
+          out.terms[t].kind != fuzzy::OutputTermKind::Linear)
+        return which + " has a Function term (a formula)";
+    }
   }
   return {};
 }
@@ -410,7 +416,7 @@ std::string straight_line_supervisor(const Model& m, const SupervisorBinding& bi
           z = lit(term.coefficients[0]);
           // d * 0 adds 0 to a sum that is never -0: nothing changes, for a finite degree.
           zero = term.coefficients[0] == 0.0 && d == "w";
-        } else {  // Linear: engine_detail::sugeno_value
+        } else {  // Linear (straight_line_refusal admits no other kind): sugeno_value
           z = "Scalar(0)";
           for (std::size_t i = 0; i < m.num_inputs; ++i)
             z = "(" + z + " + " + lit(term.coefficients[i]) + " * " + x[i] + ")";

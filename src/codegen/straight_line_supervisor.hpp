@@ -24,7 +24,7 @@ struct SupervisorBinding {
 // General and Threshold activation, and Takagi-Sugeno outputs (weighted average or sum) of
 // constant and linear terms, with lock-range, lock-previous and defaults. Not covered: chained
 // rules, disabled variables, other activation methods, Mamdani and Tsukamoto outputs, and
-// Octave's aggregation of equal singletons.
+// Octave's aggregation of equal singletons, and Function terms (formulas).
 [[nodiscard]] std::string straight_line_refusal(const fuzzy::EngineModel<double>& model);
 
 // The class template Supervisor<Scalar> (the concept of fuzzypid/control/supervisor.hpp) whose

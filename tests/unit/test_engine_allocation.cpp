@@ -45,7 +45,7 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
       load(FUZZYPID_RULEFILES_DIR "/corpus/chained_dimmer_two_blocks.fll"),
       load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_lock_previous_heater.fll"),
       // formulas (Function terms) of inputs and of Takagi-Sugeno outputs
-      load(FUZZYPID_RULEFILES_DIR "/corpus/fuzzylite_function_input_terms.fll"),
+      load(FUZZYPID_RULEFILES_DIR "/corpus/fuzzylite8_function_input_terms.fll"),
       load(FUZZYPID_RULEFILES_DIR "/corpus/fuzzylite8_function_operators.fll"),
       // the largest corpus file (729 rules), sized to its counts
       load(FUZZYPID_RULEFILES_DIR "/corpus/handmade_3inputs_729rules.fis")};
