@@ -164,6 +164,7 @@ template <class Scalar>
 std::vector<std::array<Scalar, 2>> probe_inputs(const std::vector<double>& points,
                                                 std::uint64_t seed) {
   std::vector<std::array<Scalar, 2>> in;
+  in.reserve(20000 + points.size() * points.size() + 6);
   sim::Random rng(seed);
   for (int k = 0; k < 20000; ++k)
     in.push_back(

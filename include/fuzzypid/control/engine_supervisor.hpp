@@ -84,11 +84,13 @@ class EngineSupervisor {
   explicit EngineSupervisor(const Model* model) noexcept : model_(model) {
     if (model == nullptr || model->num_inputs != 2 || model->num_outputs != 3 || model->validate())
       return;
+    // NOLINTNEXTLINE(modernize-loop-convert): k indexes the names and the binding alike
     for (std::size_t k = 0; k < 2; ++k) {
       const int i = supervisor_detail::index_named(model->inputs, 2, kSupervisorInputNames[k]);
       if (i < 0) return;
       input_of_[k] = static_cast<std::uint8_t>(i);
     }
+    // NOLINTNEXTLINE(modernize-loop-convert): g indexes the names and the binding alike
     for (std::size_t g = 0; g < 3; ++g) {
       const int o = supervisor_detail::index_named(model->outputs, 3, kSupervisorOutputNames[g]);
       if (o < 0) return;

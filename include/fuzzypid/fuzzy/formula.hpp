@@ -156,10 +156,7 @@ Scalar round_half_even(Scalar a) noexcept {
   const Scalar f = std::floor(a);
   const Scalar d = a - f;  // exact: a and f share the exponent's grid
   Scalar r = f + Scalar(1);
-  if (d < Scalar(0.5))
-    r = f;
-  else if (d == Scalar(0.5) && std::fmod(f, Scalar(2)) == Scalar(0))
-    r = f;
+  if (d < Scalar(0.5) || (d == Scalar(0.5) && std::fmod(f, Scalar(2)) == Scalar(0))) r = f;
   return r == Scalar(0) ? std::copysign(Scalar(0), a) : r;
 }
 
