@@ -26,8 +26,13 @@ std::string lit(double v) {
   return scalar_literal(v);
 }
 
-const char* name(const fuzzy::Name& n) {
-  return n.data();
+// A name as it may stand in a // comment of the generated code (a name may hold any byte but
+// NUL, so a line break would end the comment).
+std::string name(const fuzzy::Name& n) {
+  std::string s = n.data();
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
 }
 
 // The call of fuzzy::Term::operator() for `t` at `x`, written for its shape (the same function
