@@ -163,6 +163,7 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
     h += v + ".exact_centroid = " + b(out.exact_centroid) + ";\n";
     h += v + ".aggregation = " + enum_lit("SNorm", out.aggregation) + ";\n";
     h += v + ".merge_equal_singletons = " + b(out.merge_equal_singletons) + ";\n";
+    h += v + ".group_by_term = " + b(out.group_by_term) + ";\n";
     h += v + ".num_terms = " + num(out.num_terms) + ";\n";
     for (std::size_t t = 0; t < out.num_terms; ++t) {
       const auto& term_o = out.terms[t];

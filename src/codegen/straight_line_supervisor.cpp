@@ -213,6 +213,8 @@ std::string straight_line_refusal(const Model& m) {
     if (!fuzzy::is_sugeno(out.defuzzifier))
       return which + " is not Takagi-Sugeno (weighted average or sum)";
     if (out.merge_equal_singletons) return which + " merges equal singletons (Octave's .fis)";
+    if (out.group_by_term)
+      return which + " aggregates each term's activations first (fuzzylite 8's weighted output)";
     for (std::size_t t = 0; t < out.num_terms; ++t) {
       if (out.terms[t].kind == fuzzy::OutputTermKind::Membership)
         return which + " has a Tsukamoto term";

@@ -29,10 +29,17 @@ bool size_to_file(const Builder& built, Model& model, LoadError& error);
 // returns false.
 bool check_export(const Model& model, std::string& error);
 
-// What a model read from a .fis as Octave computes it holds that fuzzylite's formats (.fll, .fcl)
-// cannot express: Octave's power hedges (.fis codes .dd other than .05, .2, .4) and Sugeno outputs
-// that merge equal singletons. Empty when there is none, else the first, named.
-std::string octave_only(const Model& model);
+// Whether some term of output `o` is concluded more than once by the rules: only then does
+// grouping a weighted output's activations by term (OutputSpec::group_by_term) change its value.
+bool concludes_a_term_twice(const Model& model, std::size_t o);
+
+// What a model holds that fuzzylite's formats (.fll, .fcl, read as fuzzylite 8 computes them)
+// cannot express: Octave's power hedges (.fis codes .dd other than .05, .2, .4), Sugeno outputs
+// that merge equal singletons (both from a .fis as Octave computes it), and a weighted output
+// that weighs every activation where fuzzylite 8 groups them by term and it makes a difference (a
+// Tsukamoto .fis, read per activation as fuzzylite 6 reads it). Empty when there is none, else
+// the first, named.
+std::string beyond_fuzzylite_formats(const Model& model);
 
 // Variable and rule limits of the capacity, as messages name them.
 inline std::string capacity_text() {

@@ -507,6 +507,9 @@ class FclParser {
         return fail_at(lines_.outputs[o], "output needs an ACCU (aggregation) method");
     }
     if (!formula::compile_all(formulas_, model_, error_)) return false;
+    // fuzzylite 8 reads no .fcl; its .fll meaning is kept for the same system in either format.
+    for (std::size_t o = 0; o < model_.num_outputs; ++o)
+      model_.outputs[o].group_by_term = fuzzy::fuzzylite8_groups_by_term(model_.outputs[o]);
     return check_model(model_, lines_, error_);
   }
 
@@ -534,7 +537,7 @@ bool parse_fcl(std::string_view text, const std::string& source, Model& model, L
 
 bool to_fcl(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
-  if (error = octave_only(m); !error.empty()) return false;
+  if (error = beyond_fuzzylite_formats(m); !error.empty()) return false;
   for (std::size_t i = 0; i < m.num_inputs + m.num_outputs; ++i) {
     const bool input = i < m.num_inputs;
     if (input ? m.inputs[i].enabled : m.outputs[i - m.num_inputs].enabled) continue;

@@ -736,6 +736,16 @@ bool matlab_row(const Model& m, const fuzzy::Rule<double>& rule, std::vector<dou
   return true;
 }
 
+// Every term of `v` is a constant and no two have the same value.
+bool distinct_constants(const fuzzy::OutputSpec<double>& v) {
+  for (std::size_t t = 0; t < v.num_terms; ++t) {
+    if (v.terms[t].kind != fuzzy::OutputTermKind::Constant) return false;
+    for (std::size_t u = 0; u < t; ++u)
+      if (v.terms[u].coefficients[0] == v.terms[t].coefficients[0]) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool parse_fis(std::string_view text, const std::string& source, Model& model, LoadError& error,
@@ -824,8 +834,19 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
     SNorm merge_with = SNorm::Maximum;
     for (std::size_t o = 0; o < m.num_outputs; ++o) {
       const auto& v = m.outputs[o];
+      // fuzzylite 8's grouping by term is Octave's merging of equal values when the terms are
+      // constants of distinct values; it changes nothing when no term is concluded twice.
+      const bool grouped =
+          v.group_by_term && fuzzy::fuzzylite8_groups_by_term(v) && concludes_a_term_twice(m, o);
+      if (grouped && !distinct_constants(v)) {
+        error = "output '" + std::string(text::name_of(v.name)) +
+                "' aggregates the activations of each term (fuzzylite 8's weighted "
+                "defuzzification); .fis can only merge equal values (Octave), which is the same "
+                "only for constant terms of distinct values";
+        return false;
+      }
       if (v.num_terms == 0 || v.terms[0].kind == fuzzy::OutputTermKind::Membership) continue;
-      if (v.merge_equal_singletons) {
+      if (v.merge_equal_singletons || grouped) {
         differ = differ || (merging && v.aggregation != merge_with);
         merging = true;
         merge_with = v.aggregation;

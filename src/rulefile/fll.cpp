@@ -426,9 +426,10 @@ class FllParser {
     }
     if (!formula::compile_all(formulas_, model_, error_)) return false;
     for (std::size_t o = 0; o < model_.num_outputs; ++o) {
-      const auto& out = model_.outputs[o];
+      auto& out = model_.outputs[o];
       const int at = lines_.outputs[o];
       if (!defuzzifier_seen_[o]) return fail_at(at, "output has no defuzzifier");
+      out.group_by_term = fuzzy::fuzzylite8_groups_by_term(out);
       if (!fuzzy::is_sugeno(out.defuzzifier) && !aggregation_seen_[o])
         return fail_at(at, "output needs an aggregation");
       if (takagi_sugeno_type_[o] && out.num_terms > 0 &&
@@ -466,7 +467,7 @@ bool parse_fll(std::string_view text, const std::string& source, Model& model, L
 
 bool to_fll(const Model& m, std::string& out, std::string& error) {
   if (!check_export(m, error)) return false;
-  if (error = octave_only(m); !error.empty()) return false;
+  if (error = beyond_fuzzylite_formats(m); !error.empty()) return false;
   const rules::ExportNames names = rules::export_names(m);
   using text::format_number;
   std::string s = "Engine: " + text::sanitized(text::name_of(m.name)) + "\n";

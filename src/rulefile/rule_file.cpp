@@ -3,6 +3,9 @@
 #include "fuzzypid_support/bounded_read.hpp"
 #include "fuzzypid_support/printable.hpp"
 
+#include <string>
+#include <vector>
+
 #include "check.hpp"
 #include "text.hpp"
 
@@ -59,12 +62,28 @@ bool check_export(const Model& model, std::string& error) {
   return !e;
 }
 
-std::string octave_only(const Model& m) {
-  for (std::size_t o = 0; o < m.num_outputs; ++o)
-    if (m.outputs[o].merge_equal_singletons)
-      return "output '" + std::string(text::name_of(m.outputs[o].name)) +
-             "' merges equal singletons with its aggregation (Octave's Sugeno aggregation of a "
+bool concludes_a_term_twice(const Model& m, std::size_t o) {
+  std::vector<unsigned> count(m.outputs[o].num_terms, 0);
+  for (std::size_t k = 0; k < m.num_conclusions; ++k)
+    if (m.conclusions[k].output == o && ++count[m.conclusions[k].term] > 1) return true;
+  return false;
+}
+
+std::string beyond_fuzzylite_formats(const Model& m) {
+  for (std::size_t o = 0; o < m.num_outputs; ++o) {
+    const auto& out = m.outputs[o];
+    const std::string name = "output '" + std::string(text::name_of(out.name)) + "'";
+    if (out.merge_equal_singletons)
+      return name +
+             " merges equal singletons with its aggregation (Octave's Sugeno aggregation of a "
              ".fis), which fuzzylite's formats cannot express";
+    // The other way round (grouped where fuzzylite 8 would not) gives the same value.
+    if (!out.group_by_term && fuzzy::fuzzylite8_groups_by_term(out) && concludes_a_term_twice(m, o))
+      return name +
+             " weighs every activation of a term concluded more than once (a .fis read as "
+             "fuzzylite 6 reads it), where fuzzylite 8 aggregates them per term under this "
+             "defuzzifier and aggregation; fuzzylite's formats cannot express it";
+  }
   for (std::size_t r = 0; r < m.num_rules; ++r) {
     const auto& rule = m.rules[r];
     bool power = false;

@@ -22,11 +22,7 @@ import tempfile
 
 TOLERANCE = 1e-12
 # Files where fuzzypid and fuzzylite 8 are known to differ, and why (docs/rule_files.md).
-GROUPED = ("weighted output with Maximum aggregation: fuzzylite 8 aggregates the activations of "
-           "each term before the weighted average; we weigh every activation, as fuzzylite 6")
 KNOWN = {
-    "chained_activation_methods.fll": GROUPED,
-    "fuzzylite_hybrid_tipper_two_blocks.fll": GROUPED,
     "handmade_tsukamoto_concave.fll": ("fuzzylite 8 weighs rules of degree 0 too: a Concave "
                                        "term's z(0) is infinite and 0 * inf is NaN"),
     "fuzzylite5_style_activation_accumulation.fll": ("fuzzylite 8 does not read fuzzylite 5's "

@@ -1024,10 +1024,11 @@ TEST(RuleFileFisOctave, SugenoMaxAggregationMergesSingletonsOfEqualValue) {
   EXPECT_NE(why.find("output 'z' merges equal singletons"), std::string::npos) << why;
 }
 
-// A .fll Sugeno output with Maximum aggregation weighs every conclusion (fuzzylite); written to
-// .fis, where Octave would merge with AggMethod, it says 'sum', which means that.
-TEST(RuleFileFisOctave, AFuzzyliteSugenoOutputIsWrittenToFisWithAggMethodSum) {
-  const auto model = load("plain.fll", R"(Engine: e
+// fuzzylite 8's weighted defuzzification (Aggregated::grouped_terms): the activations of a term
+// fold into one degree by the output's aggregation (their sum without one), then
+// y = sum(w_t z_t) / sum(w_t). At x = 0.25: low 0.75, mid 0.5; `small` is concluded by rules 1
+// and 2, `big` by rule 3 at 0.5 * 0.5.
+const char* const kGroupedFll = R"(Engine: e
 InputVariable: x
   range: 0 1
   term: low Triangle -1 0 1
@@ -1043,21 +1044,124 @@ RuleBlock: b
   rule: if x is low then z is small
   rule: if x is mid then z is small
   rule: if x is mid then z is big with 0.5
+)";
+
+TEST(RuleFileFuzzylite8, AWeightedOutputAggregatesTheActivationsOfEachTermFirst) {
+  const double x = 0.25;
+  struct Case {
+    const char* aggregation;
+    double small;  // the degree of `small` after grouping
+    bool grouped;
+  };
+  for (const Case c : {Case{"Maximum", 0.75, true}, Case{"AlgebraicSum", 0.75 + 0.5 - 0.375, true},
+                       Case{"BoundedSum", 1.0, true}, Case{"UnboundedSum", 1.25, false},
+                       Case{"none", 1.25, false}}) {
+    SCOPED_TRACE(c.aggregation);
+    const auto model = load("g.fll", replace(kGroupedFll, "aggregation: Maximum",
+                                             std::string("aggregation: ") + c.aggregation));
+    ASSERT_TRUE(model);
+    EXPECT_EQ(model->outputs[0].group_by_term, c.grouped);
+    auto engine = std::make_unique<Engine<double>>(*model);
+    double z = 0;
+    ASSERT_EQ(engine->evaluate(&x, &z), Status::Ok);
+    EXPECT_NEAR(z, (c.small * 1 + 0.25 * 9) / (c.small + 0.25), 1e-15);
+  }
+  // The same system as .fcl (fuzzylite 8 reads none; its .fll meaning is kept).
+  const auto model = load("g.fll", kGroupedFll);
+  ASSERT_TRUE(model);
+  std::string fcl, why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fcl(*model, fcl, why)) << why;
+  const auto from_fcl = load("g.fcl", fcl);
+  ASSERT_TRUE(from_fcl);
+  EXPECT_TRUE(from_fcl->outputs[0].group_by_term);
+  auto engine = std::make_unique<Engine<double>>(*from_fcl);
+  double z = 0;
+  ASSERT_EQ(engine->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 3.0, 1e-15);
+}
+
+// Tsukamoto: z depends on the degree, so grouping matters without an aggregation too. Ramp
+// 0 -> 10 reaches w at z = 10 w. At x = 0.25 the two rules give `up` 0.75 * 0.5 and 0.5 * 0.5:
+// fuzzylite 8 sums them (0.625, z = 6.25) and y = z; fuzzylite 6 weighed each:
+// (0.375 * 3.75 + 0.25 * 2.5) / 0.625 = 3.25.
+TEST(RuleFileFuzzylite8, ATsukamotoTermConcludedTwiceIsInvertedAtItsSummedDegree) {
+  const auto model = load("t.fll", R"(Engine: e
+InputVariable: x
+  range: 0 1
+  term: low Triangle -1 0 1
+  term: mid Triangle 0 0.5 1
+OutputVariable: z
+  range: 0 10
+  aggregation: none
+  defuzzifier: WeightedAverage Tsukamoto
+  term: up Ramp 0 10
+RuleBlock: b
+  activation: General
+  rule: if x is low then z is up with 0.5
+  rule: if x is mid then z is up with 0.5
 )");
+  ASSERT_TRUE(model);
+  EXPECT_TRUE(model->outputs[0].group_by_term);
+  auto engine = std::make_unique<Engine<double>>(*model);
+  const double x = 0.25;
+  double z = 0;
+  ASSERT_EQ(engine->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 6.25, 1e-14);
+
+  // The same model weighing every activation (a Tsukamoto .fis, read as fuzzylite 6 reads it)
+  // gives fuzzylite 6's value, and fuzzylite's formats refuse to write it.
+  Model per_activation = *model;
+  per_activation.outputs[0].group_by_term = false;
+  auto engine6 = std::make_unique<Engine<double>>(per_activation);
+  ASSERT_EQ(engine6->evaluate(&x, &z), Status::Ok);
+  EXPECT_NEAR(z, 3.25, 1e-14);
+  std::string text, why;
+  EXPECT_FALSE(fuzzypid::rulefile::to_fll(per_activation, text, why));
+  EXPECT_NE(why.find("output 'z' weighs every activation of a term concluded more than once"),
+            std::string::npos)
+      << why;
+  EXPECT_FALSE(fuzzypid::rulefile::to_fcl(per_activation, text, why));
+  // .fis reads Tsukamoto per activation: a grouped output with a term concluded twice is refused.
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*model, text, why));
+  EXPECT_NE(why.find("output 'z' aggregates the activations of each term"), std::string::npos)
+      << why;
+}
+
+// Written to .fis, a grouped output of constants of distinct values is Octave's merging of equal
+// values with the same aggregation; an output grouping nothing (no term concluded twice) is the
+// plain weighted average, 'sum'; other grouped outputs are refused.
+TEST(RuleFileFisOctave, AFuzzylite8WeightedOutputIsWrittenToFisAsOctaveMergesOrRefused) {
+  const auto model = load("g.fll", kGroupedFll);
   ASSERT_TRUE(model);
   std::string fis, why;
   ASSERT_TRUE(fuzzypid::rulefile::to_fis(*model, fis, why)) << why;
-  EXPECT_NE(fis.find("AggMethod='sum'"), std::string::npos) << fis;
+  EXPECT_NE(fis.find("AggMethod='max'"), std::string::npos) << fis;
   const auto again = load("again.fis", fis);
   ASSERT_TRUE(again);
+  EXPECT_TRUE(again->outputs[0].merge_equal_singletons);
   auto a = std::make_unique<Engine<double>>(*model);
   auto b = std::make_unique<Engine<double>>(*again);
-  const double x = 0.25;
-  double za = 0, zb = 0;
-  ASSERT_EQ(a->evaluate(&x, &za), Status::Ok);
-  ASSERT_EQ(b->evaluate(&x, &zb), Status::Ok);
-  EXPECT_EQ(za, zb);
-  EXPECT_NEAR(za, (0.75 + 0.5 + 0.25 * 9) / (0.75 + 0.5 + 0.25), 1e-15);
+  for (const double x : {0.0, 0.1, 0.25, 0.5, 0.8, 0.95}) {
+    double za = 0, zb = 0;
+    ASSERT_EQ(a->evaluate(&x, &za), Status::Ok);
+    ASSERT_EQ(b->evaluate(&x, &zb), Status::Ok);
+    EXPECT_NEAR(za, zb, 1e-15) << x;
+  }
+
+  const auto once =
+      load("once.fll", replace(kGroupedFll, "  rule: if x is mid then z is small\n", ""));
+  ASSERT_TRUE(once);
+  ASSERT_TRUE(fuzzypid::rulefile::to_fis(*once, fis, why)) << why;
+  EXPECT_NE(fis.find("AggMethod='sum'"), std::string::npos) << fis;
+
+  const auto equal = load("equal.fll", replace(kGroupedFll, "big Constant 9", "big Constant 1"));
+  ASSERT_TRUE(equal);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*equal, fis, why));
+  EXPECT_NE(why.find("only for constant terms of distinct values"), std::string::npos) << why;
+  const auto linear =
+      load("linear.fll", replace(kGroupedFll, "small Constant 1", "small Linear 2 1"));
+  ASSERT_TRUE(linear);
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*linear, fis, why));
 }
 
 // Octave raises a Mamdani output's set to the hedge's power (evalmf on the output range); the

@@ -38,6 +38,9 @@
 //   Tsukamoto output (weighted defuzzifier over Ramp/Sigmoid/SShape/ZShape/Concave/Arc terms):
 //     z_r is the abscissa where the term reaches w_r (fuzzylite 8's exact inverses), then as
 //     Sugeno.
+//   group_by_term (fuzzylite 8, set by the .fll/.fcl readers): a weighted output's activations
+//     of each term fold into one degree w_t by its aggregation (the sum without one), and the
+//     sums run over terms: sum(w_t z_t(w_t)) (/ sum(w_t)), z_t as above at w_t.
 //   Function terms (fuzzy/formula.hpp): an input's term is its formula at x = x_i and the inputs'
 //     values (after locking); a Takagi-Sugeno output's term gives z_r = its formula at the inputs'
 //     values. A formula value that is not finite (a domain error: sqrt(-1), 1 / 0) is
@@ -245,15 +248,35 @@ template <class Scalar, class Cap>
 // line and cold, and before the conclusions' loop, which then only reads them); NaN when not
 // finite (the output is then NaN, which evaluate_with reports as NumericOverflow).
 template <class Scalar, class Cap>
+Scalar formula_value(const EngineModel<Scalar, Cap>& model, const Term<Scalar>& term,
+                     const Scalar* input) noexcept {
+  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+  const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
+  return detail::is_finite(z) ? z : nan;
+}
+
+template <class Scalar, class Cap>
 [[gnu::cold]] [[gnu::noinline]] void formula_values(const EngineModel<Scalar, Cap>& model,
                                                     const OutputSpec<Scalar, Cap>& out,
                                                     const Scalar* input, Scalar* level) noexcept {
-  const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
-  for (std::size_t t = 0; t < out.num_terms; ++t) {
-    const Term<Scalar>& term = out.terms[t].membership;
-    if (out.terms[t].kind != OutputTermKind::Function) continue;
-    const Scalar z = evaluate_formula(model.steps.data() + term.first, term.count, nan, input);
-    level[t] = detail::is_finite(z) ? z : nan;
+  for (std::size_t t = 0; t < out.num_terms; ++t)
+    if (out.terms[t].kind == OutputTermKind::Function)
+      level[t] = formula_value(model, out.terms[t].membership, input);
+}
+
+// z of a weighted output's term t at the degree w: Tsukamoto's inverse, a formula (NaN where not
+// finite) or a constant/linear value.
+template <class Scalar, class Cap>
+Scalar weighted_value(const EngineModel<Scalar, Cap>& model, const OutputSpec<Scalar, Cap>& out,
+                      std::size_t t, Scalar w, const Scalar* input, const Scalar* points) noexcept {
+  const OutputTerm<Scalar, Cap>& term = out.terms[t];
+  switch (term.kind) {
+    case OutputTermKind::Membership:
+      return tsukamoto(term.membership, w, out.min, out.max, points);
+    case OutputTermKind::Function:
+      return formula_value(model, term.membership, input);
+    default:
+      return sugeno_value(term, input, model.num_inputs);
   }
 }
 
@@ -394,6 +417,7 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     const bool sugeno = is_sugeno(out.defuzzifier);
     const bool merge = !sugeno && merged && out.aggregation == SNorm::Maximum;
     const bool singletons = sugeno && out.merge_equal_singletons;
+    const bool grouped = out.group_by_term;  // validate(): weighted, never with singletons
     Scalar y = std::numeric_limits<Scalar>::quiet_NaN();
     bool fired = false;
     Scalar sum = Scalar(0);
@@ -402,8 +426,14 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
     if (merge || singletons)
       for (std::size_t t = 0; t < out.num_terms; ++t)
         ws.level[t] = Scalar(0);
-    // Takagi-Sugeno outputs neither merge nor take singletons: level holds their formulas' z.
-    if (formulas && sugeno) engine_detail::formula_values(model, out, ws.input, ws.level);
+    // NaN: no activation of the term yet (a degree is never NaN: the inputs are finite).
+    if (grouped)
+      for (std::size_t t = 0; t < out.num_terms; ++t)
+        ws.level[t] = std::numeric_limits<Scalar>::quiet_NaN();
+    // Other Takagi-Sugeno outputs neither merge nor take singletons: level holds their formulas'
+    // z.
+    else if (formulas && sugeno)
+      engine_detail::formula_values(model, out, ws.input, ws.level);
     for (std::size_t f = 0; f < fired_rules; ++f) {
       const std::size_t r = ws.order[f];
       const Rule<Scalar>& rule = model.rules[r];
@@ -415,7 +445,14 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
         if (c.output != o) continue;
         fired = true;
         const OutputTerm<Scalar, Cap>& term = out.terms[c.term];
-        if (singletons) {
+        if (grouped) {
+          // fuzzylite 8's Aggregated::grouped_terms: the first activation of a term is its degree,
+          // later ones fold in with the aggregation (the sum when there is none).
+          Scalar& w = ws.level[c.term];
+          w = w != w
+                  ? degree
+                  : apply(out.has_aggregation ? out.aggregation : SNorm::UnboundedSum, w, degree);
+        } else if (singletons) {
           // A term's value z is the same in every rule: its degrees aggregate first (folded
           // from 0, the identity of every s-norm), equal values of other terms below.
           ws.level[c.term] = apply(out.aggregation, ws.level[c.term], degree);
@@ -436,7 +473,15 @@ Status evaluate_with(const EngineModel<Scalar, Cap>& model, const WorkspaceView<
         }
       }
     }
-    if (fired && singletons) {
+    if (fired && grouped) {
+      for (std::size_t t = 0; t < out.num_terms; ++t) {
+        const Scalar w = ws.level[t];
+        if (w != w) continue;  // not concluded
+        sum += w * engine_detail::weighted_value(model, out, t, w, ws.input, points);
+        weights += w;
+      }
+      y = out.defuzzifier == Defuzzifier::WeightedAverage ? sum / weights : sum;
+    } else if (fired && singletons) {
       // Octave's aggregate_output_sugeno: the singletons of equal z are one, of the aggregation
       // of their degrees (a term's value is recomputed rather than stored: no scratch beyond
       // one level per term).

@@ -172,6 +172,12 @@ struct OutputSpec {
   // are one singleton, of the `aggregation` of their degrees, before the weighted average or sum.
   // Constant/linear terms only; false: every conclusion is a singleton of its own (fuzzylite).
   bool merge_equal_singletons = false;
+  // fuzzylite 8's weighted defuzzification (Aggregated::grouped_terms): the activations of each
+  // term fold into one degree w_t (the output's aggregation, their sum when it has none) and the
+  // output is sum(w_t z_t(w_t)) over the concluded terms (divided by sum(w_t) for the weighted
+  // average). Weighted defuzzifiers only; false: every activation is weighed on its own
+  // (fuzzylite 6, Octave). See fuzzylite8_groups_by_term for when the two differ.
+  bool group_by_term = false;
   std::size_t num_terms = 0;
   typename Cap::template Array<OutputTerm<Scalar, Cap>, Cap::terms> terms{};
   typename Cap::template Array<Name, Cap::terms> term_names{};
@@ -268,6 +274,18 @@ struct ModelError {
   Where where = Where::Model;
   explicit operator bool() const noexcept { return message != nullptr; }
 };
+
+// Whether fuzzylite 8 groups the activations of `out` by term (OutputSpec::group_by_term), as the
+// .fll and .fcl readers set it: under a weighted defuzzifier when grouping changes the value, that
+// is when z depends on the degree (Tsukamoto) or the aggregation is not a sum. Constant, linear
+// and formula terms under no aggregation or UnboundedSum give the same value either way but for
+// the order of the sums, and weigh every activation (fuzzylite 6's sums, bit for bit).
+template <class Scalar, class Cap>
+constexpr bool fuzzylite8_groups_by_term(const OutputSpec<Scalar, Cap>& out) noexcept {
+  if (!is_sugeno(out.defuzzifier) || out.merge_equal_singletons) return false;
+  const bool tsukamoto = out.num_terms > 0 && out.terms[0].kind == OutputTermKind::Membership;
+  return tsukamoto || (out.has_aggregation && out.aggregation != SNorm::UnboundedSum);
+}
 
 template <class Scalar, class Cap = DefaultCapacity>
 struct EngineModel {
@@ -473,6 +491,9 @@ struct EngineModel {
               "Minimum or Product implication",
               o, ModelError::Where::Output};
       }
+      if (out.group_by_term && (!sugeno || out.merge_equal_singletons))
+        return {"grouping by term needs a weighted defuzzifier and no merging of singletons", o,
+                ModelError::Where::Output};
       // A weighted defuzzifier over monotonic membership terms is Tsukamoto's method.
       const bool tsukamoto =
           sugeno && out.num_terms > 0 && out.terms[0].kind == OutputTermKind::Membership;
@@ -664,6 +685,7 @@ bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& 
     b.resolution = a.resolution;
     b.exact_centroid = a.exact_centroid;
     b.merge_equal_singletons = a.merge_equal_singletons;
+    b.group_by_term = a.group_by_term;
     b.aggregation = a.aggregation;
     b.num_terms = a.num_terms;
     for (std::size_t t = 0; t < a.num_terms; ++t) {
