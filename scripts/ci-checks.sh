@@ -11,7 +11,7 @@
 #   7. main      the README's main command, scripts/run-main.sh, as a fresh user runs it.
 #   8. format    clang-format --dry-run -Werror over every C and C++ file git tracks (seconds).
 # Any error, finding or sanitizer report fails the run. Environment:
-#   CI_FUZZ_SECONDS  per fuzz target (default 45)
+#   CI_FUZZ_SECONDS  per fuzz target (default 25)
 #   CI_SOAK_TICKS    soak length (default 10000000)
 #   CI_STAGES        space-separated subset of the stage names (default: all)
 set -euo pipefail
@@ -44,16 +44,39 @@ configure_asan() {
     -DFUZZYPID_WERROR=ON -DFUZZYPID_BUILD_BENCH=OFF -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 }
 
+# Cases left to the Release suite of scripts/test.sh. Each takes 25-105 s under the sanitizers
+# (about 700 s of the 1,080 s of test time the suite's cases took there, 2026-12-04) and repeats at
+# scale code that shorter cases run under them too: the plant's step-convergence studies (every
+# simulation case steps the plant), the tuner's determinism and search-box checks (TuneOnTheRobot,
+# StagedTuning and tune.reports_its_evaluations_within_the_budget run the tuner), the long examples
+# of docs/your_robot.md, the shipped controllers' documented figures, two package consumers (the
+# others stay) and a compile-only check of exported headers.
+asan_release_only=(
+  'robot\.JointPlant\.HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep'
+  'robot\.JointPlant\.CoupledDefaultStepStaysWithinAMicroradianWithoutArmatureAtFullSpeed'
+  'ClosedLoopTest\.AtHighFrictionTheDefaultStepIsWithinAMicroradianOfATenTimesFinerStep'
+  'sim_ab\.default_plant_step_converges_where_the_plant_is_stiff'
+  'tune\.(warns_and_records_a_parameter_on_its_box|stages_same_seed_gives_the_same_file)'
+  'tune\.(box_moves_with_the_training_tick|min_disk_margin_binds_and_is_recorded)'
+  'tune\.same_seed_gives_the_same_file'
+  'docs\.docs_your_robot_md_[0-9]+'
+  'sim_ab\.(ur5|shipped)_controllers_match_their_documented_quality'
+  'package\.find_package_controller(_file)?'
+  'cli\.export_header\.namespaces_compile_or_are_refused'
+)
+
 stage_asan() {
   configure_asan
   cmake --build build-asan -j "${jobs}"
+  local skip
+  skip="^($(IFS='|' && echo "${asan_release_only[*]}"))\$"
   # detect_leaks: LeakSanitizer at exit; abort_on_error/halt_on_error: the first report fails the
   # test (the build already has -fno-sanitize-recover=all, halt_on_error covers any recoverable
   # check left). The allocation-counting tests replace operator new; ASan still intercepts the
   # malloc/free underneath, so they run unchanged.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
     UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-    ctest --test-dir build-asan --output-on-failure -j "${jobs}" --timeout 900
+    ctest --test-dir build-asan --output-on-failure -j "${jobs}" --timeout 900 -E "${skip}"
 }
 
 stage_werror() {
@@ -90,7 +113,7 @@ stage_cppcheck() {
 }
 
 stage_fuzz() {
-  FUZZ_SECONDS="${CI_FUZZ_SECONDS:-45}" bash scripts/fuzz.sh
+  FUZZ_SECONDS="${CI_FUZZ_SECONDS:-25}" bash scripts/fuzz.sh
 }
 
 stage_soak() {
