@@ -131,13 +131,13 @@ BENCHMARK(BM_PlantStep6);
 
 // A PD law toward a moving target, held over each tick (tests/robot/test_plant.cpp measures the
 // coupled plant's accuracy on the same loop).
-robot::JointVector pd_torque(const robot::JointPlant& plant, const robot::JointVector& centre,
+robot::JointVector pd_torque(const robot::JointPlant& plant, const robot::JointVector& center,
                              double t) {
   static constexpr robot::JointVector kp = {6000.0, 12000.0, 3000.0, 300.0, 300.0, 60.0};
   static constexpr robot::JointVector kd = {1200.0, 2400.0, 600.0, 60.0, 60.0, 12.0};
   robot::JointVector tau{};
   for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
-    const double target = centre[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
+    const double target = center[i] + 0.5 * std::sin(1.3 * t + 0.4 * static_cast<double>(i));
     tau[i] = kp[i] * (target - plant.position()[i]) - kd[i] * plant.velocity()[i];
   }
   return tau;
@@ -153,12 +153,12 @@ double thread_cpu_s() {
 
 // One 5 s condition: reset, then 5 s / tick ticks of PD torque held over each tick. Returns the
 // thread CPU time it took, s.
-double run_condition(robot::JointPlant& plant, const robot::JointVector& centre, double tick_s,
+double run_condition(robot::JointPlant& plant, const robot::JointVector& center, double tick_s,
                      int ticks) {
   const double start = thread_cpu_s();
-  plant.reset(centre, robot::JointVector{});
+  plant.reset(center, robot::JointVector{});
   for (int k = 0; k < ticks; ++k) {
-    const robot::PlantStatus s = plant.step(pd_torque(plant, centre, k * tick_s), tick_s);
+    const robot::PlantStatus s = plant.step(pd_torque(plant, center, k * tick_s), tick_s);
     benchmark::DoNotOptimize(s);
   }
   benchmark::DoNotOptimize(plant.position());
@@ -197,9 +197,9 @@ void BM_ConditionCost(benchmark::State& state) {
   double coupled_s = 0.0;
   std::size_t k = 0;
   for (auto _ : state) {
-    const robot::JointVector& centre = starts[k++ & (kStarts - 1)];
-    decoupled_s += run_condition(decoupled, centre, tick_s, ticks);
-    coupled_s += run_condition(coupled, centre, tick_s, ticks);
+    const robot::JointVector& center = starts[k++ & (kStarts - 1)];
+    decoupled_s += run_condition(decoupled, center, tick_s, ticks);
+    coupled_s += run_condition(coupled, center, tick_s, ticks);
   }
   const auto n = static_cast<double>(state.iterations());
   state.counters["decoupled_us"] = 1e6 * decoupled_s / n;

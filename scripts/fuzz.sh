@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan) in build-fuzz/ and runs each for a bounded
-# time from its seed corpus in fuzz/corpus/<name>/:
+# time from its seeds in fuzz/corpus/<name>/ and the project's data files (see below):
 #   fis, fll, fcl  the .fis / .fll / .fcl rule-file readers
 #   csv            the command-line tools' CSV reader
 #   urdf           the URDF loader (robot::RobotModel::load)
@@ -33,10 +33,16 @@ for name in ${targets}; do
   if [ "${name}" = sim_ab_args ] || [ "${name}" = rt_loop_args ]; then max_len=512; fi
   # New inputs go to the work corpus; the checked-in seeds are only read. Artifacts (crash-*,
   # leak-*, timeout-*) land in build-fuzz/.
-  # The controller-file target reads condition files too: the shipped controller and condition
-  # files are its seeds as they are, not copies.
+  # The project's own data files are seeds as they are, not copies (libFuzzer reads directories
+  # recursively and writes only to the first): rule files of every format for each rule-file
+  # reader, the URDFs and the loader's test robots, the shipped controller and condition files
+  # and the controller-file tests' data (the target reads condition files too).
   shared=()
-  if [ "${name}" = controller_file ]; then shared=(../controllers ../tuning); fi
+  case "${name}" in
+    fis | fll | fcl) shared=(../rulebases ../tests/rulefiles) ;;
+    urdf) shared=(../urdf ../tests/robot/data) ;;
+    controller_file) shared=(../controllers ../tuning ../tests/sim/data) ;;
+  esac
   status=0
   (cd build-fuzz && "bin/fuzz_${name}" -max_total_time="${seconds}" -max_len="${max_len}" \
     -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "corpus-${name}" "../fuzz/corpus/${name}" \

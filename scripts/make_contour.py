@@ -10,7 +10,7 @@ Usage: scripts/make_contour.py > paths/ur5_deburring_contour.csv
 """
 import math
 
-CENTRE = (0.45, 0.10, 0.25)  # m, base frame
+CENTER = (0.45, 0.10, 0.25)  # m, base frame
 HALF = (0.08, 0.05)  # half width (x) and half height (y) of the rectangle, m
 RADIUS = 0.025  # corner radius, m
 RPY = (-3.0845960172932765, 0.5542066365534857, 2.701366908522486)  # FK of a reachable pose
@@ -25,7 +25,7 @@ def contour_point(s):
     ax, ay = HALF[0] - RADIUS, HALF[1] - RADIUS  # straight half-lengths
     arc = math.pi / 2 * RADIUS
     pieces = []  # (length, function of local u in [0, length])
-    cx, cy = CENTRE[0], CENTRE[1]
+    cx, cy = CENTER[0], CENTER[1]
     pieces.append((ay, lambda u: (cx + HALF[0], cy + u)))
     pieces.append((arc, lambda u: (cx + ax + RADIUS * math.cos(u / RADIUS),
                                    cy + ay + RADIUS * math.sin(u / RADIUS))))
@@ -72,7 +72,7 @@ def main():
         times.append(duration)
     for t in times:
         x, y = contour_point(min(total, max(0.0, s_of(t))))
-        print(f"{t:.6f},{x:.9f},{y:.9f},{CENTRE[2]:.9f},{RPY[0]:.12f},{RPY[1]:.12f},{RPY[2]:.12f}")
+        print(f"{t:.6f},{x:.9f},{y:.9f},{CENTER[2]:.9f},{RPY[0]:.12f},{RPY[1]:.12f},{RPY[2]:.12f}")
 
 
 if __name__ == "__main__":

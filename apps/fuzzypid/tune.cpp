@@ -647,7 +647,7 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "-log T(x, y)) or none (default even)")
       ->check(CLI::IsMember({"even", "odd", "none"}));
   cmd->add_option("--partition", t->partition,
-                  "fuzzy-rules: search the inner set centres too (tuned: ordered, symmetric) or "
+                  "fuzzy-rules: search the inner set centers too (tuned: ordered, symmetric) or "
                   "keep the start's (fixed) (default tuned)")
       ->check(CLI::IsMember({"tuned", "fixed"}));
   cmd->add_option("--smoothness", t->table.smoothness,

@@ -153,7 +153,7 @@ std::string check_float_range(const ControllerSpec& spec) {
                                  {"gain_max kd", fc.gain_max.kd}});
   }
   if (spec.family == Family::FuzzyRules) {
-    // The table's cells and centres are written as float literals too: 1e300 would not compile.
+    // The table's cells and centers are written as float literals too: 1e300 would not compile.
     static constexpr const char* kGain[3] = {"kp", "ki", "kd"};
     static constexpr const char* kSet[7] = {"NB", "NM", "NS", "ZO", "PS", "PM", "PB"};
     const RuleTableSpec& t = spec.supervisor.rule_table;
@@ -169,13 +169,13 @@ std::string check_float_range(const ControllerSpec& spec) {
                           static_cast<double>(FLT_MAX));
             return buf;
           }
-    for (const auto* centres : {&t.error_centres, &t.error_rate_centres})
-      for (const double c : *centres)
+    for (const auto* centers : {&t.error_centers, &t.error_rate_centers})
+      for (const double c : *centers)
         if (std::fabs(c) > static_cast<double>(FLT_MAX)) {
           char buf[160];
           std::snprintf(buf, sizeof buf,
-                        "rule_table %s centre %.17g is not finite as a float (|x| <= %g)",
-                        centres == &t.error_centres ? "error" : "error_rate", c,
+                        "rule_table %s center %.17g is not finite as a float (|x| <= %g)",
+                        centers == &t.error_centers ? "error" : "error_rate", c,
                         static_cast<double>(FLT_MAX));
           return buf;
         }
@@ -366,7 +366,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
       h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::RuleTable<Scalar>;\n\n";
       h +=
           "// The shared, immutable supervisor the joints point to: the schedule's ratios R, the\n"
-          "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centres.\n";
+          "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centers.\n";
       h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{\n";
       h += "    " + list(t.schedule_ratio) + ",\n    {{\n";
       for (const auto& table : t.table) {

@@ -64,15 +64,15 @@ ControllerSpec fuzzy_from_rule_table(const ControllerSpec& rules, std::string ru
 }
 
 std::string validate(const RuleTableSpec& t) {
-  const auto centres_ok = [](const RuleTableSpec::Centres& c) {
+  const auto centers_ok = [](const RuleTableSpec::Centers& c) {
     for (std::size_t k = 0; k < c.size(); ++k) {
       if (!std::isfinite(c[k]) || c[k] != -c[c.size() - 1 - k]) return false;
       if (k > 0 && !(c[k] > c[k - 1])) return false;
     }
     return true;
   };
-  if (!centres_ok(t.error_centres) || !centres_ok(t.error_rate_centres))
-    return "rule_table centres must be finite, increasing and symmetric about 0";
+  if (!centers_ok(t.error_centers) || !centers_ok(t.error_rate_centers))
+    return "rule_table centers must be finite, increasing and symmetric about 0";
   for (const auto& table : t.ratio)
     for (const auto& row : table)
       for (double v : row)

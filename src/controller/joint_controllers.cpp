@@ -50,8 +50,8 @@ control::RuleTable<double> rule_table(const ControllerSpec& spec) {
   control::RuleTable<double> r;
   r.schedule_ratio = spec.supervisor.output_scale;
   r.table = t.ratio;
-  r.e_centers = t.error_centres;
-  r.ec_centers = t.error_rate_centres;
+  r.e_centers = t.error_centers;
+  r.ec_centers = t.error_rate_centers;
   return r;
 }
 
@@ -155,7 +155,7 @@ std::optional<JointControllers> JointControllers::build(
     case Family::FuzzyRules: {
       auto table = std::make_unique<const control::RuleTable<double>>(rule_table(spec));
       if (!table->valid()) {
-        error = "invalid rule table (centres increasing and symmetric, ratios finite and > 0)";
+        error = "invalid rule table (centers increasing and symmetric, ratios finite and > 0)";
         return std::nullopt;
       }
       auto joints = supervised_joints(table.get(), configs, "fuzzy-rules PID", error);

@@ -90,11 +90,11 @@ std::array<double, N> read_numbers(TableReader& r, const toml::node& node,
   return out;
 }
 
-RuleTableSpec::Centres read_centres(TableReader& r, const char* key) {
+RuleTableSpec::Centers read_centers(TableReader& r, const char* key) {
   const toml::array* a = r.array(key, true);
   const auto c = read_numbers<RuleTableSpec::kSets>(r, *a, std::string("'") + key + "'");
   RuleTableSpec probe;
-  probe.error_centres = c;
+  probe.error_centers = c;
   if (const std::string bad = validate(probe); !bad.empty()) r.fail(*a, bad);
   return c;
 }
@@ -174,8 +174,8 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     r.fail(*root.get("rule_table"), "only a 'fuzzy-rules' controller has a [rule_table]");
   if (table) {
     RuleTableSpec& t = s.supervisor.rule_table;
-    t.error_centres = read_centres(*table, "error_centres");
-    t.error_rate_centres = read_centres(*table, "error_rate_centres");
+    t.error_centers = read_centers(*table, "error_centers");
+    t.error_rate_centers = read_centers(*table, "error_rate_centers");
     const char* gains[3] = {"kp", "ki", "kd"};
     for (std::size_t g = 0; g < 3; ++g)
       t.ratio[g] = read_ratio_table(*table, gains[g]);
@@ -477,8 +477,8 @@ std::string to_toml(const ControllerSpec& s) {
         line += (k == 0 ? "" : ", ") + format_double(values[k]);
       return line + "]";
     };
-    o += "error_centres = " + list(t.error_centres) + "\n";
-    o += "error_rate_centres = " + list(t.error_rate_centres) + "\n";
+    o += "error_centers = " + list(t.error_centers) + "\n";
+    o += "error_rate_centers = " + list(t.error_rate_centers) + "\n";
     const char* gains[3] = {"kp", "ki", "kd"};
     for (std::size_t g = 0; g < 3; ++g) {
       o += std::string(gains[g]) + " = [\n";

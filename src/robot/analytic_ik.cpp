@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
-// Below this distance of the wrist centre from the J1 axis (m), or this |sin q5|, the pose is
+// Below this distance of the wrist center from the J1 axis (m), or this |sin q5|, the pose is
 // treated as singular. Both are far below any physical tolerance.
 constexpr double kSingularEps = 1e-12;
 // Round-off allowed beyond the reach sphere (relative) and beyond a joint limit (rad).
@@ -54,8 +54,8 @@ struct Arm {
   double q1, q2, q3;
 };
 
-// The arm solutions of the wrist centre p (up to 4: two q1 times elbow up / down), in branch
-// order. A wrist centre on the J1 axis takes seed_q1 and sets `singular`.
+// The arm solutions of the wrist center p (up to 4: two q1 times elbow up / down), in branch
+// order. A wrist center on the J1 axis takes seed_q1 and sets `singular`.
 std::size_t arm_branches(const DhParameters& dh, const Eigen::Vector3d& p, double seed_q1,
                          Arm (&arms)[4], bool& singular) noexcept {
   const double px = p.x();
@@ -63,7 +63,7 @@ std::size_t arm_branches(const DhParameters& dh, const Eigen::Vector3d& p, doubl
   const double pz = p.z();
 
   double q1_candidates[2];
-  if (std::hypot(px, py) < kSingularEps) {  // wrist centre on the J1 axis: q1 is free
+  if (std::hypot(px, py) < kSingularEps) {  // wrist center on the J1 axis: q1 is free
     singular = true;
     q1_candidates[0] = wrap(seed_q1);
   } else {

@@ -36,7 +36,7 @@ class RigidBodyDynamics {
   // the joint axis is the frame's z axis (the turn is the identity when the URDF axis is already
   // z). rotation0 and position0 place it in its parent body's frame (the root's for body 0) at
   // q_i = 0: x_parent = rotation0 · Rz(q_i) · x + position0. The inertia is the body's with its
-  // fixed successors merged in: mass m (kg), first moment h = m·c (kg·m, c the centre of mass) and
+  // fixed successors merged in: mass m (kg), first moment h = m·c (kg·m, c the center of mass) and
   // rotational inertia about the frame origin (kg·m²), in the body frame.
   struct Body {
     Mat3 rotation0 = Mat3::Identity();

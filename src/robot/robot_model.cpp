@@ -124,8 +124,8 @@ bool to_kdl(const urdf::Joint& joint, KDL::Joint& out, std::string& error) {
 KDL::RigidBodyInertia to_kdl(const urdf::InertialSharedPtr& inertial) {
   if (!inertial) return KDL::RigidBodyInertia::Zero();
   const KDL::Frame origin = to_kdl(inertial->origin);
-  // URDF gives the tensor about the centre of mass in the inertial frame; KDL wants it about the
-  // centre of mass in the link frame. Rotating a zero-mass body at the origin does exactly that.
+  // URDF gives the tensor about the center of mass in the inertial frame; KDL wants it about the
+  // center of mass in the link frame. Rotating a zero-mass body at the origin does exactly that.
   const KDL::RotationalInertia in_inertial_frame(inertial->ixx, inertial->iyy, inertial->izz,
                                                  inertial->ixy, inertial->ixz, inertial->iyz);
   const KDL::RigidBodyInertia rotated =

@@ -217,7 +217,7 @@ RuleCheckReport check_rules(const Model& m, const RuleCheckOptions& options) {
       }
     }
     gap.points = queue.size();
-    // The example: the box's grid point nearest its centre.
+    // The example: the box's grid point nearest its center.
     double best = INFINITY;
     for (const std::size_t index : queue) {
       double d = 0;

@@ -68,8 +68,8 @@ std::string header(const Table& t, const std::array<OutputTerms, 3>& terms, cons
   line(
       "Inputs (dimensionless universe units): e = Ke * error, ec = Kec * error rate, where Ke and");
   line("Kec are the controller's error_scale and error_rate_scale (e.g. per rad, per rad/s). Sets");
-  line("NB..PB: triangles between neighbouring centres, NB and PB shoulders (degree 1 beyond the");
-  line("outermost centre: the input saturates); neg + pos = min(1, |input|).");
+  line("NB..PB: triangles between neighbouring centers, NB and PB shoulders (degree 1 beyond the");
+  line("outermost center: the input saturates); neg + pos = min(1, |input|).");
   line("Outputs: dK = K / K0 - 1 for K = Kp, Ki, Kd, applied with output_scale S = K0 (K = K0 +");
   line("K0 dK). Term xA_B (e.g. x0_85) is the constant 0.85 - 1: in that cell the gain becomes");
   line("0.85 x the schedule's. Block `table` gives the cell ratios alone; block `schedule_ramp`");
@@ -208,7 +208,7 @@ Mirror table_mirror(const Table& t) {
 bool check(const Table& t, std::string& error) {
   if (!t.valid()) {
     error =
-        "the rule table is not valid (centres must be finite, ascending and symmetric about 0; "
+        "the rule table is not valid (centers must be finite, ascending and symmetric about 0; "
         "ratios R and T finite and > 0)";
     return false;
   }

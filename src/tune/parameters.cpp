@@ -19,7 +19,7 @@ constexpr double kRatioBox[2] = {-2.0, 2.0};                                 // 
 constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
 // The derivative filter's time constant, s: 1 ms (no filter to speak of at a 50 ms tick) .. 1 s.
 constexpr double kFilterBox[2] = {-3.0, 0.0};
-// An inner centre as a fraction of the next one out: 0.1 .. 0.955.
+// An inner center as a fraction of the next one out: 0.1 .. 0.955.
 constexpr double kFractionBox[2] = {-1.0, -0.02};
 
 std::vector<SearchBox> fixed_box(Family family) {
@@ -45,7 +45,7 @@ std::size_t mirror(std::size_t i) {
 double node_log_ratio(const ControllerSpec& s, std::size_t g, std::size_t i, std::size_t j) {
   const RuleTableSpec& t = s.supervisor.rule_table;
   const double w =
-      std::min(1.0, std::fabs(t.error_centres[i]) + std::fabs(t.error_rate_centres[j]));
+      std::min(1.0, std::fabs(t.error_centers[i]) + std::fabs(t.error_rate_centers[j]));
   return std::log10((1.0 + (s.supervisor.output_scale[g] - 1.0) * w) * t.ratio[g][i][j]);
 }
 
@@ -160,7 +160,7 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
       p.classes_.push_back(c);
     }
   }
-  if (options.symmetry == Symmetry::Odd) p.held_cells_ += 3;  // the centre cells
+  if (options.symmetry == Symmetry::Odd) p.held_cells_ += 3;  // the center cells
   return with_filter();
 }
 
@@ -184,7 +184,7 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   RuleTableSpec& t = s.supervisor.rule_table;
   if (options_.partition) {
     for (std::size_t axis = 0; axis < 2; ++axis) {
-      RuleTableSpec::Centres& c = axis == 0 ? t.error_centres : t.error_rate_centres;
+      RuleTableSpec::Centers& c = axis == 0 ? t.error_centers : t.error_rate_centers;
       const double f2 = p(8 + 2 * axis);
       const double f1 = p(9 + 2 * axis);
       c[kMid + 2] = f2 * c[kMid + 3];
@@ -219,7 +219,7 @@ std::vector<double> ParameterSpace::from_spec_without_filter(const ControllerSpe
   if (family_ != Family::FuzzyRules) return x;
   const RuleTableSpec& t = s.supervisor.rule_table;
   if (options_.partition) {
-    for (const auto* c : {&t.error_centres, &t.error_rate_centres}) {
+    for (const auto* c : {&t.error_centers, &t.error_rate_centers}) {
       x.push_back(std::log10((*c)[kMid + 2] / (*c)[kMid + 3]));
       x.push_back(std::log10((*c)[kMid + 1] / (*c)[kMid + 2]));
     }
@@ -245,7 +245,7 @@ double ParameterSpace::penalty(const ControllerSpec& s) const {
       cost += options_.smoothness * sum;
     }
     if (options_.monotone > 0.0) {
-      // Outwards from the centre along rows and columns: the total ratio moves the way the
+      // Outwards from the center along rows and columns: the total ratio moves the way the
       // schedule's does (R >= 1: never down; R < 1: never up).
       const double direction = s.supervisor.output_scale[g] >= 1.0 ? 1.0 : -1.0;
       double sum = 0.0;

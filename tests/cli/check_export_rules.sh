@@ -109,12 +109,12 @@ refused 2 "--surface: .*is a folder" "$rules_controller" --surface "$work/rules"
 refused 1 "No such file|cannot open" "$work/missing.toml" --out "$work/out.fll"
 
 # The surface: a square grid with the ratios at the nodes the table gives (x = 0, y = 0 is the
-# centre cell: kp 0.94, ki 1.0, kd 1.2 with the ramp at 0).
+# center cell: kp 0.94, ki 1.0, kd 1.2 with the ramp at 0).
 "$fuzzypid" export-rules "$rules_controller" --surface "$work/surface.csv" --surface-points 5 \
   2>"$work/err" || fail "--surface: $(cat "$work/err")"
 [ "$(head -1 "$work/surface.csv")" = "e_rad,ec_rad_s,kp_ratio,ki_ratio,kd_ratio" ] ||
   fail "--surface header: $(head -1 "$work/surface.csv")"
 [ "$(wc -l <"$work/surface.csv")" -eq 26 ] || fail "--surface: $(wc -l <"$work/surface.csv") lines"
 grep -q "^0,0,0.93999999999999995,1,1.2$" "$work/surface.csv" ||
-  fail "--surface: no centre row: $(sed -n 14p "$work/surface.csv")"
+  fail "--surface: no center row: $(sed -n 14p "$work/surface.csv")"
 echo ok

@@ -25,7 +25,7 @@ expect_exit() {
   fi
 }
 
-# 1. fk at q = 0: the wrist centre is (1.280, 0, -0.451) m with tip axes x0, -y0, -z0.
+# 1. fk at q = 0: the wrist center is (1.280, 0, -0.451) m with tip axes x0, -y0, -z0.
 printf 'q1,q2,q3,q4,q5,q6\n0,0,0,0,0,0\n' >"$tmp/in"
 expect_exit 0 "" "$bin" fk
 awk -F, 'function abs(v) { return v < 0 ? -v : v }

@@ -128,7 +128,7 @@ TEST(AnalyticIk, WristSingularityKeepsTheSeedsJ4) {
   EXPECT_LT(rotation_error(reached, target), 1e-9);
 }
 
-TEST(AnalyticIk, WristCentreOnTheFirstAxisKeepsTheSeedsJ1) {
+TEST(AnalyticIk, WristCenterOnTheFirstAxisKeepsTheSeedsJ1) {
   Pose target;
   target.position_m = {0.0, 0.0, 1.5};
   JointVector out{};

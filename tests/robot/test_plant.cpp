@@ -236,7 +236,7 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 }
 
 // A six-joint URDF with random joint origins (position and orientation), random unit axes, random
-// masses, centres of mass and inertia tensors, a massive fixed link between joints 3 and 4, fixed
+// masses, centers of mass and inertia tensors, a massive fixed link between joints 3 and 4, fixed
 // mounts before joint 1 and a tool after joint 6: every path of the parameter extraction.
 std::string random_arm_urdf(std::mt19937_64& rng) {
   const auto u = [&rng] { return uniform(rng, -1.0, 1.0); };

@@ -97,9 +97,9 @@ TEST(RobotModel, ForwardKinematicsIsTheProductOfTable1Transforms) {
 }
 
 // At q = 0: frame 2 sits at (a1, 0, d1) with y2 = -z0; frame 3 is a2 further along x0; the
-// J4 offset (a3, d4) in frame 3 is a3 along x0 and d4 along -z0. Wrist centre = tip =
+// J4 offset (a3, d4) in frame 3 is a3 along x0 and d4 along -z0. Wrist center = tip =
 // (a1 + a2 + a3, 0, d1 - d4) = (1.280, 0, -0.451) m, and the tip axes are x0, -y0, -z0.
-TEST(RobotModel, ZeroConfigurationPutsTheWristCentreBelowTheShoulder) {
+TEST(RobotModel, ZeroConfigurationPutsTheWristCenterBelowTheShoulder) {
   const Pose p = bundled_model().forward_kinematics(JointVector{});
   EXPECT_NEAR(p.position_m.x(), 1.280, 1e-12);
   EXPECT_NEAR(p.position_m.y(), 0.0, 1e-12);

@@ -554,7 +554,7 @@ TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
             fuzzypid::control::GainUpdate::Absolute);
 }
 
-// A fuzzy-rules controller with an uneven table, non-uniform centres, R != 1, bounds that clamp
+// A fuzzy-rules controller with an uneven table, non-uniform centers, R != 1, bounds that clamp
 // and non-default PID options, in the given form.
 ctl::ControllerSpec fuzzy_rules_example(ctl::PidForm form) {
   ctl::ControllerSpec s;
@@ -565,8 +565,8 @@ ctl::ControllerSpec fuzzy_rules_example(ctl::PidForm form) {
   s.supervisor.error_rate_scale = 1.76;
   s.supervisor.output_scale = {0.294, 0.0101, 1.152};
   auto& t = s.supervisor.rule_table;
-  t.error_centres = {-1.5, -0.8, -0.3, 0.0, 0.3, 0.8, 1.5};
-  t.error_rate_centres = {-1.0, -0.6, -0.2, 0.0, 0.2, 0.6, 1.0};
+  t.error_centers = {-1.5, -0.8, -0.3, 0.0, 0.3, 0.8, 1.5};
+  t.error_rate_centers = {-1.0, -0.6, -0.2, 0.0, 0.2, 0.6, 1.0};
   for (std::size_t i = 0; i < 7; ++i)
     for (std::size_t j = 0; j < 7; ++j) {
       t.ratio[0][i][j] = 0.7 + 0.05 * i + 0.03 * j;

@@ -290,7 +290,7 @@ TEST(ExportHeader, GeneratedConfigurationIsConstexprAndInstantiatesForFloat) {
 
 namespace {
 
-// A tuned rule table as constexpr data: every ratio, centre and R of the file, bit for bit (the
+// A tuned rule table as constexpr data: every ratio, center and R of the file, bit for bit (the
 // random ticks above mostly saturate Ke e, so they reach few of the table's inner cells). The
 // file is a table with cells other than 1 (the shipped one may be the schedule's start).
 TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {

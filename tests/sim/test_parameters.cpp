@@ -215,7 +215,7 @@ TEST(ParameterSpace, TheSearchedPartitionStaysOrderedAndSymmetric) {
   for (unsigned seed = 1; seed <= 50; ++seed) {
     const ctl::ControllerSpec s = p.to_spec(random_point(p, seed));
     EXPECT_EQ(ctl::validate(s.supervisor.rule_table), "");
-    EXPECT_EQ(s.supervisor.rule_table.error_centres.back(), 1.0);  // the outer centre is kept
+    EXPECT_EQ(s.supervisor.rule_table.error_centers.back(), 1.0);  // the outer center is kept
   }
 }
 
@@ -223,7 +223,7 @@ TEST(ParameterSpace, CellsTrainingNeverVisitsKeepTheStartsValues) {
   tune::VisitMap v{};
   for (std::size_t i = 2; i <= 4; ++i)
     for (std::size_t j = 2; j <= 4; ++j)
-      v[i][j] = 1.0 / 9.0;  // only the nine centre nodes fire
+      v[i][j] = 1.0 / 9.0;  // only the nine center nodes fire
   ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
   start.supervisor.rule_table.ratio[2][0][0] = 3.0;  // an unvisited corner the start sets
   tune::TableOptions o;

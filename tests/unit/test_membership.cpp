@@ -314,7 +314,7 @@ struct TermCase {
   double expected;
 };
 
-// fuzzylite 8's Arc (start end [height]): a quarter circle of radius r = end - start centred at
+// fuzzylite 8's Arc (start end [height]): a quarter circle of radius r = end - start centered at
 // end, h sqrt(r^2 - (x - end)^2) / |r| between start and end, h beyond end, 0 before start.
 TEST(Arc, MatchesItsClosedFormIncludingBothDirectionsNaNAndInfinity) {
   const auto rising = Term<double>::make(Shape::Arc, 0.0, 2.0);
@@ -381,13 +381,13 @@ TEST(Arc, ReachesItsHeightAtItsEndWhenStartPlusRadiusRoundsBelowIt) {
 }
 
 // fuzzylite 8's SemiEllipse (start end [height]): the upper half of the ellipse over [s, e] with
-// half-axes r = (e - s) / 2 and h, centred at c = s + r; start and end in either order.
+// half-axes r = (e - s) / 2 and h, centered at c = s + r; start and end in either order.
 TEST(SemiEllipse, MatchesItsClosedFormIncludingNaNAndInfinity) {
   const auto se = Term<double>::make(Shape::SemiEllipse, 1.0, 5.0);
   const auto reversed = Term<double>::make(Shape::SemiEllipse, 5.0, 1.0);
   const auto low = Term<double>::make(Shape::SemiEllipse, 1.0, 5.0, 0, 0, 0.25);
   const TermCase cases[] = {
-      {"1 at the centre", se, 3.0, 1.0},
+      {"1 at the center", se, 3.0, 1.0},
       {"0 at start", se, 1.0, 0.0},
       {"0 at end", se, 5.0, 0.0},
       {"sqrt(4 - 1) / 2", se, 2.0, std::sqrt(3.0) / 2.0},
@@ -399,7 +399,7 @@ TEST(SemiEllipse, MatchesItsClosedFormIncludingNaNAndInfinity) {
       {"NaN", se, kNaN, 0.0},
       {"reversed: same set", reversed, 4.2, 0.8},
       {"reversed: +inf", reversed, kInf, 0.0},
-      {"height 0.25 at the centre", low, 3.0, 0.25},
+      {"height 0.25 at the center", low, 3.0, 0.25},
       {"height 0.25 scales", low, 2.0, 0.25 * std::sqrt(3.0) / 2.0},
   };
   for (const TermCase& c : cases)
@@ -424,18 +424,18 @@ TEST(SemiEllipse, IsNeverNaNAtItsEndsWhereTheSquareRootsArgumentRoundsBelowZero)
     const double a = u(rng), b = u(rng);
     const auto t = Term<double>::make(Shape::SemiEllipse, a, b);
     const double x = std::fmin(a, b) + std::fabs(b - a) * (u(rng) + 10.0) / 20.0;
-    const double half = std::fabs(b - a) / 2, centre = std::fmin(a, b) + half;
+    const double half = std::fabs(b - a) / 2, center = std::fmin(a, b) + half;
     // 0 up to the rounding of c (an ulp of the larger end), never NaN
     const double ulp =
         std::numeric_limits<double>::epsilon() * std::fmax(std::fabs(a), std::fabs(b));
     const double bound = 2.0 * std::sqrt(2.0 * half * ulp) / half;
     ASSERT_LE(t(a), bound) << a << " " << b;
     ASSERT_LE(t(b), bound) << a << " " << b;
-    ASSERT_NEAR(std::pow(t(x), 2) + std::pow((x - centre) / half, 2), 1.0, 1e-9);
+    ASSERT_NEAR(std::pow(t(x), 2) + std::pow((x - center) / half, 2), 1.0, 1e-9);
   }
 }
 
-TEST(Term, ArcAndSemiEllipseCentresAndValidity) {
+TEST(Term, ArcAndSemiEllipseCentersAndValidity) {
   EXPECT_EQ(Term<double>::make(Shape::Arc, 0.0, 2.0).center(), 2.0);
   EXPECT_EQ(Term<double>::make(Shape::Arc, 2.0, 0.0).center(), 0.0);
   EXPECT_EQ(Term<double>::make(Shape::SemiEllipse, 1.0, 5.0).center(), 3.0);

@@ -9,7 +9,7 @@ using fuzzypid::Status;
 using fuzzypid::fuzzy::Conjunction;
 namespace paper = fuzzypid::paper;
 
-TEST(PaperSystem, AtEveryPairOfTermCentresReturnsThePrintedCells) {
+TEST(PaperSystem, AtEveryPairOfTermCentersReturnsThePrintedCells) {
   for (const auto conjunction : {Conjunction::Minimum, Conjunction::Product}) {
     const auto system = paper::make_system<double>(conjunction);
     for (std::size_t i = 0; i < paper::kNumTerms; ++i) {
@@ -26,7 +26,7 @@ TEST(PaperSystem, AtEveryPairOfTermCentresReturnsThePrintedCells) {
   }
 }
 
-TEST(PaperSystem, BetweenCentresIsTheCenterAverageOfTheFourFiringRules) {
+TEST(PaperSystem, BetweenCentersIsTheCenterAverageOfTheFourFiringRules) {
   // e = 0.05: ZE 0.5, PS 0.5; ec = -0.12: NM 0.2, NS 0.8. Minimum conjunction gives strengths
   // (ZE,NM) 0.2, (ZE,NS) 0.5, (PS,NM) 0.2, (PS,NS) 0.5 and Eq. 8 the weighted mean of the cells.
   const auto r = paper::make_system<double>().infer(0.05, -0.12);

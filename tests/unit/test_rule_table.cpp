@@ -56,10 +56,10 @@ template <class Scalar, std::size_t Sets>
 std::string describe(const RuleTable<Scalar, Sets>& m) {
   std::string s = "R = (" + std::to_string(m.schedule_ratio[0]) + ", " +
                   std::to_string(m.schedule_ratio[1]) + ", " + std::to_string(m.schedule_ratio[2]) +
-                  "), e centres";
+                  "), e centers";
   for (Scalar c : m.e_centers)
     s += " " + std::to_string(c);
-  s += ", ec centres";
+  s += ", ec centers";
   for (Scalar c : m.ec_centers)
     s += " " + std::to_string(c);
   return s;
@@ -70,7 +70,7 @@ Scalar uniform(std::mt19937_64& rng, double lo, double hi) {
   return static_cast<Scalar>(std::uniform_real_distribution<double>(lo, hi)(rng));
 }
 
-// Random symmetric ascending centres with c_max in [0.5, 2].
+// Random symmetric ascending centers with c_max in [0.5, 2].
 template <class Scalar, std::size_t Sets>
 std::array<Scalar, Sets> random_centers(std::mt19937_64& rng) {
   constexpr std::size_t m = (Sets - 1) / 2;
@@ -84,7 +84,7 @@ std::array<Scalar, Sets> random_centers(std::mt19937_64& rng) {
   return c;
 }
 
-// A random valid model: T in [0.5, 2], R in [0.3, 3], random centres.
+// A random valid model: T in [0.5, 2], R in [0.3, 3], random centers.
 template <class Scalar, std::size_t Sets>
 RuleTable<Scalar, Sets> random_model(std::mt19937_64& rng) {
   RuleTable<Scalar, Sets> m;
@@ -99,8 +99,8 @@ RuleTable<Scalar, Sets> random_model(std::mt19937_64& rng) {
   return m;
 }
 
-// Degree of x in set k of a partition with centres c (the definition, written out in long
-// double): triangles with feet at the neighbouring centres, shoulders at the ends.
+// Degree of x in set k of a partition with centers c (the definition, written out in long
+// double): triangles with feet at the neighbouring centers, shoulders at the ends.
 template <class Scalar, std::size_t Sets>
 long double membership(const std::array<Scalar, Sets>& c, std::size_t k, long double x) {
   const long double ck = c[k];
@@ -194,7 +194,7 @@ TYPED_TEST(RuleTableTyped, ReproducesABilinearFunctionTabulatedOnTheNodes) {
       const Scalar y = uniform<Scalar>(rng, -3.0, 3.0);
       const long double xc = std::clamp<long double>(x, -xm, xm);
       const long double yc = std::clamp<long double>(y, -ym, ym);
-      // Centres up to 2.8 in magnitude: 0 < f <= 44. Tabulating in Scalar already rounds T.
+      // Centers up to 2.8 in magnitude: 0 < f <= 44. Tabulating in Scalar already rounds T.
       const double err = static_cast<double>(std::fabs(m.refinement(x, y, 0) - f(xc, yc)));
       worst = std::max(worst, err);
       ASSERT_LE(err, 44 * tolerance<Scalar>()) << describe(m) << " x=" << x << " y=" << y;
@@ -232,7 +232,7 @@ TYPED_TEST(RuleTableTyped, UnitTableGivesTheScheduleRampBitForBit) {
   }
 }
 
-TYPED_TEST(RuleTableTyped, ShouldersSaturateBeyondTheOutermostCentres) {
+TYPED_TEST(RuleTableTyped, ShouldersSaturateBeyondTheOutermostCenters) {
   using Scalar = TypeParam;
   std::mt19937_64 rng(0x5a7ULL);
   const auto m = random_model<Scalar, 7>(rng);
@@ -300,7 +300,7 @@ TYPED_TEST(RuleTableTyped, NonFiniteInputsAreAFaultWithZeroDelta) {
   }
 }
 
-TEST(RuleTable, ValidRejectsAsymmetricUnorderedOrNonFiniteCentresAndNonPositiveRatios) {
+TEST(RuleTable, ValidRejectsAsymmetricUnorderedOrNonFiniteCentersAndNonPositiveRatios) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(RuleTable<double>{}.valid());
@@ -316,7 +316,7 @@ TEST(RuleTable, ValidRejectsAsymmetricUnorderedOrNonFiniteCentresAndNonPositiveR
   };
   EXPECT_TRUE(with_e({-3, -2, -0.5, 0, 0.5, 2, 3}));
   EXPECT_FALSE(with_e({-3, -2, -1, 0, 1, 2, 3.5})) << "asymmetric";
-  EXPECT_FALSE(with_ec({-3, -2, -1, 0.1, 1, 2, 3})) << "centre not 0";
+  EXPECT_FALSE(with_ec({-3, -2, -1, 0.1, 1, 2, 3})) << "center not 0";
   EXPECT_FALSE(with_e({-2, -3, -1, 0, 1, 3, 2})) << "unordered";
   EXPECT_FALSE(with_ec({-3, -1, -1, 0, 1, 1, 3})) << "repeated";
   EXPECT_FALSE(with_e({-inf, -2, -1, 0, 1, 2, inf})) << "infinite";

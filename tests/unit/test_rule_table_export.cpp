@@ -66,7 +66,7 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
 
-// Random symmetric ascending centres (c_max in [0.3, 4.2]), random T in [0.2, 3] (49 distinct
+// Random symmetric ascending centers (c_max in [0.3, 4.2]), random T in [0.2, 3] (49 distinct
 // values per gain), R in [0.2, 4] with each R set to 1 with probability 1/4 (no ramp for that
 // gain), or all R = 1 when `unit_ratios`; `even` makes every table even in e (T[i][j] = T[6-i][j])
 // with probability 1/2 and independently in ec, so that the writers merge mirrored rules.
@@ -98,7 +98,7 @@ RuleTable<double> random_table(std::mt19937_64& rng, bool unit_ratios, bool even
   return t;
 }
 
-// Inputs from well outside the universe (saturation) to its centre, plus exact nodes and 0.
+// Inputs from well outside the universe (saturation) to its center, plus exact nodes and 0.
 double random_input(std::mt19937_64& rng, const std::array<double, 7>& c) {
   const int kind = std::uniform_int_distribution<int>(0, 9)(rng);
   if (kind == 0) return c[std::uniform_int_distribution<std::size_t>(0, 6)(rng)];

@@ -299,11 +299,11 @@ template <class Scalar, std::size_t N>
 void expect_partition_of_unity(std::uint64_t seed) {
   SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> centre(-100.0, 100.0);
+  std::uniform_real_distribution<double> center(-100.0, 100.0);
   std::uniform_real_distribution<double> log_width(-3.0, 3.0);
   const Scalar rounding = Scalar(8 * N) * std::numeric_limits<Scalar>::epsilon();
   for (int v = 0; v < 200; ++v) {
-    const double c = centre(rng);
+    const double c = center(rng);
     const double w = std::pow(10.0, log_width(rng));
     const auto lv = LinguisticVariable<Scalar, N>::uniform(Scalar(c - w), Scalar(c + w));
     ASSERT_TRUE(lv.valid());

@@ -10,9 +10,9 @@
 //
 // rho is a zero-order Takagi-Sugeno system with product AND and weighted average over a strong
 // partition of each input: Sets triangles (NB NM NS ZO PS PM PB for 7) whose feet are the
-// neighbouring centres, the outermost two shoulders (degree 1 beyond +-c_max: the input
+// neighbouring centers, the outermost two shoulders (degree 1 beyond +-c_max: the input
 // saturates). At most four rules fire and their degrees sum to 1, so rho is the bilinear
-// interpolation of T_g on the grid of centres, equal to T_g[i][j] at node (i, j). T_g are
+// interpolation of T_g on the grid of centers, equal to T_g[i][j] at node (i, j). T_g are
 // positive ratios: T = 1 everywhere is the schedule itself (rho = 1 exactly), T = 0.85 in a cell
 // makes that gain 0.85 times the schedule's there.
 //
@@ -36,7 +36,7 @@
 // from the control/ headers included after this one).
 namespace fuzzypid::detail {
 
-// Centres 0, +-1/m, ..., +-1 (m = (Sets - 1) / 2): the ramp w saturates at |x| + |y| = 1.
+// Centers 0, +-1/m, ..., +-1 (m = (Sets - 1) / 2): the ramp w saturates at |x| + |y| = 1.
 template <class Scalar, std::size_t Sets>
 constexpr std::array<Scalar, Sets> rule_table_uniform_centers() noexcept {
   constexpr std::size_t m = (Sets - 1) / 2;
@@ -86,7 +86,7 @@ struct RuleTable {
   // The model, in this order for brace initialisation.
   std::array<Scalar, 3> schedule_ratio{Scalar(1), Scalar(1), Scalar(1)};        // R_p, R_i, R_d
   std::array<Table, 3> table = detail::rule_table_unit_tables<Scalar, Sets>();  // T_p, T_i, T_d
-  // Centres of the sets of x = Ke e and y = Kec ec (dimensionless universe units), ascending,
+  // Centers of the sets of x = Ke e and y = Kec ec (dimensionless universe units), ascending,
   // symmetric (c_k = -c_{Sets-1-k}); c_max = c_{Sets-1} is where the input saturates.
   std::array<Scalar, Sets> e_centers = detail::rule_table_uniform_centers<Scalar, Sets>();
   std::array<Scalar, Sets> ec_centers = detail::rule_table_uniform_centers<Scalar, Sets>();
@@ -99,7 +99,7 @@ struct RuleTable {
     return detail::rule_table_unit_tables<Scalar, Sets>()[0];
   }
 
-  // Centres finite, strictly ascending and exactly symmetric about 0; R and T finite and > 0,
+  // Centers finite, strictly ascending and exactly symmetric about 0; R and T finite and > 0,
   // with max(1, R_g) max(T_g) finite (so no ratio overflows).
   constexpr bool valid() const noexcept {
     if (!centers_valid(e_centers) || !centers_valid(ec_centers)) return false;
@@ -183,8 +183,8 @@ struct RuleTable {
     return true;
   }
 
-  // By symmetry, |x| is located among the positive centres c_m .. c_max (m = (Sets - 1) / 2):
-  // k counts the m - 1 inner centres at or below |x| (compares summed, no data-dependent branch),
+  // By symmetry, |x| is located among the positive centers c_m .. c_max (m = (Sets - 1) / 2):
+  // k counts the m - 1 inner centers at or below |x| (compares summed, no data-dependent branch),
   // then one division; a negative x takes the mirrored nodes. Beyond c_max, |x| is clamped to
   // c_max, where t = (c_max - c_k) / (c_max - c_k) = 1 exactly: the shoulder holds x with degree
   // 1 and its neighbour with 0.

@@ -151,16 +151,16 @@ struct Units {
 
 // fuzzy-rules only: the rule table that refines the schedule (control/rule_table.hpp). The
 // partitions of x = Ke e and y = Kec ec are 7 sets each (NB NM NS ZO PS PM PB): triangles between
-// neighbouring centres, shoulders outside; centres increasing and symmetric about 0. ratio[g][i][j]
+// neighbouring centers, shoulders outside; centers increasing and symmetric about 0. ratio[g][i][j]
 // is the consequent of the rule "x is set i and y is set j" for gain g (kp, ki, kd): the factor on
 // the schedule's gain at that node. A table of ones is the schedule itself.
 struct RuleTableSpec {
   static constexpr std::size_t kSets = 7;
-  using Centres = std::array<double, kSets>;
+  using Centers = std::array<double, kSets>;
   using Table = std::array<std::array<double, kSets>, kSets>;
 
-  Centres error_centres{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
-  Centres error_rate_centres{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
+  Centers error_centers{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
+  Centers error_rate_centers{-1.0, -2.0 / 3.0, -1.0 / 3.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0};
   std::array<Table, 3> ratio = ones();
 
   [[nodiscard]] static constexpr std::array<Table, 3> ones() noexcept {
@@ -264,7 +264,7 @@ struct StageRecord {
 // How a fuzzy-rules table was kept readable and safe where training never goes (tune/).
 struct TableRegulariser {
   std::string symmetry = "even";   // even | odd | none (tune::kSymmetryNames)
-  bool partition = false;          // were the set centres searched too
+  bool partition = false;          // were the set centers searched too
   double smoothness = 0.0;         // weight of the squared log10 differences of neighbouring cells
   double monotone = 0.0;           // weight of the squared violations of monotone rows and columns
   std::string unvisited = "seed";  // seed: cells training never visits keep the start's values
@@ -360,7 +360,7 @@ struct ControllerSpec {
 // Checks the values (finite, positive where needed, bounds ordered, family-specific settings).
 // Returns an empty string or what is wrong.
 [[nodiscard]] std::string validate(const ControllerSpec& spec);
-// The same for a rule table alone (centres increasing and symmetric, ratios finite and > 0).
+// The same for a rule table alone (centers increasing and symmetric, ratios finite and > 0).
 [[nodiscard]] std::string validate(const RuleTableSpec& table);
 
 }  // namespace fuzzypid::controller

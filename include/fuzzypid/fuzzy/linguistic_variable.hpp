@@ -73,7 +73,7 @@ class LinguisticVariable {
   constexpr Scalar max() const noexcept { return max_; }
   constexpr const Term<Scalar>& term(std::size_t k) const noexcept { return terms_[k]; }
   constexpr const std::array<Term<Scalar>, N>& terms() const noexcept { return terms_; }
-  // The term centres (peaks of a uniform partition), in the universe's units.
+  // The term centers (peaks of a uniform partition), in the universe's units.
   constexpr const std::array<Scalar, N>& centers() const noexcept { return peak_; }
   constexpr bool is_uniform() const noexcept { return uniform_; }
 

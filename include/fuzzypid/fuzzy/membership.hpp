@@ -231,7 +231,7 @@ Scalar spike(Scalar center, Scalar width, Scalar h, Scalar x) noexcept {
   return h * std::exp(-std::fabs(Scalar(10) / width * (x - center)));
 }
 
-// fuzzylite 8's Arc: a quarter circle of radius r = end - start centred at c = start + r (= end
+// fuzzylite 8's Arc: a quarter circle of radius r = end - start centered at c = start + r (= end
 // up to rounding), rising from 0 at start to h at end (falling when end < start), h beyond end,
 // 0 before start; 0 everywhere when start = end. fuzzylite 8 computes c = start + r and takes the
 // arc on [start, c]; so do we. Two roundings are kept away: a point within an ulp of the stretch's

@@ -1,7 +1,7 @@
 // Closed-form inverse kinematics of the ER50-C20 (Pieper's method for a 6R arm with a spherical
 // wrist), on the modified D-H model of dh_parameters.hpp.
 //
-// The tip is the wrist centre, so the target position alone fixes q1..q3:
+// The tip is the wrist center, so the target position alone fixes q1..q3:
 //   q1 = atan2(py, px) or that + pi (arm reaching backwards over the base);
 //   with r = c1 px + s1 py, m = r - a1, n = d1 - pz:
 //     a3 c3 - d4 s3 = k,  k = (m² + n² - a2² - a3² - d4²) / (2 a2)    (the paper's k, section 2.2)
@@ -11,7 +11,7 @@
 // That is up to 8 solutions. Each angle is shifted by multiples of 2 pi to the value nearest the
 // seed within the limits (J1, J4 and J6 span 360° or more, Table 1).
 //
-// Singularities: the wrist centre on the J1 axis leaves q1 free and sin(q5) = 0 leaves only q4 + q6
+// Singularities: the wrist center on the J1 axis leaves q1 free and sin(q5) = 0 leaves only q4 + q6
 // (or q4 - q6) determined; the solver then keeps the seed's q1 or q4, returns a solution that still
 // reaches the target and reports IkStatus::Singular.
 #pragma once

@@ -3,7 +3,7 @@
 //
 // The construction, exact up to rounding (|file - infer| <= 1e-12 measured for .fll and .fcl):
 //   inputs `e`, `ec` (x = Ke e, y = Kec ec): NB = Ramp(c1, c0) and PB = Ramp(c5, c6) (shoulders,
-//     degree 1 beyond +-c_max), NM .. PM triangles with feet at the neighbouring centres; and
+//     degree 1 beyond +-c_max), NM .. PM triangles with feet at the neighbouring centers; and
 //     neg = Ramp(0, -1), pos = Ramp(0, 1), so that neg + pos = min(1, |x|);
 //   outputs dKp, dKi, dKd: Constant terms, WeightedSum (sum w z, no normalisation: the strong
 //     partition fires four rules whose degrees sum to 1), aggregation none;

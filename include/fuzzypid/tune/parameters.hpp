@@ -7,10 +7,10 @@
 //   scheduled:   kp, ki, kd (K0, the gains on the path), ke, kec, rp, ri, rd (large-error ratios R)
 //   fuzzy:       kp, ki, kd (K0), ke, kec, sp, si, sd (output scales of the paper's tables)
 //   fuzzy-rules: the scheduled family's eight, then optionally the partition (e_f2, e_f1, ec_f2,
-//                ec_f1: each inner centre as a fraction of the next one out), then the log10 ratio
+//                ec_f1: each inner center as a fraction of the next one out), then the log10 ratio
 //                of each free class of table cells, "kp[i,j]" etc. (i: set of Ke e, j: set of
 //                Kec ec, 0..6 = NB..PB). Classes follow the symmetry: even (16 per gain: T is the
-//                same at (+-x, +-y)), odd (24: log T(-x, -y) = -log T(x, y), the centre cell 1) or
+//                same at (+-x, +-y)), odd (24: log T(-x, -y) = -log T(x, y), the center cell 1) or
 //                none (49). A class whose nodes training never visits is held at the start's
 //                values (unvisited = seed) or searched like the others (free).
 //   every family, with the derivative filter searched: tf last (the PID's derivative filter
@@ -49,10 +49,10 @@ inline constexpr std::array<EnumName<Unvisited>, 2> kUnvisitedNames{
 // The fuzzy-rules family's search and regulariser.
 struct TableOptions {
   Symmetry symmetry = Symmetry::Even;
-  bool partition = false;  // search the inner set centres too (ordered, symmetric)
+  bool partition = false;  // search the inner set centers too (ordered, symmetric)
   // Penalty added to the cost: smoothness x sum of squared log10 differences of neighbouring
   // cells, and monotone x sum of squared log10 decreases of the total gain ratio along each row
-  // and column walked outwards from the centre, in the direction of the schedule (R > 1: up).
+  // and column walked outwards from the center, in the direction of the schedule (R > 1: up).
   double smoothness = 0.0;
   double monotone = 0.0;
   Unvisited unvisited = Unvisited::Seed;
@@ -83,7 +83,7 @@ class ParameterSpace {
   // The controller at x (log10 values in box() order); x may lie outside the box.
   [[nodiscard]] ControllerSpec to_spec(const std::vector<double>& x) const;
   // The point of a controller of this family (the inverse of to_spec where the family can say
-  // it: held cells and the outer centre are the start's).
+  // it: held cells and the outer center are the start's).
   [[nodiscard]] std::vector<double> from_spec(const ControllerSpec& spec) const;
   // The regulariser's cost of a controller of this family (0 for all but fuzzy-rules).
   [[nodiscard]] double penalty(const ControllerSpec& spec) const;
