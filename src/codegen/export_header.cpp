@@ -353,7 +353,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
       h += std::string("    fuzzypid::paper::make_system<Scalar>(fuzzypid::fuzzy::Conjunction::") +
            (spec.supervisor.conjunction == fuzzy::Conjunction::Minimum ? "Minimum" : "Product") +
            ", fuzzypid::paper::Tables::" +
-           (spec.supervisor.rule_base == RuleBase::PaperCorrected ? "Corrected" : "Printed") +
+           (spec.supervisor.rule_base == paper::Tables::Corrected ? "Corrected" : "Printed") +
            ");\n\n";
     } else if (spec.family == Family::FuzzyRules) {
       const control::RuleTable<double> t = rule_table(spec);

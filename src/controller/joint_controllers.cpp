@@ -142,10 +142,8 @@ std::optional<JointControllers> JointControllers::build(
         out.joints_ = EngineJoints(*joints);
         return out;
       }
-      auto tables = std::make_unique<const paper::System<double>>(paper::make_system<double>(
-          spec.supervisor.conjunction, spec.supervisor.rule_base == RuleBase::PaperCorrected
-                                           ? paper::Tables::Corrected
-                                           : paper::Tables::Printed));
+      auto tables = std::make_unique<const paper::System<double>>(
+          paper::make_system<double>(spec.supervisor.conjunction, spec.supervisor.rule_base));
       auto joints = supervised_joints(tables.get(), configs, "fuzzy PID", error);
       if (!joints) return std::nullopt;
       JointControllers out(spec, std::move(tables), nullptr);

@@ -153,7 +153,7 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
         s.supervisor.rule_file = sup->text("rule_file");
         s.supervisor.rule_model = load_rule_model(*sup, node, s.supervisor.rule_file);
       } else {
-        s.supervisor.rule_base = sup->choice("rule_base", kRuleBaseNames, RuleBase::PaperPrinted);
+        s.supervisor.rule_base = sup->choice("rule_base", kRuleBaseNames, paper::Tables::Printed);
         s.supervisor.conjunction =
             sup->choice("conjunction", kConjunctionNames, fuzzy::Conjunction::Minimum);
       }

@@ -47,9 +47,7 @@ ControllerSpec default_controller(const ExperimentOptions& o, controller::Family
     s.supervisor.error_rate_scale = o.error_rate_scale;
     s.supervisor.output_scale = o.output_scale;
     s.supervisor.gain_update = o.gain_update;
-    s.supervisor.rule_base = o.tables == paper::Tables::Corrected
-                                 ? controller::RuleBase::PaperCorrected
-                                 : controller::RuleBase::PaperPrinted;
+    s.supervisor.rule_base = o.tables;
     s.supervisor.conjunction = o.conjunction;
   }
   return s;

@@ -43,7 +43,7 @@ ctl::ControllerSpec tuned_example() {
   s.supervisor.error_rate_scale = 0.1 + 0.2;  // not exactly representable in few digits
   s.supervisor.output_scale = {1038.9657241991415, 4.7364552446661055e-300, 1e300};
   s.supervisor.conjunction = fuzzypid::fuzzy::Conjunction::Product;
-  s.supervisor.rule_base = ctl::RuleBase::PaperCorrected;
+  s.supervisor.rule_base = fuzzypid::paper::Tables::Corrected;
   s.gain_max = {1e4, 2.5, std::numeric_limits<double>::infinity()};
   s.pid.derivative = fuzzypid::pid::DerivativeSource::Difference;
   s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;

@@ -86,17 +86,16 @@ enum class GainUnits : std::uint8_t { Acceleration, Torque };
 // Ki, Kd per tick (u = Kp e + Ki sum(e) + Kd (e_k - e_{k-1}), the paper's numbers) or continuous
 // (u = Kp e + Ki int(e dt) + Kd de/dt).
 enum class PidForm : std::uint8_t { PerTick, Continuous };
-// The built-in tables (paper.hpp) as printed or with the two suspected misprints corrected.
-enum class RuleBase : std::uint8_t { PaperPrinted, PaperCorrected };
 
 inline constexpr std::array<EnumName<Family>, kFamilies.size()> kFamilyNames = family_names();
 inline constexpr std::array<EnumName<GainUnits>, 2> kGainUnitsNames{
     {{GainUnits::Acceleration, "acceleration"}, {GainUnits::Torque, "torque"}}};
 inline constexpr std::array<EnumName<PidForm>, 2> kPidFormNames{
     {{PidForm::PerTick, "per-tick"}, {PidForm::Continuous, "continuous"}}};
-inline constexpr std::array<EnumName<RuleBase>, 2> kRuleBaseNames{
-    {{RuleBase::PaperPrinted, "paper-printed"}, {RuleBase::PaperCorrected, "paper-corrected"}}};
-// The built-in tables as sim_ab's --tables names them.
+// The built-in tables (paper::Tables: as printed or with the two suspected misprints corrected)
+// as a controller file's rule_base names them, and as sim_ab's --tables does.
+inline constexpr std::array<EnumName<paper::Tables>, 2> kRuleBaseNames{
+    {{paper::Tables::Printed, "paper-printed"}, {paper::Tables::Corrected, "paper-corrected"}}};
 inline constexpr std::array<EnumName<paper::Tables>, 2> kPaperTablesNames{
     {{paper::Tables::Printed, "printed"}, {paper::Tables::Corrected, "corrected"}}};
 inline constexpr std::array<EnumName<pid::DerivativeSource>, 2> kDerivativeSourceNames{
@@ -122,8 +121,8 @@ inline constexpr std::array<EnumName<fuzzy::Conjunction>, 2> kConjunctionNames{
 [[nodiscard]] constexpr const char* to_string(PidForm f) noexcept {
   return name_of(kPidFormNames, f);
 }
-[[nodiscard]] constexpr const char* to_string(RuleBase r) noexcept {
-  return name_of(kRuleBaseNames, r);
+[[nodiscard]] constexpr const char* to_string(paper::Tables t) noexcept {
+  return name_of(kRuleBaseNames, t);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -180,7 +179,7 @@ struct Supervisor {
   // ratios Rp, Ri, Rd of the schedule.
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
   control::GainUpdate gain_update = control::GainUpdate::Absolute;  // fuzzy only
-  RuleBase rule_base = RuleBase::PaperPrinted;                      // fuzzy only
+  paper::Tables rule_base = paper::Tables::Printed;                 // fuzzy only
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;     // fuzzy only
   // fuzzy only: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs e, ec; 3
   // outputs dKp, dKi, dKd), as written in the file (relative to the file's folder), and the model
