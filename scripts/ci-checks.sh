@@ -89,7 +89,7 @@ stage_tidy() {
   # GCC 12 compiles C++17 without an -std flag; clang-tidy 14 defaults to C++14, so pass it.
   # GoogleTest's TYPED_TEST_SUITE(Suite, Types) leaves its variadic part empty, which clang
   # -Wpedantic flags and GCC (the build compiler) accepts. GCC-only warning options of a target
-  # (tests/oracle) are unknown to clang.
+  # (test_corpus in tests/rulefile) are unknown to clang.
   run-clang-tidy -p build-asan -j "${jobs}" -quiet -extra-arg=-std=c++17 \
     -extra-arg=-Wno-gnu-zero-variadic-macro-arguments -extra-arg=-Wno-unknown-warning-option \
     "${root}/(src|apps|tests)/.*\\.cpp\$" "${root}/build-asan/tests/headers/standalone/.*\\.cpp\$" \

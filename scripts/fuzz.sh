@@ -39,7 +39,7 @@ for name in ${targets}; do
   # and the controller-file tests' data (the target reads condition files too).
   shared=()
   case "${name}" in
-    fis | fll | fcl) shared=(../rulebases ../tests/rulefiles) ;;
+    fis | fll | fcl) shared=(../rulebases ../tests/rulefile/data) ;;
     urdf) shared=(../urdf ../tests/robot/data) ;;
     controller_file) shared=(../controllers ../tuning ../tests/sim/data) ;;
   esac

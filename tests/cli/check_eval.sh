@@ -166,7 +166,7 @@ ROWS
     ;;
   fcl_option_reads_fcl)
     # --fcl reads IEC 61131-7 text whatever the file is called, and only that.
-    cp tests/rulefiles/corpus/fcl_motor_speed_pi.fcl "$work/motor.txt"
+    cp tests/rulefile/data/corpus/fcl_motor_speed_pi.fcl "$work/motor.txt"
     run 'e,de
 0.1,-0.2
 ' --fcl "$work/motor.txt"

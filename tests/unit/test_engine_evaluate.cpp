@@ -1,6 +1,6 @@
 // fuzzy::evaluate and fuzzy::Engine on hand-built models: the weighted average, refused inputs,
 // lock-previous in the workspace, chained antecedents (the file-level and fuzzylite comparisons
-// are in test_rule_file_constructs.cpp and tests/oracle/test_corpus.cpp).
+// are in test_rule_file_constructs.cpp and tests/rulefile/test_corpus.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The rule-file corpus (tests/rulefiles/corpus/: MATLAB, MATLAB 1.x, Octave, fuzzylite and
+// The rule-file corpus (tests/rulefile/data/corpus/: MATLAB, MATLAB 1.x, Octave, fuzzylite and
 // IEC 61131-7 files as their users write them) against fuzzylite 6's own importers:
 //   - every file loads, except those named refuse_*, which must be refused with file, line and
 //     the construct;

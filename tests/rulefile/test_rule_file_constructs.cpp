@@ -2,7 +2,7 @@
 // lock-previous / NC, zero-width unused ranges, empty methods, the Enabled key) as specifications
 // of the engine and the readers, and the two places where fuzzylite's .fis importer departs from
 // MATLAB (docs/rule_files.md, "Where fuzzylite differs"), each shown against fuzzylite itself.
-// The corpus comparison (tests/oracle/test_corpus.cpp) checks the same files point by point.
+// The corpus comparison (tests/rulefile/test_corpus.cpp) checks the same files point by point.
 #include <fl/Headers.h>
 #include <gtest/gtest.h>
 

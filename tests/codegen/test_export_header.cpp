@@ -1,5 +1,5 @@
 // `fuzzypid export-header`: the generated headers (built from the shipped controller files by
-// tests/sim/CMakeLists.txt, and from the test controllers of tests/sim/data) give
+// tests/codegen/CMakeLists.txt, and from the test controllers of tests/sim/data) give
 // controllers equal to the files' bit for bit on x86, and compile for float as well.
 #include <gtest/gtest.h>
 
