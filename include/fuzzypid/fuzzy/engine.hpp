@@ -244,9 +244,8 @@ template <class Scalar, class Cap>
   return true;
 }
 
-// z of each Function term of a Takagi-Sugeno output at the inputs' values, into level[t] (out of
-// line and cold, and before the conclusions' loop, which then only reads them); NaN when not
-// finite (the output is then NaN, which evaluate_with reports as NumericOverflow).
+// z of a Takagi-Sugeno output's Function term at the inputs' values; NaN when not finite (the
+// output is then NaN, which evaluate_with reports as NumericOverflow).
 template <class Scalar, class Cap>
 Scalar formula_value(const EngineModel<Scalar, Cap>& model, const Term<Scalar>& term,
                      const Scalar* input) noexcept {
@@ -255,6 +254,8 @@ Scalar formula_value(const EngineModel<Scalar, Cap>& model, const Term<Scalar>& 
   return detail::is_finite(z) ? z : nan;
 }
 
+// formula_value of each Function term of `out` into level[t] (out of line and cold, and before
+// the conclusions' loop, which then only reads them).
 template <class Scalar, class Cap>
 [[gnu::cold]] [[gnu::noinline]] void formula_values(const EngineModel<Scalar, Cap>& model,
                                                     const OutputSpec<Scalar, Cap>& out,
