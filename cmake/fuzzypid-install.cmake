@@ -2,7 +2,8 @@
 # header-only core always loaded and each compiled part a component:
 #   find_package(fuzzypid CONFIG REQUIRED COMPONENTS robot rulefile sim)
 # A part is a target exported as fuzzypid::<part> from its own export set, its public headers
-# (include/fuzzypid/<part>/) and a small script that finds its dependencies first.
+# (include/fuzzypid/<part>/) and a small script that finds its dependencies first. With
+# FUZZYPID_INSTALL off both functions generate no install rule.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -17,6 +18,9 @@ set(FUZZYPID_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/fuzzypid)
 function(fuzzypid_install_part target part)
   cmake_parse_arguments(ARG "" "" "PARTS;PACKAGES;SCRIPTS" ${ARGN})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${part})
+  if(NOT FUZZYPID_INSTALL)
+    return()
+  endif()
   install(TARGETS ${target} EXPORT fuzzypid-${part}-targets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -45,6 +49,9 @@ endfunction()
 
 # The core, the package config and the data; called once at the end of the top-level file.
 function(fuzzypid_install_package)
+  if(NOT FUZZYPID_INSTALL)
+    return()
+  endif()
   # Core headers: the umbrella and top-level headers plus the core's folders. Compiled parts
   # install their own folders (fuzzypid_install_part).
   file(GLOB core_headers ${PROJECT_SOURCE_DIR}/include/fuzzypid/*.hpp)

@@ -41,7 +41,7 @@ for name in ${targets}; do
   case "${name}" in
     fis | fll | fcl) shared=(../rulebases ../tests/rulefile/data) ;;
     urdf) shared=(../urdf ../tests/robot/data) ;;
-    controller_file) shared=(../controllers ../tuning ../tests/sim/data) ;;
+    controller_file) shared=(../controllers ../tuning ../tests/sim/data ../tests/tune/data) ;;
   esac
   status=0
   (cd build-fuzz && "bin/fuzz_${name}" -max_total_time="${seconds}" -max_len="${max_len}" \

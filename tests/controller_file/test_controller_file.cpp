@@ -22,6 +22,7 @@
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -630,7 +631,7 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
     std::mt19937_64 rng(seed);
     // Errors across the universe (|Ke e| up to 2 c_max), rates likewise.
-    std::uniform_real_distribution<double> e(-0.035, 0.035), ec(-1.2, 1.2);
+    fuzzypid::support::UniformReal<double> e(-0.035, 0.035), ec(-1.2, 1.2);
     double worst = 0.0;
     for (int tick = 0; tick < 4000; ++tick) {
       ctl::Input in;
@@ -719,7 +720,7 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
   auto c = ctl::JointControllers::create(shuffled, limit, error);
   ASSERT_TRUE(c) << error;
   std::mt19937_64 rng(20261203);
-  std::uniform_real_distribution<double> e(-0.035, 0.035), ec(-1.2, 1.2);
+  fuzzypid::support::UniformReal<double> e(-0.035, 0.035), ec(-1.2, 1.2);
   int differing = 0;
   for (int tick = 0; tick < 2000; ++tick) {
     ctl::Input in;

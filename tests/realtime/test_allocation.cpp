@@ -19,6 +19,7 @@
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid_support/counting_new.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -72,7 +73,7 @@ struct Trajectory {
   std::array<std::array<double, 6>, kSamples> qd{}, vd{}, q{}, v{};
   explicit Trajectory(std::uint64_t seed) {
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    fuzzypid::support::UniformReal<double> u(-0.5, 0.5);
     for (std::size_t k = 0; k < kSamples; ++k)
       for (std::size_t i = 0; i < 6; ++i) {
         qd[k][i] = u(rng);
@@ -169,7 +170,7 @@ TEST(Allocation, PaperSystemInferenceNeverAllocates) {
   const auto system_prod =
       fuzzypid::paper::make_system<float>(fuzzypid::fuzzy::Conjunction::Product);
   std::mt19937_64 rng(kSeed + 2);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   std::array<double, 1024> e{}, ec{};
   for (std::size_t k = 0; k < e.size(); ++k) {
     e[k] = u(rng);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "fuzzypid/robot/ik.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 #include "test_support.hpp"
 
 namespace fuzzypid::robot {
@@ -28,7 +29,7 @@ Rates measure(const InverseKinematics& ik, IkSolver solver, double spread, int s
               std::uint64_t seed) {
   const RobotModel& m = bundled_model();
   auto rng = test::seeded_rng(seed, to_string(solver));
-  std::uniform_real_distribution<double> noise(-spread, spread);
+  fuzzypid::support::UniformReal<double> noise(-spread, spread);
   Rates r;
   for (int n = 0; n < samples; ++n) {
     const JointVector q = test::random_within(m, rng);

@@ -15,6 +15,7 @@
 
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 #include "rigid_body_dynamics.hpp"
 #include "test_support.hpp"
 
@@ -229,10 +230,9 @@ TEST(JointPlant, CopiesStepIndependently) {
   EXPECT_EQ(b.position(), kPaperStartJoints);
 }
 
-// Uniform in [lo, hi) from the generator's top 53 bits: fully specified, unlike
-// std::uniform_real_distribution, so a seed means the same draws on every standard library.
+// Uniform in [lo, hi], the same draws on every standard library.
 double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return fuzzypid::support::UniformReal<double>(lo, hi)(rng);
 }
 
 // A six-joint URDF with random joint origins (position and orientation), random unit axes, random

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "fuzzypid/robot/robot_model.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace fuzzypid::robot::test {
 
@@ -34,7 +35,7 @@ inline std::mt19937_64 seeded_rng(std::uint64_t seed, const char* what) {
 inline JointVector random_within(const RobotModel& m, std::mt19937_64& rng) {
   JointVector q{};
   for (std::size_t i = 0; i < kNumJoints; ++i) {
-    std::uniform_real_distribution<double> d(m.lower_limits_rad()[i], m.upper_limits_rad()[i]);
+    fuzzypid::support::UniformReal<double> d(m.lower_limits_rad()[i], m.upper_limits_rad()[i]);
     q[i] = d(rng);
   }
   return q;

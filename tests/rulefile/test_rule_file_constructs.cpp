@@ -17,6 +17,7 @@
 #include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -527,7 +528,7 @@ TEST(Tsukamoto, TheInverseOfEveryMonotonicKindMeetsTheDegreeAndStaysInTheTermsRa
   using fuzzypid::fuzzy::Shape;
   using fuzzypid::fuzzy::Term;
   std::mt19937_64 rng(20261203);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  fuzzypid::support::UniformReal<double> u(0.0, 1.0);
   const double lo = -100.0, hi = 100.0;  // the output range
   double worst = 0.0;
   int cases = 0;

@@ -19,6 +19,7 @@
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -63,7 +64,7 @@ std::unique_ptr<fl::Engine> load_fuzzylite(Format f, const std::string& text) {
 }
 
 double uniform(std::mt19937_64& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
+  return fuzzypid::support::UniformReal<double>(lo, hi)(rng);
 }
 
 // Random symmetric ascending centers (c_max in [0.3, 4.2]), random T in [0.2, 3] (49 distinct

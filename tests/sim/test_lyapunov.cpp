@@ -17,6 +17,7 @@
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/margins.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -25,10 +26,9 @@ using fuzzypid::sim::GainBox;
 using fuzzypid::sim::LyapunovCertificate;
 using fuzzypid::sim::SwitchingLoop;
 
-// A uniform double in [0, 1) from the top 53 bits (std::uniform_real_distribution is
-// implementation-defined: the same seed would give other draws elsewhere).
+// A uniform double in [0, 1), the same draws on every standard library.
 double unit(std::mt19937_64& rng) {
-  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return fuzzypid::support::UniformReal<double>(0.0, 1.0)(rng);
 }
 
 // One sequence's gains and plant gain on every tick.

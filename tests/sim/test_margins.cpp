@@ -17,6 +17,7 @@
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -191,7 +192,7 @@ TEST(Margins, RandomJointsStableBelowAndDivergentAboveGainMargin) {
   const std::uint64_t seed = 20261203;
   std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  fuzzypid::support::UniformReal<double> unit(0.0, 1.0);
   int checked = 0;
   for (int trial = 0; trial < 20; ++trial) {
     JointLoop loop;

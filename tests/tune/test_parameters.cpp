@@ -12,6 +12,7 @@
 
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/tune/parameters.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -49,7 +50,7 @@ double largest_relative_difference(const ctl::ControllerSpec& a, const ctl::Cont
   EXPECT_TRUE(ca && cb) << error;
   if (!ca || !cb) return 1e9;
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  fuzzypid::support::UniformReal<double> u(-0.2, 0.2);
   double worst = 0.0;
   for (int tick = 0; tick < 2000; ++tick) {
     ctl::Input in;
@@ -154,7 +155,7 @@ std::vector<double> random_point(const tune::ParameterSpace& p, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::vector<double> x;
   for (const auto& b : p.box())
-    x.push_back(std::uniform_real_distribution<double>(b.log10_min, b.log10_max)(rng));
+    x.push_back(fuzzypid::support::UniformReal<double>(b.log10_min, b.log10_max)(rng));
   return x;
 }
 

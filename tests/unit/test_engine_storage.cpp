@@ -16,6 +16,7 @@
 
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -119,7 +120,7 @@ std::vector<double> outputs_over(const M& model, int samples, std::uint64_t seed
       const auto& v = model.inputs[i];
       const double lo = std::isfinite(v.min) ? v.min : -10.0;
       const double hi = std::isfinite(v.max) ? v.max : 10.0;
-      const double u = std::uniform_real_distribution<double>(-0.1, 1.1)(rng);
+      const double u = fuzzypid::support::UniformReal<double>(-0.1, 1.1)(rng);
       in[i] = lo + (hi - lo) * u;
     }
     const Status s = fuzzypid::fuzzy::evaluate(model, ws.view(), in, out);

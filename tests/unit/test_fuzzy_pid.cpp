@@ -9,6 +9,7 @@
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -55,7 +56,7 @@ TEST(FuzzyPid, AbsoluteModeSetsGainsToNominalPlusScaledDelta) {
   const std::uint64_t seed = 51;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   for (const auto conjunction : {Conjunction::Minimum, Conjunction::Product}) {
     const auto system = paper::make_system<double>(conjunction);
     auto config = paper::paper_config<double>();
@@ -96,7 +97,7 @@ TEST(FuzzyPid, TheInnerPidRunsWithTheRetunedGains) {
   const std::uint64_t seed = 52;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  fuzzypid::support::UniformReal<double> u(-0.2, 0.2);
   for (int k = 0; k < 1000; ++k) {
     const Input in = at(u(rng), u(rng), u(rng), u(rng));
     const auto r =
@@ -171,8 +172,8 @@ TEST(FuzzyPid, InputScalingMapsThePhysicalErrorOntoTheUniverse) {
   const std::uint64_t seed = 53;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> ue(-1.5 * e_max, 1.5 * e_max);
-  std::uniform_real_distribution<double> uec(-1.5 * ec_max, 1.5 * ec_max);
+  fuzzypid::support::UniformReal<double> ue(-1.5 * e_max, 1.5 * e_max);
+  fuzzypid::support::UniformReal<double> uec(-1.5 * ec_max, 1.5 * ec_max);
   for (int k = 0; k < 2000; ++k) {
     const double e = ue(rng);
     const double ec = uec(rng);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -117,8 +118,8 @@ std::vector<std::pair<double, double>> make_points(std::mt19937_64& rng) {
     for (double ec : special)
       points.emplace_back(e, ec);
 
-  std::uniform_real_distribution<double> inside(-0.3, 0.3);
-  std::uniform_real_distribution<double> wide(-0.6, 0.6);
+  fuzzypid::support::UniformReal<double> inside(-0.3, 0.3);
+  fuzzypid::support::UniformReal<double> wide(-0.6, 0.6);
   std::uniform_int_distribution<std::size_t> pick(0, special.size() - 1);
   for (int k = 0; k < kRandomPoints; ++k) {
     switch (k % 4) {
@@ -195,7 +196,7 @@ TEST_P(FuzzyliteOracle, FiringStrengthsEqualFuzzyliteRuleActivations) {
   const auto engine = make_fuzzylite_engine(conjunction);
   std::mt19937_64 rng(kSeed + 1);
   SCOPED_TRACE("seed " + std::to_string(kSeed + 1));
-  std::uniform_real_distribution<double> wide(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> wide(-0.4, 0.4);
   const fl::RuleBlock* block = engine->getRuleBlock(0);
   for (int k = 0; k < 500; ++k) {
     const double e = wide(rng);

@@ -13,6 +13,7 @@
 #include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -94,7 +95,7 @@ TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
   const std::uint64_t seed = 61;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<Scalar> u(Scalar(-0.2), Scalar(0.2));
+  fuzzypid::support::UniformReal<Scalar> u(Scalar(-0.2), Scalar(0.2));
   for (int k = 0; k < 500; ++k) {
     std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{}, ff{};
     for (std::size_t i = 0; i < kJoints; ++i) {

@@ -15,6 +15,7 @@
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -87,7 +88,7 @@ TEST(Triangle, MatchesTheMinOfItsTwoLinesOnRandomPoints) {
   const std::uint64_t seed = 11;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  fuzzypid::support::UniformReal<double> u(-3.0, 3.0);
   for (int k = 0; k < 10000; ++k) {
     double p[3] = {u(rng), u(rng), u(rng)};
     std::sort(p, p + 3);
@@ -172,7 +173,7 @@ TEST(Shoulders, EqualTheInfiniteTrapezoidsOnRandomPoints) {
   const std::uint64_t seed = 12;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  fuzzypid::support::UniformReal<double> u(-1.0, 1.0);
   const LeftShoulder<double> left{-0.3, -0.2};
   const RightShoulder<double> right{0.2, 0.3};
   const Trapezoid<double> nl{-kInf, -kInf, -0.3, -0.2};
@@ -188,8 +189,8 @@ TEST(Gaussian, EqualsStdExpOfItsFormula) {
   const std::uint64_t seed = 13;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-5.0, 5.0);
-  std::uniform_real_distribution<double> s(0.01, 3.0);
+  fuzzypid::support::UniformReal<double> u(-5.0, 5.0);
+  fuzzypid::support::UniformReal<double> s(0.01, 3.0);
   for (int k = 0; k < 10000; ++k) {
     const Gaussian<double> g{u(rng), s(rng)};
     const double x = u(rng);
@@ -208,9 +209,9 @@ TEST(Bell, EqualsStdPowOfItsFormula) {
   const std::uint64_t seed = 14;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-5.0, 5.0);
-  std::uniform_real_distribution<double> w(0.05, 3.0);
-  std::uniform_real_distribution<double> b(0.1, 5.0);
+  fuzzypid::support::UniformReal<double> u(-5.0, 5.0);
+  fuzzypid::support::UniformReal<double> w(0.05, 3.0);
+  fuzzypid::support::UniformReal<double> b(0.1, 5.0);
   for (int k = 0; k < 10000; ++k) {
     const Bell<double> bell{w(rng), b(rng), u(rng)};
     const double x = u(rng);
@@ -241,8 +242,8 @@ TEST(Term, DispatchEqualsTheShapeStructs) {
   const std::uint64_t seed = 15;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  std::uniform_real_distribution<double> positive(0.05, 2.0);
+  fuzzypid::support::UniformReal<double> u(-2.0, 2.0);
+  fuzzypid::support::UniformReal<double> positive(0.05, 2.0);
   std::vector<double> xs = {kNaN, kInf, -kInf, 0.0};
   for (int k = 0; k < 2000; ++k)
     xs.push_back(u(rng));
@@ -353,8 +354,8 @@ TEST(Arc, LiesOnItsCircleOnRandomPoints) {
   const std::uint64_t seed = 27;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-5.0, 5.0);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  fuzzypid::support::UniformReal<double> u(-5.0, 5.0);
+  fuzzypid::support::UniformReal<double> unit(0.0, 1.0);
   for (int k = 0; k < 10000; ++k) {
     const double s = u(rng), e = u(rng), h = 0.1 + 0.9 * unit(rng);
     const auto arc = Term<double>::make(Shape::Arc, s, e, 0, 0, h);
@@ -419,7 +420,7 @@ TEST(SemiEllipse, IsNeverNaNAtItsEndsWhereTheSquareRootsArgumentRoundsBelowZero)
   const std::uint64_t seed = 28;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-10.0, 10.0);
+  fuzzypid::support::UniformReal<double> u(-10.0, 10.0);
   for (int k = 0; k < 10000; ++k) {
     const double a = u(rng), b = u(rng);
     const auto t = Term<double>::make(Shape::SemiEllipse, a, b);
@@ -460,7 +461,7 @@ TEST(PaperPartition, DegreesSumToOneInsideTheUniverse) {
   const std::uint64_t seed = 16;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  fuzzypid::support::UniformReal<double> u(-0.3, 0.3);
   const auto v = fuzzypid::paper::make_system<double>().e;
   std::vector<double> xs = {-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3};
   for (int k = 0; k < 100000; ++k)
@@ -554,7 +555,7 @@ void expect_uniform_fast_path_equals_every_term(Scalar min, Scalar max, std::uin
   ASSERT_FALSE(every.is_uniform());
   std::mt19937_64 rng(seed);
   const Scalar span = max - min;
-  std::uniform_real_distribution<Scalar> u(min - span / 4, max + span / 4);
+  fuzzypid::support::UniformReal<Scalar> u(min - span / 4, max + span / 4);
   std::vector<Scalar> xs(uniform.centers().begin(), uniform.centers().end());
   for (Scalar c : uniform.centers()) {
     xs.push_back(std::nextafter(c, min - span));

@@ -16,6 +16,7 @@
 
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -50,7 +51,7 @@ std::vector<double> sample_points(const std::vector<double>& params, std::mt1993
       if (std::isfinite(params[a]) && std::isfinite(params[b]))
         xs.push_back((params[a] + params[b]) / 2);
   const double span = hi - lo + 1.0;
-  std::uniform_real_distribution<double> u(lo - span, hi + span);
+  fuzzypid::support::UniformReal<double> u(lo - span, hi + span);
   for (int k = 0; k < 2000; ++k)
     xs.push_back(u(rng));
   for (int k = 0; k <= 200; ++k)
@@ -153,7 +154,7 @@ TEST(OperatorsOracle, EveryMembershipFunctionEqualsFuzzylite) {
 
 std::vector<double> degrees(std::mt19937_64& rng) {
   std::vector<double> v = {0.0, 1.0, 0.5, 0.25, 0.75, 1e-300, 1 - 1e-16, 0.1, 0.9, 0.3, 0.7};
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  fuzzypid::support::UniformReal<double> u(0.0, 1.0);
   for (int k = 0; k < 150; ++k)
     v.push_back(u(rng));
   return v;

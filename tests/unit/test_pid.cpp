@@ -12,6 +12,7 @@
 #include <string>
 
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -278,8 +279,8 @@ TEST(Pid, ChangingGainsOnlineDoesNotChangeTheOutputAtThatInstant) {
   const std::uint64_t seed = 41;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::uniform_real_distribution<double> g(0.0, 5.0);
+  fuzzypid::support::UniformReal<double> u(-1.0, 1.0);
+  fuzzypid::support::UniformReal<double> g(0.0, 5.0);
   Config c = gains_only(1.0, 1.0, 0.1);
   c.derivative_source = DerivativeSource::Difference;
   Pid pid(c);

@@ -30,6 +30,7 @@
 #include "fuzzypid/control/gain_schedule.hpp"
 #include "fuzzypid/control/supervisor.hpp"
 #include "fuzzypid_support/counting_new.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -67,7 +68,7 @@ std::string describe(const RuleTable<Scalar, Sets>& m) {
 
 template <class Scalar>
 Scalar uniform(std::mt19937_64& rng, double lo, double hi) {
-  return static_cast<Scalar>(std::uniform_real_distribution<double>(lo, hi)(rng));
+  return static_cast<Scalar>(fuzzypid::support::UniformReal<double>(lo, hi)(rng));
 }
 
 // Random symmetric ascending centers with c_max in [0.5, 2].
@@ -77,7 +78,7 @@ std::array<Scalar, Sets> random_centers(std::mt19937_64& rng) {
   std::array<Scalar, Sets> c{};
   double v = 0.0;
   for (std::size_t k = m + 1; k < Sets; ++k) {
-    v += std::uniform_real_distribution<double>(0.1, 0.7)(rng);
+    v += fuzzypid::support::UniformReal<double>(0.1, 0.7)(rng);
     c[k] = static_cast<Scalar>(v);
     c[Sets - 1 - k] = -c[k];
   }

@@ -13,6 +13,7 @@
 
 #include "fuzzypid/fuzzy/tsk_system.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
@@ -51,7 +52,7 @@ TEST(TskSystem, WeightedAverageEqualsBruteForceOverAllRules) {
   const std::uint64_t seed = 31;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   for (const auto conjunction : kConjunctions) {
     const auto s = paper::make_system<double>(conjunction);
     for (int k = 0; k < 10000; ++k) {
@@ -73,7 +74,7 @@ TEST(TskSystem, TheTickFormAndTheTracedFormGiveTheSameInference) {
   const std::uint64_t seed = 37;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  fuzzypid::support::UniformReal<double> u(-0.5, 0.5);
   std::uniform_int_distribution<int> peak(-3, 3);
   const double inf = std::numeric_limits<double>::infinity();
   for (const auto conjunction : kConjunctions) {
@@ -105,7 +106,7 @@ TEST(TskSystem, WeightedSumIsTheWeightedAverageTimesTotalStrength) {
   const std::uint64_t seed = 32;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   for (const auto conjunction : kConjunctions) {
     const auto average = paper::make_system<double>(conjunction);
     auto sum = average;
@@ -129,7 +130,7 @@ TEST(TskSystem, ProductOnAPartitionOfUnityHasUnitTotalStrengthSoBothDefuzzifiers
   const std::uint64_t seed = 33;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  fuzzypid::support::UniformReal<double> u(-0.3, 0.3);
   const auto average = paper::make_system<double>(Conjunction::Product);
   auto sum = average;
   sum.defuzzifier = TskDefuzzifier::WeightedSum;
@@ -159,7 +160,7 @@ TEST(TskSystem, FiringStrengthReadoutEqualsTheConjunctionOfDegrees) {
   const std::uint64_t seed = 34;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   for (const auto conjunction : kConjunctions) {
     const auto s = paper::make_system<double>(conjunction);
     for (int k = 0; k < 2000; ++k) {
@@ -267,7 +268,7 @@ TEST(TskSystem, FloatInstantiationAgreesWithDouble) {
   const std::uint64_t seed = 35;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  fuzzypid::support::UniformReal<double> u(-0.4, 0.4);
   for (const auto conjunction : kConjunctions) {
     const auto sd = paper::make_system<double>(conjunction);
     const auto sf = paper::make_system<float>(conjunction);
@@ -299,8 +300,8 @@ template <class Scalar, std::size_t N>
 void expect_partition_of_unity(std::uint64_t seed) {
   SCOPED_TRACE("N = " + std::to_string(N) + ", seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> center(-100.0, 100.0);
-  std::uniform_real_distribution<double> log_width(-3.0, 3.0);
+  fuzzypid::support::UniformReal<double> center(-100.0, 100.0);
+  fuzzypid::support::UniformReal<double> log_width(-3.0, 3.0);
   const Scalar rounding = Scalar(8 * N) * std::numeric_limits<Scalar>::epsilon();
   for (int v = 0; v < 200; ++v) {
     const double c = center(rng);
@@ -309,7 +310,7 @@ void expect_partition_of_unity(std::uint64_t seed) {
     ASSERT_TRUE(lv.valid());
     const Scalar lo = lv.min();
     const Scalar hi = lv.max();
-    std::uniform_real_distribution<Scalar> x_of(lo - (hi - lo) / 4, hi + (hi - lo) / 4);
+    fuzzypid::support::UniformReal<Scalar> x_of(lo - (hi - lo) / 4, hi + (hi - lo) / 4);
     for (int k = 0; k < 200; ++k) {
       const Scalar x = k == 0 ? lo : k == 1 ? hi : x_of(rng);
       const auto a = lv.locate(x);

@@ -14,7 +14,7 @@ fail() {
   echo "FAIL: $*" >&2
   exit 1
 }
-cond="$src/tests/sim/data/two_conditions.toml"
+cond="$src/tests/tune/data/two_conditions.toml"
 tune="$fuzzypid tune --family pid --conditions $cond --population 20 --seed 1 --threads 2 --quiet"
 # The smallest disk margin over the joints of a controller file's [margins].
 min_disk() {
