@@ -36,7 +36,7 @@ for name in ${targets}; do
   # The project's own data files are seeds as they are, not copies (libFuzzer reads directories
   # recursively and writes only to the first): rule files of every format for each rule-file
   # reader, the URDFs and the loader's test robots, the shipped controller and condition files
-  # and the controller-file tests' data (the target reads condition files too).
+  # and the simulation's and the tuner's test data (the target reads condition files too).
   shared=()
   case "${name}" in
     fis | fll | fcl) shared=(../rulebases ../tests/rulefile/data) ;;

@@ -47,7 +47,7 @@ mutants=(
   # Issue 28's survivors, each now killed by a test of its own part.
   "rule_base_drops_lock_previous|src/codegen/export_rule_base.cpp|/h += v + \".lock_previous = \" + b(out.lock_previous)/d|bin:test_export_header"
   "rule_check_ignores_antecedent_hedges|src/rulefile/rule_check.cpp|s/key.items.emplace_back(static_cast<int>(t.kind), t.input, t.term, hedges);/key.items.emplace_back(static_cast<int>(t.kind), t.input, t.term, std::vector<int>{});/|bin:test_rule_check"
-  "tsukamoto_takes_integral_defuzzifier|src/rulefile/fis.cpp|s/type_ == \"tsukamoto\") \&\& !weighted/type_ == \"none\") \&\& !weighted/|bin:test_rule_file_constructs bin:test_rule_file"
+  "tsukamoto_takes_integral_defuzzifier|src/rulefile/fis_reader.cpp|s/type_ == \"tsukamoto\") \&\& !weighted/type_ == \"none\") \&\& !weighted/|bin:test_rule_file_constructs bin:test_rule_file"
   "lost_stderr_ignored|apps/common/cli.hpp|s/return code == kExitOk \&\& std::ferror(stderr) != 0 ? kExitFailure : code;/return code;/|build:fuzzypid_cli build:rt_loop ctest:^(cli\.check_rules\.|rt_loop\.exit_codes)"
   "validation_experiments_shifted|src/tune/tune.cpp|s/s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n), ex.end());/s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n) - 1, ex.end() - 1);/|bin:test_tune"
   "monotone_ratio_one_falls|src/tune/parameters.cpp|s/output_scale\[g\] >= 1.0 ? 1.0 : -1.0;/output_scale[g] > 1.0 ? 1.0 : -1.0;/|bin:test_parameters"

@@ -167,7 +167,8 @@ std::string make_membership(Format format, std::string_view type, const std::vec
     for (std::size_t k = 0; k < spec->n; ++k)
       term.p[k] = p[static_cast<std::size_t>(from[k])];
   }
-  // fuzzylite accepts heights above 1 (and writes them for a hybrid's constants, see fis.cpp).
+  // fuzzylite accepts heights above 1 (and writes them for a hybrid's constants, see
+  // fis_reader.cpp).
   if (!(std::isfinite(term.height) && term.height >= 0))
     return "term height must be a finite number >= 0";
   if (!term.valid()) return shape_error(type, term.shape);
