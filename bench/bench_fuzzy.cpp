@@ -94,9 +94,9 @@ double max_difference(fl::Engine& engine) {
 using PaperSystem = fuzzypid::paper::System<double>;
 
 // One inference of the paper's system per iteration, over the varied input table: the
-// supervisor form FuzzyPid calls every tick (kTrace false) or the same inference with its trace
-// of degrees and total strength (kTrace true).
-template <bool kTrace>
+// supervisor form FuzzyPid calls every tick (WithTrace false) or the same inference with its trace
+// of degrees and total strength (WithTrace true).
+template <bool WithTrace>
 void run_inference(benchmark::State& state) {
   const PaperSystem& system = fuzzypid::paper::kSystem<double>;
   auto workspace = system.make_workspace();
@@ -105,7 +105,7 @@ void run_inference(benchmark::State& state) {
   for (auto _ : state) {
     const auto& p = table[k++ & kTableMask];
     std::array<double, 3> delta;
-    if constexpr (kTrace) {
+    if constexpr (WithTrace) {
       PaperSystem::Trace trace;
       const fuzzypid::Status s = system.infer(p.e, p.ec, workspace, delta, trace);
       benchmark::DoNotOptimize(s);

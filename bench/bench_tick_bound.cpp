@@ -192,7 +192,7 @@ class SpecialisedTick {
   std::array<fp::pid::Gains<double>, kJoints> gains_{};  // this tick's gains, as FuzzyPid::gains()
 };
 
-template <bool kLanes>
+template <bool Lanes>
 void run_bound(benchmark::State& state) {
   auto config = fp::paper::paper_config<double>();
   config.pid = fp::bench::tick_pid_config();
@@ -210,7 +210,7 @@ void run_bound(benchmark::State& state) {
     double max_abs_diff = 0.0;
     for (std::size_t k = 0; k < 2000; ++k) {
       const TickInput& t = table[k & fp::bench::kTableMask];
-      const Output mine = kLanes ? check.lanes(t, kDt) : check.per_joint(t, kDt);
+      const Output mine = Lanes ? check.lanes(t, kDt) : check.per_joint(t, kDt);
       const Output theirs = library.step(t, kDt);
       for (std::size_t j = 0; j < kJoints; ++j)
         max_abs_diff = max(max_abs_diff, fp::detail::abs(mine.torque_nm[j] - theirs.torque_nm[j]));
@@ -224,7 +224,7 @@ void run_bound(benchmark::State& state) {
   std::size_t k = 0;
   for (auto _ : state) {
     const TickInput& t = table[k++ & fp::bench::kTableMask];
-    const Output out = kLanes ? tick.lanes(t, kDt) : tick.per_joint(t, kDt);
+    const Output out = Lanes ? tick.lanes(t, kDt) : tick.per_joint(t, kDt);
     benchmark::DoNotOptimize(out);
   }
   state.SetItemsProcessed(state.iterations());

@@ -102,21 +102,21 @@ class CsvReader {
 
   // Reads up to the next '\n' (not stored). At the end of the input sets the stream's eofbit.
   LineRead read_line(std::string& text) {
-    using traits = std::char_traits<char>;
+    using Traits = std::char_traits<char>;
     text.clear();
     std::streambuf* buffer = in_.rdbuf();
     if (buffer == nullptr) return LineRead::End;
     bool any = false;
     for (;;) {
-      const traits::int_type c = buffer->sbumpc();
-      if (traits::eq_int_type(c, traits::eof())) {
+      const Traits::int_type c = buffer->sbumpc();
+      if (Traits::eq_int_type(c, Traits::eof())) {
         in_.setstate(std::ios::eofbit);
         return any ? LineRead::Line : LineRead::End;
       }
       any = true;
-      if (traits::to_char_type(c) == '\n') return LineRead::Line;
+      if (Traits::to_char_type(c) == '\n') return LineRead::Line;
       if (text.size() >= kMaxLineBytes) return LineRead::TooLong;
-      text.push_back(traits::to_char_type(c));
+      text.push_back(Traits::to_char_type(c));
     }
   }
 

@@ -97,7 +97,9 @@ enum class Tables {
 };
 
 // Output order of the paper's system.
-enum Output : std::size_t { kDeltaKp = 0, kDeltaKi = 1, kDeltaKd = 2 };
+inline constexpr std::size_t kDeltaKp = 0;
+inline constexpr std::size_t kDeltaKi = 1;
+inline constexpr std::size_t kDeltaKd = 2;
 
 template <class Scalar>
 using System = fuzzy::TskSystem<Scalar, kNumTerms, kNumTerms, 3>;

@@ -55,8 +55,8 @@ FuzzyPid<Scalar> make_fuzzy(Scalar kp) {
 
 template <class Scalar, class Controller>
 struct Case {
-  using scalar = Scalar;
-  using controller = Controller;
+  using ScalarType = Scalar;
+  using ControllerType = Controller;
 };
 
 template <class C>
@@ -87,8 +87,8 @@ std::array<Controller, kJoints> make_joints() {
 }
 
 TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
-  using Scalar = typename TypeParam::scalar;
-  using Controller = typename TypeParam::controller;
+  using Scalar = typename TypeParam::ScalarType;
+  using Controller = typename TypeParam::ControllerType;
   const auto joints = make_joints<Scalar, Controller>();
   JointController<Scalar, kJoints, Controller> controller(joints);
   auto standalone = joints;
@@ -123,8 +123,8 @@ TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
 }
 
 TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCommand) {
-  using Scalar = typename TypeParam::scalar;
-  using Controller = typename TypeParam::controller;
+  using Scalar = typename TypeParam::ScalarType;
+  using Controller = typename TypeParam::ControllerType;
   JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));
@@ -155,8 +155,8 @@ TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCom
 }
 
 TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryCommand) {
-  using Scalar = typename TypeParam::scalar;
-  using Controller = typename TypeParam::controller;
+  using Scalar = typename TypeParam::ScalarType;
+  using Controller = typename TypeParam::ControllerType;
   JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));
@@ -170,8 +170,8 @@ TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryComman
 }
 
 TYPED_TEST(JointControllerTyped, ResetClearsEveryJoint) {
-  using Scalar = typename TypeParam::scalar;
-  using Controller = typename TypeParam::controller;
+  using Scalar = typename TypeParam::ScalarType;
+  using Controller = typename TypeParam::ControllerType;
   JointController<Scalar, kJoints, Controller> controller(make_joints<Scalar, Controller>());
   std::array<Scalar, kJoints> qd{}, vd{}, q{}, v{};
   qd.fill(Scalar(0.1));

@@ -107,9 +107,9 @@ struct TskSystem {
   }
 
  private:
-  template <bool kTrace>
+  template <bool WithTrace>
   constexpr Status run(Scalar x, Scalar y, Output& output, Trace* trace) const noexcept {
-    if constexpr (kTrace) {
+    if constexpr (WithTrace) {
       *trace = Trace{};
       trace->conjunction = conjunction;
     }
@@ -120,38 +120,38 @@ struct TskSystem {
     if (e.is_uniform() && ec.is_uniform()) {
       const auto a = e.locate(x);
       const auto b = ec.locate(y);
-      if constexpr (kTrace) {
+      if constexpr (WithTrace) {
         trace->e = e.fuzzify(x);
         trace->ec = ec.fuzzify(y);
       }
       return conjunction == Conjunction::Minimum
-                 ? fire_block<kTrace, Conjunction::Minimum>(a, b, output, trace)
-                 : fire_block<kTrace, Conjunction::Product>(a, b, output, trace);
+                 ? fire_block<WithTrace, Conjunction::Minimum>(a, b, output, trace)
+                 : fire_block<WithTrace, Conjunction::Product>(a, b, output, trace);
     }
-    return run_custom<kTrace>(x, y, output, trace);
+    return run_custom<WithTrace>(x, y, output, trace);
   }
 
   // Custom partitions: every term evaluated, every rule fired. Out of line, so the uniform path
   // of a controller's tick stays small.
-  template <bool kTrace>
+  template <bool WithTrace>
   [[gnu::noinline]] constexpr Status run_custom(Scalar x, Scalar y, Output& output,
                                                 Trace* trace) const noexcept {
     const Fuzzified<Scalar, NE> fe = e.fuzzify(x);
     const Fuzzified<Scalar, NEC> fec = ec.fuzzify(y);
-    if constexpr (kTrace) {
+    if constexpr (WithTrace) {
       trace->e = fe;
       trace->ec = fec;
     }
     return conjunction == Conjunction::Minimum
-               ? fire<kTrace, Conjunction::Minimum, NE, NEC>(fe.degree.data(), 0, fec.degree.data(),
-                                                             0, output, trace)
-               : fire<kTrace, Conjunction::Product, NE, NEC>(fe.degree.data(), 0, fec.degree.data(),
-                                                             0, output, trace);
+               ? fire<WithTrace, Conjunction::Minimum, NE, NEC>(fe.degree.data(), 0,
+                                                                fec.degree.data(), 0, output, trace)
+               : fire<WithTrace, Conjunction::Product, NE, NEC>(
+                     fe.degree.data(), 0, fec.degree.data(), 0, output, trace);
   }
 
   // Fires the 2 x 2 block of rules (k .. k + 1) x (m .. m + 1) of two uniform partitions, in rule
   // order, and defuzzifies. Degrees of 0 fire rules of strength 0, which add exact zeros.
-  template <bool kTrace, Conjunction Op>
+  template <bool WithTrace, Conjunction Op>
   constexpr Status fire_block(const typename LinguisticVariable<Scalar, NE>::Adjacent& a,
                               const typename LinguisticVariable<Scalar, NEC>::Adjacent& b,
                               Output& output, Trace* trace) const noexcept {
@@ -168,7 +168,7 @@ struct TskSystem {
       w11 = a.upper * b.upper;
     }
     const Scalar total = w00 + w01 + w10 + w11;
-    if constexpr (kTrace) trace->total_strength = total;
+    if constexpr (WithTrace) trace->total_strength = total;
     if (!(total > Scalar(0))) {
       output = {};
       return Status::NoRuleFired;
@@ -195,7 +195,7 @@ struct TskSystem {
 
   // Fires rules (i0 .. i0 + Rows - 1) x (j0 .. j0 + Cols - 1) whose antecedent degrees are
   // de[0 .. Rows - 1] and dec[0 .. Cols - 1], in rule order, and defuzzifies.
-  template <bool kTrace, Conjunction Op, std::size_t Rows, std::size_t Cols>
+  template <bool WithTrace, Conjunction Op, std::size_t Rows, std::size_t Cols>
   constexpr Status fire(const Scalar* de, std::size_t i0, const Scalar* dec, std::size_t j0,
                         Output& output, Trace* trace) const noexcept {
     Scalar total = Scalar(0);
@@ -208,7 +208,7 @@ struct TskSystem {
           sum[o] += w * consequents[o][i0 + i][j0 + j];
       }
     }
-    if constexpr (kTrace) trace->total_strength = total;
+    if constexpr (WithTrace) trace->total_strength = total;
     if (!(total > Scalar(0))) {
       output = {};
       return Status::NoRuleFired;
