@@ -105,7 +105,8 @@ stage_cppcheck() {
   # Third-party code (Eigen, KDL, urdfdom, GoogleTest) is not given to cppcheck; the reasons of
   # each suppression are in scripts/cppcheck-suppressions.txt. One configuration, the one the
   # build compiles (FUZZYPID_HAVE_ROBOT=1): given a -D, cppcheck checks only it instead of
-  # guessing up to 12 per file, and no branch the build compiles is left out.
+  # guessing up to 12 per file (136 s instead of 237 s in CI), and no branch the build compiles
+  # is left out.
   cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr \
     --std=c++17 --language=c++ --quiet -j "${jobs}" -DFUZZYPID_HAVE_ROBOT=1 \
     --suppressions-list=scripts/cppcheck-suppressions.txt \
