@@ -21,9 +21,6 @@ class UniformReal {
     return static_cast<Real>(lo + (static_cast<double>(max_) - lo) * u);
   }
 
-  [[nodiscard]] constexpr Real min() const noexcept { return min_; }
-  [[nodiscard]] constexpr Real max() const noexcept { return max_; }
-
  private:
   Real min_;
   Real max_;
