@@ -6,7 +6,8 @@
 //   fuzzy 101000
 //
 // (instructions per tick = difference of the two totals / 100,000; kinds: fuzzy, pid, scheduled,
-// fuzzy_rules, infer).
+// fuzzy_rules, infer; spec:FAMILY runs a family's default controller through the family dispatch
+// of controller::JointControllers when the controller part is built).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,6 +15,11 @@
 #include "bench_inputs.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#ifdef FUZZYPID_TICK_DRIVER_CONTROLLERS
+#include <string>
+
+#include "fuzzypid/controller/joint_controllers.hpp"
+#endif
 
 namespace {
 
@@ -23,7 +29,7 @@ using fuzzypid::bench::tick_pid_config;
 const auto g_table = fuzzypid::bench::make_tick_table();
 
 constexpr const char* kUsage =
-    "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer COUNT\n";
+    "usage: fuzzypid_tick_driver fuzzy|pid|scheduled|fuzzy_rules|infer|spec:FAMILY COUNT\n";
 
 // n ticks of six joints, each a copy of `joint`.
 template <class Joint>
@@ -37,6 +43,28 @@ template <class Joint>
   }
   return sum;
 }
+
+#ifdef FUZZYPID_TICK_DRIVER_CONTROLLERS
+// n ticks of the six joints a controller description builds, through the family dispatch of
+// controller::JointControllers (what sim/ and the apps run).
+[[gnu::noinline]] double run_spec(const fuzzypid::controller::ControllerSpec& spec, long n) {
+  std::string error;
+  fuzzypid::controller::Vector limit;
+  limit.fill(1e3);
+  auto controllers = fuzzypid::controller::JointControllers::create(spec, limit, error);
+  if (!controllers) {
+    std::fprintf(stderr, "fuzzypid_tick_driver: %s\n", error.c_str());
+    std::exit(1);
+  }
+  double sum = 0.0;
+  for (long k = 0; k < n; ++k) {
+    const auto out =
+        controllers->step(g_table[static_cast<std::size_t>(k) & fuzzypid::bench::kTableMask], 0.05);
+    sum += out.torque_nm[0] + static_cast<double>(out.status);
+  }
+  return sum;
+}
+#endif
 
 [[gnu::noinline]] double infer(long n) {
   const auto& system = fuzzypid::paper::kSystem<double>;
@@ -71,6 +99,18 @@ int main(int argc, char** argv) {
     sum = run(fuzzypid::bench::scheduled_joint(), n);
   } else if (std::strcmp(argv[1], "fuzzy_rules") == 0) {
     sum = run(fuzzypid::bench::fuzzy_rules_joint(), n);
+#ifdef FUZZYPID_TICK_DRIVER_CONTROLLERS
+  } else if (std::strncmp(argv[1], "spec:", 5) == 0) {
+    // spec:NAME: the family NAME (as controller files name it) with its default settings.
+    fuzzypid::controller::ControllerSpec spec = fuzzypid::controller::paper_fuzzy();
+    const auto family = fuzzypid::parse_enum(fuzzypid::controller::kFamilyNames, argv[1] + 5);
+    if (!family) {
+      std::fputs(kUsage, stderr);
+      return 2;
+    }
+    spec.family = *family;
+    sum = run_spec(spec, n);
+#endif
   } else if (std::strcmp(argv[1], "infer") == 0) {
     sum = infer(n);
   } else {
