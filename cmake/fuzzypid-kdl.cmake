@@ -1,5 +1,5 @@
 # Debian's orocos_kdl package config sets variables but exports no imported target: wrap them in
-# `fuzzypid_orocos_kdl`. Used by the build (src/CMakeLists.txt) and by the installed package
+# `fuzzypid_orocos_kdl`. Used by the build (src/robot/CMakeLists.txt) and by the installed package
 # config, whose exported robot library names this target as a link-only dependency.
 if(NOT TARGET fuzzypid_orocos_kdl)
   add_library(fuzzypid_orocos_kdl INTERFACE IMPORTED)

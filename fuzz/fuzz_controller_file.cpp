@@ -37,10 +37,10 @@ void check_conditions(std::string_view text) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace cf = fuzzypid::controller_file;
-  namespace ctl = fuzzypid::controller;
+  namespace controller = fuzzypid::controller;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   check_conditions(text);
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   if (!cf::parse(text, "fuzz.toml", spec, error)) {
     if (error.file != "fuzz.toml" || error.line < 1 || error.column < 1 || error.message.empty())
@@ -48,11 +48,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::string written = cf::to_toml(spec);
-  ctl::ControllerSpec back;
+  controller::ControllerSpec back;
   if (!cf::parse(written, "written.toml", back, error)) std::abort();
   if (cf::to_toml(back) != written) std::abort();
   std::string build_error;
-  if (!ctl::JointControllers::create(spec, ctl::Vector{1, 1, 1, 1, 1, 1}, build_error))
+  if (!controller::JointControllers::create(spec, controller::Vector{1, 1, 1, 1, 1, 1},
+                                            build_error))
     std::abort();
   return 0;
 }

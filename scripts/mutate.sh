@@ -23,7 +23,8 @@ mutants=(
   "d_on_measurement_uses_setpoint_rate|include/fuzzypid/pid/pid.hpp|s/d_raw = in.setpoint_rate \* Scalar(0) - in.measurement_rate;/d_raw = in.setpoint_rate - in.measurement_rate;/|bin:test_pid"
   "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
   "pid_config_drops_derivative_on|src/controller/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
-  "incremental_gain_update_ignored|src/controller/joint_controllers.cpp|s/fc.gain_update = spec.supervisor.gain_update;/fc.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
+  "incremental_gain_update_ignored|include/fuzzypid/controller/families/fuzzy.hpp|s/config.gain_update = spec.supervisor.gain_update;/config.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
+  "family_dispatch_always_first|include/fuzzypid/controller/families.hpp|s/(family.index() == I ?/(I == 0 ?/|bin:test_sixth_family bin:test_controller_file"
   "tuner_swaps_output_scales|src/tune/parameters.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune bin:test_parameters"
   "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
   # Our own: the core.

@@ -14,6 +14,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/condition_set.hpp"

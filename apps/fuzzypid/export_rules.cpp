@@ -25,7 +25,6 @@ namespace fuzzypid::cli {
 namespace {
 
 namespace cf = controller_file;
-namespace ctl = controller;
 namespace fs = std::filesystem;
 
 constexpr const char* kTool = "fuzzypid export-rules";
@@ -64,8 +63,8 @@ int usage(const std::string& message) {
 
 // The grid of the surfaces: x = Ke e and y = Kec ec over +-1.2 c_max (beyond c_max the shoulders
 // hold the outer rules), written in e and ec; ratios K/K0 before the gain bounds clamp them.
-std::string surface_csv(const control::RuleTable<double>& table, const ctl::ControllerSpec& spec,
-                        unsigned n) {
+std::string surface_csv(const control::RuleTable<double>& table,
+                        const controller::ControllerSpec& spec, unsigned n) {
   const double x_max = 1.2 * table.e_centers.back();
   const double y_max = 1.2 * table.ec_centers.back();
   std::string text = "e_rad,ec_rad_s,kp_ratio,ki_ratio,kd_ratio\n";
@@ -135,20 +134,20 @@ int run_export_rules(const ExportRulesOptions& o) {
         return usage(std::string(outputs[b].option) + ": '" + *outputs[b].path +
                      "' is the same file as " + outputs[a].option);
 
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   FileError err;
   if (!cf::load(o.in, spec, err)) {
     std::fprintf(stderr, "%s: %s\n", kTool, err.to_string().c_str());
     return kExitFailure;
   }
-  if (spec.family != ctl::Family::FuzzyRules) {
+  if (!controller::family_traits(spec.family).rule_table) {
     std::fprintf(stderr,
-                 "%s: %s: a '%s' controller has no rule table; export-rules reads 'fuzzy-rules' "
-                 "controllers\n",
-                 kTool, o.in.c_str(), ctl::to_string(spec.family));
+                 "%s: %s: a '%s' controller has no rule table; export-rules reads controllers "
+                 "with one (fuzzy-rules)\n",
+                 kTool, o.in.c_str(), controller::to_string(spec.family));
     return kExitFailure;
   }
-  const control::RuleTable<double> table = ctl::rule_table(spec);
+  const control::RuleTable<double> table = controller::rule_table(spec);
 
   std::string rules, controller_text;
   if (o.out_given) {
@@ -179,9 +178,9 @@ int run_export_rules(const ExportRulesOptions& o) {
     std::string description = "the fuzzy-rules controller " + o.in + " with its rule table as " +
                               rel.generic_string() + " (fuzzypid export-rules)";
     if (!spec.description.empty()) description += "; it was: " + spec.description;
-    const ctl::ControllerSpec fuzzy =
-        ctl::fuzzy_from_rule_table(spec, rel.generic_string(), model, description);
-    if (const std::string bad = ctl::validate(fuzzy); !bad.empty()) {
+    const controller::ControllerSpec fuzzy =
+        controller::fuzzy_from_rule_table(spec, rel.generic_string(), model, description);
+    if (const std::string bad = controller::validate(fuzzy); !bad.empty()) {
       std::fprintf(stderr, "%s: the fuzzy controller is not valid: %s\n", kTool, bad.c_str());
       return kExitFailure;
     }

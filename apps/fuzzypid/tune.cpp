@@ -19,6 +19,7 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
@@ -34,11 +35,10 @@ namespace fuzzypid::cli {
 namespace {
 
 namespace cf = controller_file;
-namespace ctl = controller;
 
 constexpr double kMaxLog10 = 300.0;
 
-bool parse_box(const std::string& text, ctl::SearchBox& box) {
+bool parse_box(const std::string& text, controller::SearchBox& box) {
   const auto eq = text.find('=');
   const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
   if (eq == std::string::npos || colon == std::string::npos) return false;
@@ -85,7 +85,7 @@ struct TuneOptions {
   std::string symmetry = "even", unvisited = "seed", partition = "tuned";
   tune::TableOptions table;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  ctl::Objective objective;
+  controller::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
   bool search_filter = true;
@@ -102,16 +102,16 @@ bool parse_stages(const std::string& text, std::vector<tune::Stage>& stages, std
     const std::size_t end = std::min(text.find(',', begin), text.size());
     const std::string entry = text.substr(begin, end - begin);
     const std::size_t colon = entry.find(':');
-    const auto family = colon == std::string::npos
-                            ? std::nullopt
-                            : fuzzypid::parse_enum(ctl::kFamilyNames, entry.substr(0, colon));
+    const auto family = colon == std::string::npos ? std::nullopt
+                                                   : fuzzypid::parse_enum(controller::kFamilyNames,
+                                                                          entry.substr(0, colon));
     char* stop = nullptr;
     const std::string number = colon == std::string::npos ? "" : entry.substr(colon + 1);
     const unsigned long long budget = std::strtoull(number.c_str(), &stop, 10);
     if (!family || number.empty() || *stop != '\0' || number[0] == '-' || budget < 14 ||
         budget > 100000000ull) {
       error = "'" + entry + "': expected FAMILY:BUDGET with FAMILY one of " +
-              fuzzypid::names_of(ctl::kFamilyNames) + " and 14 <= BUDGET <= 100000000";
+              fuzzypid::names_of(controller::kFamilyNames) + " and 14 <= BUDGET <= 100000000";
       return false;
     }
     stages.push_back({*family, budget});
@@ -144,9 +144,9 @@ int run_tune(const TuneOptions& t) {
       return kExitUsage;
     }
   }
-  ctl::Family family = ctl::Family::Pid;
+  controller::Family family{};
   if (!t.family_name.empty()) {
-    family = *fuzzypid::parse_enum(ctl::kFamilyNames, t.family_name);
+    family = *fuzzypid::parse_enum(controller::kFamilyNames, t.family_name);
   } else if (!stages.empty()) {
     family = stages.back().family;
   } else {
@@ -167,7 +167,7 @@ int run_tune(const TuneOptions& t) {
     }
     if (stages.back().family != family) {
       std::fprintf(stderr, "fuzzypid tune: --family %s is not the last stage's (%s)\n",
-                   t.family_name.c_str(), ctl::to_string(stages.back().family));
+                   t.family_name.c_str(), controller::to_string(stages.back().family));
       return kExitUsage;
     }
     if (t.budget_given && t.budget != total_budget) {
@@ -177,12 +177,12 @@ int run_tune(const TuneOptions& t) {
       return kExitUsage;
     }
   }
-  // The rule-table options shape a fuzzy-rules search only.
-  bool rule_table_stage = family == ctl::Family::FuzzyRules;
-  std::string families = ctl::to_string(family);
+  // The rule-table options shape the search of a family with a rule table only.
+  bool rule_table_stage = controller::family_traits(family).rule_table;
+  std::string families = controller::to_string(family);
   for (std::size_t k = 0; k < stages.size(); ++k) {
-    rule_table_stage = rule_table_stage || stages[k].family == ctl::Family::FuzzyRules;
-    families = (k == 0 ? "" : families + ", ") + ctl::to_string(stages[k].family);
+    rule_table_stage = rule_table_stage || controller::family_traits(stages[k].family).rule_table;
+    families = (k == 0 ? "" : families + ", ") + controller::to_string(stages[k].family);
   }
   if (const std::string bad = t.given.refuse_unused(
           {"--symmetry", "--partition", "--smoothness", "--monotone", "--unvisited",
@@ -220,7 +220,7 @@ int run_tune(const TuneOptions& t) {
   opt.threads = t.threads;
   opt.population = t.population;
   opt.objective = t.objective;
-  opt.base = ctl::paper_pid();
+  opt.base = controller::paper_pid();
   opt.base.description.clear();
   if (!t.base_file.empty()) {
     fuzzypid::FileError err;
@@ -242,14 +242,14 @@ int run_tune(const TuneOptions& t) {
   }
   if (!t.init_file.empty()) {
     fuzzypid::FileError err;
-    ctl::ControllerSpec init;
+    controller::ControllerSpec init;
     if (!cf::load(t.init_file, init, err)) {
       std::fprintf(stderr, "fuzzypid tune: --init: %s\n", err.to_string().c_str());
       return 1;
     }
     // The search starts here; the result keeps its units, PID options, bounds and rule base.
-    const ctl::Family first = stages.empty() ? family : stages.front().family;
-    ctl::ControllerSpec converted;
+    const controller::Family first = stages.empty() ? family : stages.front().family;
+    controller::ControllerSpec converted;
     std::string why;
     if (!tune::convert(init, first, converted, why)) {
       std::fprintf(stderr, "fuzzypid tune: --init %s: %s\n", t.init_file.c_str(), why.c_str());
@@ -261,9 +261,9 @@ int run_tune(const TuneOptions& t) {
     }
     opt.init = init;
   }
-  const std::vector<ctl::SearchBox> defaults = tune::default_box(family);
+  const std::vector<controller::SearchBox> defaults = tune::default_box(family);
   for (const std::string& text : t.boxes) {
-    ctl::SearchBox b;
+    controller::SearchBox b;
     if (!parse_box(text, b)) {
       std::fprintf(
           stderr,
@@ -271,13 +271,14 @@ int run_tune(const TuneOptions& t) {
           text.c_str());
       return 2;
     }
-    bool found = family == ctl::Family::FuzzyRules;  // table cells are named once visits are known
+    // Table cells are named once visits are known.
+    bool found = controller::family_traits(family).rule_table;
     for (const auto& d : defaults)
       if (d.name == b.name) found = true;
     opt.box.push_back(b);
     if (!found) {
       std::fprintf(stderr, "fuzzypid tune: --box: the %s family has no parameter '%s'\n",
-                   ctl::to_string(family), b.name.c_str());
+                   controller::to_string(family), b.name.c_str());
       return 2;
     }
   }
@@ -322,8 +323,8 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 ctl::to_string(family), training->conditions.size() - t.validation, t.set.c_str(),
-                 total_budget, t.seed, t.threads);
+                 controller::to_string(family), training->conditions.size() - t.validation,
+                 t.set.c_str(), total_budget, t.seed, t.threads);
     if (t.validation != 0)
       std::fprintf(stderr,
                    "fuzzypid tune: the last %" PRIu64
@@ -385,8 +386,8 @@ int run_tune(const TuneOptions& t) {
   result->controller.tuning->set = t.set;
   if (!t.init_file.empty())
     result->controller.tuning->init = path_from_folder_of(t.out, t.init_file);
-  result->controller.description =
-      "tuned " + std::string(ctl::to_string(family)) + " on " + t.conditions + " [" + t.set + "]";
+  result->controller.description = "tuned " + std::string(controller::to_string(family)) + " on " +
+                                   t.conditions + " [" + t.set + "]";
   // The result's margins and certificate over its training conditions (validation ones
   // included), recorded in [margins]; a result below a required margin is not written.
   {
@@ -438,10 +439,10 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
   }
-  for (const ctl::BoundHit& h : result->controller.tuning->on_bound) {
+  for (const controller::BoundHit& h : result->controller.tuning->on_bound) {
     const auto& box = result->controller.tuning->box;
     const auto b = std::find_if(box.begin(), box.end(),
-                                [&](const ctl::SearchBox& s) { return s.name == h.name; });
+                                [&](const controller::SearchBox& s) { return s.name == h.name; });
     std::fprintf(stderr,
                  "fuzzypid tune: warning: %s ended on the %s of its box (log10 %.4g in [%.4g, "
                  "%.4g]): the optimum may lie outside; widen it with --box %s=MIN:MAX and "
@@ -457,7 +458,7 @@ int run_tune(const TuneOptions& t) {
     const double wall = k < result->stage_wall_s.size() ? result->stage_wall_s[k] : 0.0;
     std::printf("stage %s: %" PRIu64 " evaluations (budget %" PRIu64
                 ") in %.1f s, %.1f evaluations/s, training cost %.6g, validation cost %.6g\n",
-                ctl::to_string(st.family), st.evaluations, st.budget, wall,
+                controller::to_string(st.family), st.evaluations, st.budget, wall,
                 wall > 0.0 ? static_cast<double>(st.evaluations) / wall : 0.0, st.training_cost,
                 st.validation_cost);
   }
@@ -466,8 +467,8 @@ int run_tune(const TuneOptions& t) {
               "evaluations/s (%.0f condition runs/s), training cost %.6g (ITAE %.6g, overshoot "
               "penalty %.6g, chatter penalty %.6g, effort penalty %.6g, regulariser %.6g, %zu "
               "faulted runs)",
-              ctl::to_string(family), result->evaluations, total_budget, result->wall_s, rate,
-              rate * static_cast<double>(training->conditions.size() - t.validation),
+              controller::to_string(family), result->evaluations, total_budget, result->wall_s,
+              rate, rate * static_cast<double>(training->conditions.size() - t.validation),
               result->cost.total, result->cost.itae, result->cost.overshoot_penalty,
               result->cost.chatter_penalty, result->cost.effort_penalty, result->penalty,
               result->cost.faulted_runs);
@@ -488,9 +489,9 @@ struct ExportOptions {
 
 // The certificate of `spec` over --conditions [--set] or, without them, over the nominal plant of
 // the robot options, as `fuzzypid certify` computes it (the conditions' largest delay).
-std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
-                                                    const ctl::ControllerSpec& spec,
-                                                    std::string& error) {
+std::optional<controller::MarginRecord> margins_for_header(const ExportOptions& o,
+                                                           const controller::ControllerSpec& spec,
+                                                           std::string& error) {
   std::vector<sim::Condition> conditions;
   if (!o.conditions.empty()) {
     sim::ConditionFile file;
@@ -523,7 +524,7 @@ std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
   co.delay_s = sim::largest_delay_s(conditions);
   const auto cert = sim::certify(spec, conditions, *experiments, co, error);
   if (!cert) return std::nullopt;
-  ctl::MarginRecord r = sim::margin_record(*cert);
+  controller::MarginRecord r = sim::margin_record(*cert);
   r.conditions = o.conditions.empty() ? "the nominal plant of the robot options" : o.conditions;
   r.set = o.conditions.empty() ? "-" : o.set;
   return r;
@@ -532,7 +533,7 @@ std::optional<ctl::MarginRecord> margins_for_header(const ExportOptions& o,
 // J^ and the torque limits of the plant `o.robot` names (the bundled ER50-C20 on the section 6
 // line by default), as sim_ab simulates it.
 std::optional<fuzzypid::codegen::PlantRecord> plant_record(const ExportOptions& o,
-                                                           const ctl::ControllerSpec& spec,
+                                                           const controller::ControllerSpec& spec,
                                                            std::string& error) {
   sim::Condition c;
   o.robot.apply(c);
@@ -565,7 +566,7 @@ int run_export_header(const ExportOptions& o) {
       return kExitUsage;
     }
   }
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError err;
   if (!cf::load(in, spec, err)) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
@@ -623,11 +624,11 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       "differential evolution, log10 search boxes, hard evaluation budget) and write the result "
       "as a controller file (docs/tuning.md). Progress goes to stderr.");
   std::vector<std::string> family_names;
-  family_names.reserve(ctl::kFamilyNames.size());
-  for (const auto& e : ctl::kFamilyNames)
+  family_names.reserve(controller::kFamilyNames.size());
+  for (const auto& e : controller::kFamilyNames)
     family_names.emplace_back(e.name);
   cmd->add_option("--family", t->family_name,
-                  "controller family (" + fuzzypid::names_of(ctl::kFamilyNames) +
+                  "controller family (" + fuzzypid::names_of(controller::kFamilyNames) +
                       "); with --stages, the last stage's")
       ->check(CLI::IsMember(family_names));
   cmd->add_option("--stages", t->stages,

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/plant.hpp"
@@ -73,7 +74,7 @@ namespace cli = fuzzypid::cli;
 namespace robot = fuzzypid::robot;
 namespace sim = fuzzypid::sim;
 namespace cf = fuzzypid::controller_file;
-namespace ctl = fuzzypid::controller;
+namespace controller = fuzzypid::controller;
 
 using fuzzypid::rt_loop::kTool;
 using fuzzypid::rt_loop::Options;
@@ -311,8 +312,8 @@ int run(int argc, char** argv) {
   std::fprintf(stderr, "%s: plant %s\n", kTool, cli::plant_note(condition).c_str());
   cli::print_model_notes(kTool, *experiment);
   cli::warn_about_payload(kTool, *experiment, condition);
-  ctl::ControllerSpec spec = sim::default_controller(
-      options, o.controller == "fuzzy" ? ctl::Family::Fuzzy : ctl::Family::Pid);
+  controller::ControllerSpec spec = sim::default_controller(
+      options, o.controller == "fuzzy" ? controller::paper_fuzzy() : controller::paper_pid());
   spec.units.tick_s = paper_tick_s;
   if (o.controller != "pid" && o.controller != "fuzzy") {
     fuzzypid::FileError file_error;
@@ -322,8 +323,10 @@ int run(int argc, char** argv) {
     }
     cli::warn_about_training(kTool, o.controller, spec, *experiment);
     if (const std::string bad = o.given.refuse_unused(
-            {"--strict-rules"}, spec.family != ctl::Family::Pid, "a controller with a supervisor",
-            o.controller + " is a pid controller, which has none");
+            {"--strict-rules"}, controller::family_traits(spec.family).supervised(),
+            "a controller with a supervisor",
+            o.controller + " is a " + controller::to_string(spec.family) +
+                " controller, which has none");
         !bad.empty()) {
       std::fprintf(stderr, "%s: %s\n", kTool, bad.c_str());
       return cli::kExitUsage;

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/robot/path.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
@@ -36,7 +37,6 @@ namespace {
 using namespace fuzzypid;
 namespace fs = std::filesystem;
 namespace cf = controller_file;
-namespace ctl = controller;
 
 // The output files of a run, written and committed as a whole by cli::OutputSet: a unique
 // temporary directory that replaces --out in one rename, with --out locked meanwhile, so that a
@@ -102,7 +102,7 @@ const std::vector<std::string> kOutputNames = {"trajectory.csv", "metrics.csv", 
 struct NamedController {
   std::string name;
   std::string source;  // the file, or "built-in"
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
 };
 
 struct Run {
@@ -203,31 +203,32 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
   for (const auto& c : controllers) {
     const auto& s = c.spec;
     std::fprintf(f, "controller.%s=%s family=%s units=%s,%s gains=%s,%s,%s", c.name.c_str(),
-                 c.source.c_str(), ctl::to_string(s.family), ctl::to_string(s.units.gains),
-                 ctl::to_string(s.units.form), fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(),
-                 fmt(s.gains.kd).c_str());
-    if (s.family != ctl::Family::Pid)
+                 c.source.c_str(), controller::to_string(s.family),
+                 controller::to_string(s.units.gains), controller::to_string(s.units.form),
+                 fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(), fmt(s.gains.kd).c_str());
+    const controller::FamilyTraits& traits = controller::family_traits(s.family);
+    if (traits.supervised())
       std::fprintf(
           f, " error_scale=%s error_rate_scale=%s output_scale=%s,%s,%s",
           fmt(s.supervisor.error_scale).c_str(), fmt(s.supervisor.error_rate_scale).c_str(),
           fmt(s.supervisor.output_scale[0]).c_str(), fmt(s.supervisor.output_scale[1]).c_str(),
           fmt(s.supervisor.output_scale[2]).c_str());
-    if (s.family == ctl::Family::Fuzzy && s.supervisor.rule_file.empty())
+    if (traits.rule_base && s.supervisor.rule_file.empty())
       std::fprintf(f, " gain_update=%s rule_base=%s and=%s",
-                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update),
-                   ctl::to_string(s.supervisor.rule_base),
-                   fuzzypid::name_of(ctl::kConjunctionNames, s.supervisor.conjunction));
-    if (s.family == ctl::Family::Fuzzy && !s.supervisor.rule_file.empty()) {
+                   fuzzypid::name_of(controller::kGainUpdateNames, s.supervisor.gain_update),
+                   controller::to_string(s.supervisor.rule_base),
+                   fuzzypid::name_of(controller::kConjunctionNames, s.supervisor.conjunction));
+    if (traits.rule_base && !s.supervisor.rule_file.empty()) {
       // What ran: the rule file (resolved against the controller file's folder) and its hash.
       const std::string rules =
           (fs::path(c.source).parent_path() / s.supervisor.rule_file).lexically_normal().string();
       std::fprintf(f, " gain_update=%s rule_file=%s rule_file_fnv1a64=%s",
-                   fuzzypid::name_of(ctl::kGainUpdateNames, s.supervisor.gain_update),
+                   fuzzypid::name_of(controller::kGainUpdateNames, s.supervisor.gain_update),
                    rules.c_str(), cf::file_hash(rules).c_str());
     }
     if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
     std::fprintf(f, " derivative=%s\n",
-                 fuzzypid::name_of(ctl::kDerivativeSourceNames, s.pid.derivative));
+                 fuzzypid::name_of(controller::kDerivativeSourceNames, s.pid.derivative));
   }
 }
 
@@ -422,9 +423,9 @@ int run_sim_ab(int argc, char** argv) {
   }
   if (controllers.empty()) {
     controllers.push_back(
-        {"pid", "built-in", sim::default_controller(o.experiment, ctl::Family::Pid)});
+        {"pid", "built-in", sim::default_controller(o.experiment, controller::paper_pid())});
     controllers.push_back(
-        {"fuzzy", "built-in", sim::default_controller(o.experiment, ctl::Family::Fuzzy)});
+        {"fuzzy", "built-in", sim::default_controller(o.experiment, controller::paper_fuzzy())});
   }
 
   // Conditions: a file's sets, or the scenario(s) with the overrides.
@@ -457,7 +458,7 @@ int run_sim_ab(int argc, char** argv) {
   // --strict-rules and --seed shape supervisors and measurement noise: refused where none is run.
   bool supervised = false, noisy = false;
   for (const auto& c : controllers)
-    supervised = supervised || c.spec.family != ctl::Family::Pid;
+    supervised = supervised || controller::family_traits(c.spec.family).supervised();
   for (const auto& r : runs)
     noisy = noisy || r.condition.noise_position_rad > 0.0 || r.condition.noise_velocity_rad_s > 0.0;
   for (const std::string& bad :
@@ -522,7 +523,7 @@ int run_sim_ab(int argc, char** argv) {
     for (const auto& c : controllers)
       if (c.source != "built-in") cli::warn_about_training("sim_ab", c.source, c.spec, ex);
     for (const auto& c : controllers)
-      if (c.spec.units.form == ctl::PidForm::PerTick &&
+      if (c.spec.units.form == controller::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
         std::fprintf(stderr,
                      "sim_ab: note: %s's per-tick gains refer to a %g s tick; they are converted "
@@ -553,8 +554,8 @@ int run_sim_ab(int argc, char** argv) {
   // joint of each, and whether it was certified. `fuzzypid certify` recomputes them for any plant.
   for (const auto& c : controllers) {
     if (!c.spec.margins || o.quiet) continue;
-    const ctl::MarginRecord& m = *c.spec.margins;
-    const auto worst = [](const ctl::MarginRecord::PerJoint& v) {
+    const controller::MarginRecord& m = *c.spec.margins;
+    const auto worst = [](const controller::MarginRecord::PerJoint& v) {
       return *std::min_element(v.begin(), v.end());
     };
     std::fprintf(stderr,

@@ -14,8 +14,6 @@ namespace fuzzypid::sim_ab {
 
 namespace {
 
-namespace ctl = controller;
-
 // Finite numbers only (CLI11 would accept "nan" and "inf").
 const CLI::Validator kFinite(
     [](std::string& s) -> std::string {
@@ -189,15 +187,15 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   app.add_flag("--reverse", o.reverse, "follow the path B -> A");
 
   // The paper's default controllers.
-  add_enum(app, "--gain-units", e.gain_units, ctl::kGainUnitsNames,
+  add_enum(app, "--gain-units", e.gain_units, controller::kGainUnitsNames,
            "u is rad/s² scaled by the nominal inertia, or a torque in N·m");
-  add_enum(app, "--pid-form", e.pid_form, ctl::kPidFormNames, "units of Ki, Kd");
-  add_enum(app, "--derivative", e.derivative, ctl::kDerivativeSourceNames,
+  add_enum(app, "--pid-form", e.pid_form, controller::kPidFormNames, "units of Ki, Kd");
+  add_enum(app, "--derivative", e.derivative, controller::kDerivativeSourceNames,
            "de/dt from velocities or from errors");
-  add_enum(app, "--gain-update", e.gain_update, ctl::kGainUpdateNames,
+  add_enum(app, "--gain-update", e.gain_update, controller::kGainUpdateNames,
            "K = K0 + dK (Eq. 6) or K += dK");
-  add_enum(app, "--tables", e.tables, ctl::kPaperTablesNames, "rule tables");
-  add_enum(app, "--and", e.conjunction, ctl::kConjunctionNames, "fuzzy conjunction");
+  add_enum(app, "--tables", e.tables, controller::kPaperTablesNames, "rule tables");
+  add_enum(app, "--and", e.conjunction, controller::kConjunctionNames, "fuzzy conjunction");
   app.add_option("--error-scale", e.error_scale, "Ke (default 1)")->check(kFinite);
   app.add_option("--error-rate-scale", e.error_rate_scale, "Kec (default 1)")->check(kFinite);
   add_list(app, "--output-scale", e.output_scale,

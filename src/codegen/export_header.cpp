@@ -25,6 +25,15 @@ std::string lit(double v) {
   return scalar_literal(v);
 }
 
+// What a family's header_code cannot write itself (families.hpp).
+struct CodeWriter {
+  [[nodiscard]] std::string literal(double v) const { return scalar_literal(v); }
+  [[nodiscard]] std::string rule_base(const fuzzy::EngineModel<double>& model,
+                                      const std::string& rule_file) const {
+    return export_rule_base(model, rule_file);
+  }
+};
+
 std::string gains(const pid::Gains<double>& g) {
   return "{" + lit(g.kp) + ", " + lit(g.ki) + ", " + lit(g.kd) + "}";
 }
@@ -138,7 +147,8 @@ std::string check_float_range(const ControllerSpec& spec) {
       {"the PID's ki", pc.gains.ki},
       {"the PID's kd", pc.gains.kd},
       {"derivative_filter_s", pc.derivative_filter_s}};
-  if (spec.family != Family::Pid) {
+  const FamilyTraits& traits = family_traits(spec.family);
+  if (traits.supervised()) {
     const control::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
     values.insert(values.end(), {{"error_scale", fc.error_scale},
                                  {"error_rate_scale", fc.error_rate_scale},
@@ -152,7 +162,7 @@ std::string check_float_range(const ControllerSpec& spec) {
                                  {"gain_max ki", fc.gain_max.ki},
                                  {"gain_max kd", fc.gain_max.kd}});
   }
-  if (spec.family == Family::FuzzyRules) {
+  if (traits.rule_table) {
     // The table's cells and centers are written as float literals too: 1e300 would not compile.
     static constexpr const char* kGain[3] = {"kp", "ki", "kd"};
     static constexpr const char* kSet[7] = {"NB", "NM", "NS", "ZO", "PS", "PM", "PB"};
@@ -222,18 +232,11 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
         "(kGravityFeedforward).\n";
   h += "#pragma once\n\n#include <limits>\n\n";
   h += "#include \"fuzzypid/pid/pid.hpp\"\n";
-  const bool rule_file = spec.family == Family::Fuzzy && spec.supervisor.rule_model != nullptr;
-  if (rule_file)
-    h += "#include <array>\n\n#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
-         "#include \"fuzzypid/fuzzy/engine.hpp\"\n";
-  else if (spec.family == Family::Fuzzy)
-    h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n#include \"fuzzypid/paper.hpp\"\n";
-  if (spec.family == Family::Scheduled)
-    h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
-         "#include \"fuzzypid/control/gain_schedule.hpp\"\n";
-  if (spec.family == Family::FuzzyRules)
-    h += "#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
-         "#include \"fuzzypid/control/rule_table.hpp\"\n";
+  const SupervisorCode supervisor = with_family(
+      spec.family,
+      [&spec](auto family) { return decltype(family)::header_code(spec, CodeWriter{}); },
+      SupervisorCode{});
+  h += supervisor.includes;
   h += "\nnamespace " + ns + " {\n\n";
   h += "inline constexpr const char* kFamily = \"" + std::string(to_string(spec.family)) + "\";\n";
   h += "inline constexpr double kTickS = " + std::string([&] {
@@ -324,7 +327,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   h += "  c.derivative_filter_s = " + lit(pc.derivative_filter_s) + ";\n";
   h += "  c.anti_windup = " + std::string(enum_code(pc.anti_windup)) + ";\n";
   h += "  c.output_min = -output_limit;\n  c.output_max = output_limit;\n  return c;\n}\n\n";
-  if (spec.family == Family::Pid) {
+  if (!family_traits(spec.family).supervised()) {
     h += "template <class Scalar>\nusing Controller = fuzzypid::pid::Pid<Scalar>;\n\n";
     h += "template <class Scalar>\nconstexpr Controller<Scalar> make_controller(Scalar "
          "output_limit) noexcept {\n  return Controller<Scalar>(pid_config<Scalar>(output_limit));"
@@ -344,47 +347,7 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += "  c.gain_min = " + gains(fc.gain_min) + ";\n";
     h += "  c.gain_max = " + gains(fc.gain_max) + ";\n";
     h += "  return c;\n}\n\n";
-    if (rule_file) {
-      h += export_rule_base(*spec.supervisor.rule_model, spec.supervisor.rule_file);
-    } else if (spec.family == Family::Fuzzy) {
-      h += "template <class Scalar>\nusing Supervisor = fuzzypid::paper::System<Scalar>;\n\n";
-      h += "// The shared, immutable supervisor the joints point to.\n";
-      h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor =\n";
-      h += std::string("    fuzzypid::paper::make_system<Scalar>(fuzzypid::fuzzy::Conjunction::") +
-           (spec.supervisor.conjunction == fuzzy::Conjunction::Minimum ? "Minimum" : "Product") +
-           ", fuzzypid::paper::Tables::" +
-           (spec.supervisor.rule_base == paper::Tables::Corrected ? "Corrected" : "Printed") +
-           ");\n\n";
-    } else if (spec.family == Family::FuzzyRules) {
-      const control::RuleTable<double> t = rule_table(spec);
-      const auto list = [](const auto& values) {
-        std::string out = "{";
-        for (std::size_t k = 0; k < values.size(); ++k)
-          out += (k == 0 ? "" : ", ") + lit(values[k]);
-        return out + "}";
-      };
-      h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::RuleTable<Scalar>;\n\n";
-      h +=
-          "// The shared, immutable supervisor the joints point to: the schedule's ratios R, the\n"
-          "// rule table per gain (rows: sets of Ke e, columns: sets of Kec ec) and the centers.\n";
-      h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{\n";
-      h += "    " + list(t.schedule_ratio) + ",\n    {{\n";
-      for (const auto& table : t.table) {
-        h += "        {{\n";
-        for (const auto& row : table)
-          h += "            " + list(row) + ",\n";
-        h += "        }},\n";
-      }
-      h += "    }},\n";
-      h += "    " + list(t.e_centers) + ",\n";
-      h += "    " + list(t.ec_centers) + "};\n";
-      h += "static_assert(kSupervisor<double>.valid() && kSupervisor<float>.valid());\n\n";
-    } else {
-      h += "template <class Scalar>\nusing Supervisor = fuzzypid::control::GainSchedule<Scalar>;"
-           "\n\n";
-      h += "// The shared, immutable supervisor the joints point to.\n";
-      h += "template <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{};\n\n";
-    }
+    h += supervisor.definitions;
     h += "template <class Scalar>\nusing Controller = fuzzypid::control::FuzzyPid<Scalar, "
          "Supervisor<Scalar>>;\n\n";
     h += "template <class Scalar>\nController<Scalar> make_controller(Scalar output_limit) "

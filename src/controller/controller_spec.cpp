@@ -1,5 +1,7 @@
 #include "fuzzypid/controller/controller_spec.hpp"
 
+#include "fuzzypid/controller/families.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -27,14 +29,14 @@ std::string format_double(double v) {
 
 ControllerSpec paper_pid() {
   ControllerSpec s;
-  s.family = Family::Pid;
+  s.family = family_of<families::Pid>();
   s.description = "the paper's fixed PID (section 6: Kp = 4, Ki = 0.001, Kd = 100 per tick)";
   return s;
 }
 
 ControllerSpec paper_fuzzy() {
   ControllerSpec s;
-  s.family = Family::Fuzzy;
+  s.family = family_of<families::Fuzzy>();
   s.description =
       "the paper's fuzzy PID (section 6 gains, Tables 2-4 as printed, unit scales, Eq. 6)";
   return s;
@@ -44,7 +46,7 @@ ControllerSpec fuzzy_from_rule_table(const ControllerSpec& rules, std::string ru
                                      std::shared_ptr<const fuzzy::EngineModel<double>> model,
                                      std::string description) {
   ControllerSpec s;
-  s.family = Family::Fuzzy;
+  s.family = family_of<families::Fuzzy>();
   s.description = std::move(description);
   s.units = rules.units;
   s.gains = rules.gains;
@@ -84,21 +86,28 @@ std::string validate(const ControllerSpec& s) {
   if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
   if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
     return "gains must be finite and >= 0";
+  if (s.family.index() >= kFamilies.size()) return "unknown controller family";
+  const FamilyTraits& traits = family_traits(s.family);
   const auto& sup = s.supervisor;
-  if (s.family != Family::Pid) {
+  if (traits.supervised()) {
     if (!positive_finite(sup.error_scale) || !positive_finite(sup.error_rate_scale))
       return "error_scale and error_rate_scale must be finite and > 0";
     for (double v : sup.output_scale) {
       if (!std::isfinite(v)) return "output_scale must be finite";
-      if ((s.family == Family::Scheduled || s.family == Family::FuzzyRules) && !(v > 0.0))
-        return std::string("the ") + to_string(s.family) +
+      if (traits.output_scale == OutputScale::Ratios && !(v > 0.0))
+        return std::string("the ") + traits.name +
                " family's output_scale (gain ratios) must be > 0";
     }
   }
-  if (!sup.rule_file.empty() && (s.family != Family::Fuzzy || sup.rule_model == nullptr))
-    return "a rule file belongs to the fuzzy family and must be loaded (controller_file::load)";
-  if (s.family == Family::FuzzyRules)
+  if (!sup.rule_file.empty() && (!traits.rule_base || sup.rule_model == nullptr))
+    return "a rule file belongs to a family with a rule base (fuzzy) and must be loaded "
+           "(controller_file::load)";
+  if (traits.rule_table)
     if (std::string bad = validate(sup.rule_table); !bad.empty()) return bad;
+  if (std::string bad = with_family(
+          s.family, [&](auto family) { return decltype(family)::validate(s); }, std::string());
+      !bad.empty())
+    return bad;
   const double lo[3] = {s.gain_min.kp, s.gain_min.ki, s.gain_min.kd};
   const double hi[3] = {s.gain_max.kp, s.gain_max.ki, s.gain_max.kd};
   for (int k = 0; k < 3; ++k)
@@ -106,7 +115,7 @@ std::string validate(const ControllerSpec& s) {
       return "gain bounds must satisfy 0 <= gain_min <= gain_max";
   // The supervised families clamp the retuned gains into [bounds] every tick; a nominal K0
   // outside them would be clamped on every tick without a word.
-  if (s.family != Family::Pid) {
+  if (traits.supervised()) {
     const double k0[3] = {s.gains.kp, s.gains.ki, s.gains.kd};
     const char* names[3] = {"kp", "ki", "kd"};
     for (int k = 0; k < 3; ++k)

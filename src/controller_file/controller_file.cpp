@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fuzzypid/control/engine_supervisor.hpp"
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid_support/toml_reader.hpp"
 
@@ -135,15 +136,17 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     if (gains->number(k) < 0.0) gains->fail(*gains->raw().get(k), "gains must be >= 0");
   gains->finish();
 
-  const bool supervised = s.family != Family::Pid;
+  const FamilyTraits& traits = family_traits(s.family);
+  const bool supervised = traits.supervised();
   auto sup = r.table("supervisor", supervised);
   if (sup && !supervised)
-    r.fail(*root.get("supervisor"), "a 'pid' controller has no [supervisor] table");
+    r.fail(*root.get("supervisor"),
+           std::string("a '") + traits.name + "' controller has no [supervisor] table");
   if (sup) {
     s.supervisor.error_scale = sup->number("error_scale");
     s.supervisor.error_rate_scale = sup->number("error_rate_scale");
     s.supervisor.output_scale = sup->triple("output_scale", std::nullopt);
-    if (s.family == Family::Fuzzy) {
+    if (traits.rule_base) {
       s.supervisor.gain_update =
           sup->choice("gain_update", kGainUpdateNames, control::GainUpdate::Absolute);
       if (sup->has("rule_file")) {
@@ -160,7 +163,7 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     }
     for (const char* k : {"error_scale", "error_rate_scale"})
       if (!(sup->number(k) > 0.0)) sup->fail(*sup->raw().get(k), std::string(k) + " must be > 0");
-    if (s.family == Family::Scheduled || s.family == Family::FuzzyRules)
+    if (traits.output_scale == OutputScale::Ratios)
       for (double ratio : s.supervisor.output_scale)
         if (!(ratio > 0.0))
           sup->fail(*sup->raw().get("output_scale"),
@@ -169,9 +172,10 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     sup->finish();
   }
 
-  auto table = r.table("rule_table", s.family == Family::FuzzyRules);
-  if (table && s.family != Family::FuzzyRules)
-    r.fail(*root.get("rule_table"), "only a 'fuzzy-rules' controller has a [rule_table]");
+  auto table = r.table("rule_table", traits.rule_table);
+  if (table && !traits.rule_table)
+    r.fail(*root.get("rule_table"),
+           std::string("a '") + traits.name + "' controller has no [rule_table]");
   if (table) {
     RuleTableSpec& t = s.supervisor.rule_table;
     t.error_centers = read_centers(*table, "error_centers");
@@ -441,20 +445,21 @@ std::string to_toml(const ControllerSpec& s) {
   o += "form = " + quoted(to_string(s.units.form)) + "\n";
   o += "tick_s = " + format_double(s.units.tick_s) + "\n";
   o += "\n[gains]";
-  o += s.family == Family::Pid ? "\n" : "  # the nominal gains K0\n";
+  const FamilyTraits& traits = family_traits(s.family);
+  o += traits.supervised() ? "  # the nominal gains K0\n" : "\n";
   o += "kp = " + format_double(s.gains.kp) + "\n";
   o += "ki = " + format_double(s.gains.ki) + "\n";
   o += "kd = " + format_double(s.gains.kd) + "\n";
-  if (s.family != Family::Pid) {
+  if (traits.supervised()) {
     const auto& sup = s.supervisor;
     o += "\n[supervisor]\n";
     o += "error_scale = " + format_double(sup.error_scale) + "\n";
     o += "error_rate_scale = " + format_double(sup.error_rate_scale) + "\n";
     o += "output_scale = " +
          triple_text(sup.output_scale[0], sup.output_scale[1], sup.output_scale[2]);
-    o +=
-        s.family == Family::Fuzzy ? "  # Sp, Si, Sd\n" : "  # large-error gain ratios Rp, Ri, Rd\n";
-    if (s.family == Family::Fuzzy) {
+    o += traits.output_scale == OutputScale::Scales ? "  # Sp, Si, Sd\n"
+                                                    : "  # large-error gain ratios Rp, Ri, Rd\n";
+    if (traits.rule_base) {
       o += "gain_update = " + quoted(name_of(kGainUpdateNames, sup.gain_update)) + "\n";
       if (!sup.rule_file.empty()) {
         o += "rule_file = " + quoted(sup.rule_file) + "  # relative to this file's folder\n";
@@ -464,7 +469,7 @@ std::string to_toml(const ControllerSpec& s) {
       }
     }
   }
-  if (s.family == Family::FuzzyRules) {
+  if (traits.rule_table) {
     const RuleTableSpec& t = s.supervisor.rule_table;
     o += "\n[rule_table]  # the rule \"x is set i and y is set j\" multiplies the schedule's gain "
          "by "

@@ -38,8 +38,7 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
   std::array<std::vector<GainPoint>, robot::kNumJoints> out;
   controller::Vector unlimited;
   unlimited.fill(kInf);
-  const bool moving =
-      controller::row_of(spec.family).supervisor != controller::SupervisorKind::None;
+  const bool moving = controller::family_traits(spec.family).supervised();
   if (!moving) {
     auto ctl = controller::JointControllers::create(spec, unlimited, error);
     if (!ctl) return std::nullopt;
@@ -88,8 +87,7 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
 // accumulates its steps: it can reach anything inside the file's gain bounds.
 GainBox gain_box(const ControllerSpec& spec, const std::vector<GainPoint>& points) {
   GainBox box;
-  if (spec.family == controller::Family::Fuzzy &&
-      spec.supervisor.gain_update == control::GainUpdate::Incremental) {
+  if (controller::fuzzy_pid_config(spec, kInf).gain_update == control::GainUpdate::Incremental) {
     box.low = controller::to_continuous(spec.gain_min, spec.units.form, spec.units.tick_s);
     box.high = controller::to_continuous(spec.gain_max, spec.units.form, spec.units.tick_s);
     return box;
@@ -266,8 +264,7 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
   }
   Certificate cert;
   cert.family = controller.family;
-  cert.moving_gains =
-      controller::row_of(controller.family).supervisor != controller::SupervisorKind::None;
+  cert.moving_gains = controller::family_traits(controller.family).supervised();
   cert.delay_s = options.delay_s;
   cert.conditions = ranges.conditions;
   const auto& groups = ranges.joints;

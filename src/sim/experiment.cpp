@@ -33,16 +33,14 @@ bool is_bundled_urdf(const std::string& urdf) {
 
 }  // namespace
 
-ControllerSpec default_controller(const ExperimentOptions& o, controller::Family family) {
-  ControllerSpec s =
-      family == controller::Family::Fuzzy ? controller::paper_fuzzy() : controller::paper_pid();
-  s.family = family;
+ControllerSpec default_controller(const ExperimentOptions& o, ControllerSpec paper) {
+  ControllerSpec s = std::move(paper);
   s.units.gains = o.gain_units;
   s.units.form = o.pid_form;
   s.units.tick_s = o.tick_s;
   s.gains = o.gains;
   s.pid.derivative = o.derivative;
-  if (family != controller::Family::Pid) {
+  if (controller::family_traits(s.family).supervised()) {
     s.supervisor.error_scale = o.error_scale;
     s.supervisor.error_rate_scale = o.error_rate_scale;
     s.supervisor.output_scale = o.output_scale;
@@ -268,7 +266,7 @@ robot::JointVector Experiment::torque_from_command(const robot::JointVector& u,
 }
 
 std::array<pid::Pid<double>, kJoints> Experiment::make_pid(const robot::JointVector& limit) const {
-  const ControllerSpec spec = default_controller(options_, controller::Family::Pid);
+  const ControllerSpec spec = default_controller(options_, controller::paper_pid());
   std::array<pid::Pid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
@@ -280,7 +278,7 @@ std::array<pid::Pid<double>, kJoints> Experiment::make_pid(const robot::JointVec
 
 std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
     const robot::JointVector& limit) const {
-  const ControllerSpec spec = default_controller(options_, controller::Family::Fuzzy);
+  const ControllerSpec spec = default_controller(options_, controller::paper_fuzzy());
   std::array<paper::FuzzyPid<double>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
@@ -298,7 +296,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   const std::size_t ticks = loop->samples();
   if (limits.record) result.rows.reserve(ticks * kJoints);
   // The bounds and K0 exactly as the joints hold them (continuous SI form).
-  const bool supervised = controller.family != controller::Family::Pid;
+  const bool supervised = controller::family_traits(controller.family).supervised();
   const control::FuzzyPidConfig<double> bounds =
       controller::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
   const auto at_bound = [](double k, double k0, double lo, double hi) {

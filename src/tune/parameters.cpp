@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "fuzzypid/controller/families.hpp"
+
 namespace fuzzypid::tune {
 
 namespace {
@@ -11,6 +13,9 @@ namespace {
 constexpr std::size_t kSets = RuleTableSpec::kSets;
 constexpr std::size_t kMid = kSets / 2;
 const char* const kGainNames[3] = {"kp", "ki", "kd"};
+
+using controller::family_traits;
+using controller::OutputScale;
 
 // log10 bounds, acceleration units, per tick at 0.05 s (docs/tuning.md explains each).
 constexpr double kPidBox[3][2] = {{-1.0, 4.0}, {-6.0, 1.0}, {0.0, 4.0}};
@@ -26,10 +31,11 @@ std::vector<SearchBox> fixed_box(Family family) {
   std::vector<SearchBox> box;
   for (std::size_t k = 0; k < 3; ++k)
     box.push_back({kGainNames[k], kPidBox[k][0], kPidBox[k][1]});
-  if (family == Family::Pid) return box;
+  const controller::FamilyTraits& traits = family_traits(family);
+  if (!traits.supervised()) return box;
   box.push_back({"ke", kScaleBox[0][0], kScaleBox[0][1]});
   box.push_back({"kec", kScaleBox[1][0], kScaleBox[1][1]});
-  const bool ratios = family != Family::Fuzzy;
+  const bool ratios = traits.output_scale == OutputScale::Ratios;
   const char* names[2][3] = {{"sp", "si", "sd"}, {"rp", "ri", "rd"}};
   for (std::size_t k = 0; k < 3; ++k)
     box.push_back({names[ratios ? 1 : 0][k], ratios ? kRatioBox[0] : kOutputBox[k][0],
@@ -52,24 +58,25 @@ double node_log_ratio(const ControllerSpec& s, std::size_t g, std::size_t i, std
 }  // namespace
 
 std::vector<SearchBox> default_box(Family family) {
-  if (family != Family::FuzzyRules) return fixed_box(family);
+  if (!family_traits(family).rule_table) return fixed_box(family);
   std::string error;
   ControllerSpec start;
-  (void)convert(controller::paper_pid(), Family::FuzzyRules, start, error);
+  (void)convert(controller::paper_pid(), family, start, error);
   TableOptions o;
   o.unvisited = Unvisited::Free;
-  return ParameterSpace::create(Family::FuzzyRules, start, o, nullptr, error)->box();
+  return ParameterSpace::create(family, start, o, nullptr, error)->box();
 }
 
 std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, double units_tick_s,
                                     double tick_s) {
   if (!(units_tick_s > 0.0) || !(tick_s > 0.0) || units_tick_s == tick_s) return box;
   const double decades = std::log10(units_tick_s / tick_s);
+  const bool scales = family_traits(family).output_scale == OutputScale::Scales;
   for (SearchBox& b : box) {
     double exponent = 0.0;
-    if (b.name == "kp" || (family == Family::Fuzzy && b.name == "sp")) exponent = 2.0;
-    if (b.name == "ki" || (family == Family::Fuzzy && b.name == "si")) exponent = 3.0;
-    if (b.name == "kd" || (family == Family::Fuzzy && b.name == "sd")) exponent = 1.0;
+    if (b.name == "kp" || (scales && b.name == "sp")) exponent = 2.0;
+    if (b.name == "ki" || (scales && b.name == "si")) exponent = 3.0;
+    if (b.name == "kd" || (scales && b.name == "sd")) exponent = 1.0;
     if (b.name == "kec" || b.name == kFilterParameter) exponent = -1.0;
     b.log10_min += exponent * decades;
     b.log10_max += exponent * decades;
@@ -93,10 +100,11 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
     if (p.search_filter_) p.box_.push_back({kFilterParameter, kFilterBox[0], kFilterBox[1]});
     return p;
   };
-  if (family != Family::FuzzyRules) return with_filter();
+  if (!family_traits(family).rule_table) return with_filter();
 
-  if (start.family != Family::FuzzyRules) {
-    error = "the fuzzy-rules family starts from a fuzzy-rules controller (tune::convert)";
+  if (start.family != family) {
+    error = std::string("the ") + controller::to_string(family) + " family starts from a " +
+            controller::to_string(family) + " controller (tune::convert)";
     return std::nullopt;
   }
   if (!(options.cell_log10 > 0.0) || !std::isfinite(options.cell_log10) ||
@@ -169,18 +177,19 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
   s.gains = {p(0), p(1), p(2)};
   if (search_filter_) s.pid.derivative_filter_s = p(box_.size() - 1);
-  if (family_ != Family::Pid) {
+  const controller::FamilyTraits& traits = family_traits(family_);
+  if (traits.supervised()) {
     s.supervisor.error_scale = p(3);
     s.supervisor.error_rate_scale = p(4);
     s.supervisor.output_scale = {p(5), p(6), p(7)};
   }
-  if (family_ == Family::Scheduled || family_ == Family::FuzzyRules)
+  if (traits.output_scale == OutputScale::Ratios)
     s.supervisor.gain_update = control::GainUpdate::Absolute;
-  if (family_ != Family::Fuzzy) {  // a rule file only means something to the fuzzy family
+  if (!traits.rule_base) {  // a rule file only means something to a family with a rule base
     s.supervisor.rule_file.clear();
     s.supervisor.rule_model.reset();
   }
-  if (family_ != Family::FuzzyRules) return s;
+  if (!traits.rule_table) return s;
   RuleTableSpec& t = s.supervisor.rule_table;
   if (options_.partition) {
     for (std::size_t axis = 0; axis < 2; ++axis) {
@@ -210,13 +219,14 @@ std::vector<double> ParameterSpace::from_spec(const ControllerSpec& s) const {
 
 std::vector<double> ParameterSpace::from_spec_without_filter(const ControllerSpec& s) const {
   std::vector<double> x = {std::log10(s.gains.kp), std::log10(s.gains.ki), std::log10(s.gains.kd)};
-  if (family_ != Family::Pid) {
+  const controller::FamilyTraits& traits = family_traits(family_);
+  if (traits.supervised()) {
     x.push_back(std::log10(s.supervisor.error_scale));
     x.push_back(std::log10(s.supervisor.error_rate_scale));
     for (double v : s.supervisor.output_scale)
       x.push_back(std::log10(v));
   }
-  if (family_ != Family::FuzzyRules) return x;
+  if (!traits.rule_table) return x;
   const RuleTableSpec& t = s.supervisor.rule_table;
   if (options_.partition) {
     for (const auto* c : {&t.error_centers, &t.error_rate_centers}) {
@@ -230,7 +240,7 @@ std::vector<double> ParameterSpace::from_spec_without_filter(const ControllerSpe
 }
 
 double ParameterSpace::penalty(const ControllerSpec& s) const {
-  if (family_ != Family::FuzzyRules) return 0.0;
+  if (!family_traits(family_).rule_table) return 0.0;
   double cost = 0.0;
   const auto& ratio = s.supervisor.rule_table.ratio;
   for (std::size_t g = 0; g < 3; ++g) {
@@ -279,12 +289,17 @@ controller::TableRegulariser ParameterSpace::record() const {
 }
 
 bool convert(const ControllerSpec& from, Family to, ControllerSpec& out, std::string& error) {
-  const bool pid = from.family == Family::Pid;
-  const bool exact = from.family == to || (to == Family::Scheduled && pid) ||
-                     (to == Family::FuzzyRules && (pid || from.family == Family::Scheduled));
+  // Exact: a family into itself; a fixed PID into a schedule (R = 1 moves nothing); a schedule
+  // into a schedule refined by a rule table (T = 1).
+  const controller::FamilyTraits& a = family_traits(from.family);
+  const controller::FamilyTraits& b = family_traits(to);
+  const bool pid = !a.supervised();
+  const bool exact = from.family == to || (b.output_scale == OutputScale::Ratios && pid) ||
+                     (b.output_scale == OutputScale::Ratios && b.rule_table &&
+                      a.output_scale == OutputScale::Ratios && !a.rule_table && !a.rule_base);
   if (!exact) {
-    error = std::string("a ") + controller::to_string(from.family) + " controller has no exact " +
-            controller::to_string(to) + " form (exact: pid -> scheduled -> fuzzy-rules)";
+    error = std::string("a ") + a.name + " controller has no exact " + b.name +
+            " form (exact: pid -> scheduled -> fuzzy-rules)";
     return false;
   }
   out = from;

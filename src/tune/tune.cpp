@@ -401,7 +401,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
     start_spec = options.base;
     start_spec.family = options.family;
     start_spec.tuning.reset();
-    if (options.family == Family::FuzzyRules) {
+    if (controller::family_traits(options.family).rule_table) {
       start_spec.supervisor.rule_table = controller::RuleTableSpec{};
       start_spec.supervisor.rule_file.clear();
       start_spec.supervisor.rule_model.reset();
@@ -409,7 +409,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   }
   const ControllerSpec* start = &start_spec;
   VisitMap visit_map{};
-  if (options.family == Family::FuzzyRules && options.table.unvisited == Unvisited::Seed)
+  if (controller::family_traits(options.family).rule_table &&
+      options.table.unvisited == Unvisited::Seed)
     visit_map = visits_in(arena.get(), data.training_ex, data.training, *start);
   auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error,
                                       options.search_filter);
@@ -505,7 +506,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   t.on_bound = on_bound(chosen, box);
   t.validation_conditions = data.validation.size();
   if (chosen_validation) t.validation_cost = chosen_validation->total;
-  if (options.family == Family::FuzzyRules) t.regulariser = space->record();
+  if (controller::family_traits(options.family).rule_table) t.regulariser = space->record();
   result.controller.tuning = t;
   return result;
 }

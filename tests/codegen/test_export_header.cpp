@@ -34,7 +34,6 @@ namespace {
 
 using namespace fuzzypid;
 namespace cf = controller_file;
-namespace ctl = controller;
 constexpr std::size_t kJ = 6;
 
 // Equal bit patterns (NaN payloads and the sign of zero included).
@@ -52,18 +51,19 @@ template <class Controller>
 int expect_equal_to_file(const char* file, const Controller& prototype,
                          const char* folder = "/controllers/") {
   int fired = 0;
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError err;
   EXPECT_TRUE(cf::load(std::string(FUZZYPID_SOURCE_DIR) + folder + file, spec, err))
       << err.to_string();
   std::string error;
-  auto from_file = ctl::JointControllers::create(spec, ctl::Vector{3, 3, 3, 3, 3, 3}, error);
+  auto from_file =
+      controller::JointControllers::create(spec, controller::Vector{3, 3, 3, 3, 3, 3}, error);
   EXPECT_TRUE(from_file) << error;
   if (!from_file) return 0;
   control::JointController<double, kJ, Controller> from_header(prototype);
   sim::Random rng(2024);
   for (int k = 0; k < 400; ++k) {
-    ctl::Input in;
+    controller::Input in;
     for (std::size_t i = 0; i < kJ; ++i) {
       in.desired_position_rad[i] = rng.uniform(-0.2, 0.2);
       in.desired_velocity_rad_s[i] = rng.uniform(-1.0, 1.0);
@@ -97,7 +97,7 @@ TEST(ExportHeader, TheHeaderCarriesTheSimulatedPlantsNominalInertiaAndTorqueLimi
     EXPECT_EQ(tuned_pid::kTorqueLimitNm[i], limit[i]) << i;
     // Acceleration gains: the output limit is the torque limit over J^, as the simulation's.
     EXPECT_EQ(tuned_pid::kOutputLimit[i],
-              ex->output_limit(sim::Condition{}, ctl::GainUnits::Acceleration)[i])
+              ex->output_limit(sim::Condition{}, controller::GainUnits::Acceleration)[i])
         << i;
   }
 }
@@ -294,11 +294,11 @@ namespace {
 // random ticks above mostly saturate Ke e, so they reach few of the table's inner cells). The
 // file is a table with cells other than 1 (the shipped one may be the schedule's start).
 TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/rule_table_fuzzy.toml", spec, err))
       << err.to_string();
-  const control::RuleTable<double> file = ctl::rule_table(spec);
+  const control::RuleTable<double> file = controller::rule_table(spec);
   const auto& header = rule_table_fuzzy::kSupervisor<double>;
   bool some_cell_is_not_one = false;
   for (std::size_t g = 0; g < 3; ++g) {
@@ -322,7 +322,7 @@ namespace {
 // A rule-table cell beyond FLT_MAX would be written as a float literal that does not compile:
 // check_float_range names the cell and its value first.
 TEST(ExportHeader, ARuleTableCellBeyondTheFloatRangeIsRefusedNamingTheCell) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/controllers/tuned_fuzzy_rules.toml", spec, err))
       << err.to_string();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fuzzypid/codegen/export_header.hpp"
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
@@ -27,7 +28,14 @@
 namespace {
 
 namespace cf = fuzzypid::controller_file;
-namespace ctl = fuzzypid::controller;
+namespace controller = fuzzypid::controller;
+
+// The family a controller file calls `name` (the test fails for a name no family has).
+controller::Family named_family(std::string_view name) {
+  const std::optional<controller::Family> f = controller::parse_family(name);
+  EXPECT_TRUE(f.has_value()) << name;
+  return f.value_or(controller::Family{});
+}
 
 std::string read(const std::string& path) {
   std::ifstream in(path);
@@ -36,8 +44,8 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-ctl::ControllerSpec tuned_example() {
-  ctl::ControllerSpec s = ctl::paper_fuzzy();
+controller::ControllerSpec tuned_example() {
+  controller::ControllerSpec s = controller::paper_fuzzy();
   s.description = "a \"quoted\" description\twith a tab";
   s.gains = {207.02946541923043, 0.0086027041784963332, 421.61049466377909};
   s.supervisor.error_scale = 961.29293435760724;
@@ -48,7 +56,7 @@ ctl::ControllerSpec tuned_example() {
   s.gain_max = {1e4, 2.5, std::numeric_limits<double>::infinity()};
   s.pid.derivative = fuzzypid::pid::DerivativeSource::Difference;
   s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;
-  ctl::Tuning t;
+  controller::Tuning t;
   t.conditions = "tuning/robust.toml";
   t.set = "training";
   t.algorithm = "pagmo::sade";
@@ -71,7 +79,7 @@ ctl::ControllerSpec tuned_example() {
   return s;
 }
 
-void expect_same(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
+void expect_same(const controller::ControllerSpec& a, const controller::ControllerSpec& b) {
   EXPECT_EQ(a.family, b.family);
   EXPECT_EQ(a.description, b.description);
   EXPECT_EQ(a.gains, b.gains);
@@ -111,9 +119,10 @@ void expect_same(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
 }
 
 TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
-  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy(), tuned_example()}) {
+  for (const controller::ControllerSpec& spec :
+       {controller::paper_pid(), controller::paper_fuzzy(), tuned_example()}) {
     const std::string text = cf::to_toml(spec);
-    ctl::ControllerSpec back;
+    controller::ControllerSpec back;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
     expect_same(spec, back);
@@ -124,22 +133,22 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
 // The record of a staged tuning with a validation split and a rule-table regulariser: every
 // value written reads back (a stage without a validation set has none).
 TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
-  ctl::ControllerSpec spec = tuned_example();
-  ctl::Tuning& t = *spec.tuning;
+  controller::ControllerSpec spec = tuned_example();
+  controller::Tuning& t = *spec.tuning;
   t.validation_conditions = 2;
   t.validation_cost = 0.0125;
-  ctl::StageRecord first, second;
-  first.family = ctl::Family::Pid;
+  controller::StageRecord first, second;
+  first.family = named_family("pid");
   first.budget = 100;
   first.evaluations = 100;
   first.training_cost = 0.25;
   first.validation_cost = 0.0625;
-  second.family = ctl::Family::Fuzzy;
+  second.family = named_family("fuzzy");
   second.budget = 300;
   second.evaluations = 280;
   second.training_cost = 0.125;
   t.stages = {first, second};
-  ctl::TableRegulariser g;
+  controller::TableRegulariser g;
   g.symmetry = "odd";
   g.partition = true;
   g.smoothness = 0.25;
@@ -150,11 +159,11 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
   g.cell_log10 = 1.5;
   t.regulariser = g;
   const std::string text = cf::to_toml(spec);
-  ctl::ControllerSpec back;
+  controller::ControllerSpec back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
   ASSERT_TRUE(back.tuning);
-  const ctl::Tuning& b = *back.tuning;
+  const controller::Tuning& b = *back.tuning;
   EXPECT_EQ(b.validation_conditions, 2u);
   EXPECT_EQ(b.validation_cost, 0.0125);
   ASSERT_EQ(b.stages.size(), 2u);
@@ -181,10 +190,10 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
 // The margins record and the margin requirements of the objective read back value for value
 // (an infinite gain margin, no phase crossover, included); a record with five joints is refused.
 TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
-  ctl::ControllerSpec spec = tuned_example();
+  controller::ControllerSpec spec = tuned_example();
   spec.tuning->objective.min_disk_margin = 0.5;
   spec.tuning->objective.min_delay_margin_ms = 20.0;
-  ctl::MarginRecord m;
+  controller::MarginRecord m;
   m.conditions = "../tuning/robust_drive.toml";
   m.set = "training";
   m.delay_ms = 50.0;
@@ -199,11 +208,11 @@ TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
   m.assumptions = "linear joint";
   spec.margins = m;
   const std::string text = cf::to_toml(spec);
-  ctl::ControllerSpec back;
+  controller::ControllerSpec back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
   ASSERT_TRUE(back.margins);
-  const ctl::MarginRecord& b = *back.margins;
+  const controller::MarginRecord& b = *back.margins;
   EXPECT_EQ(b.conditions, m.conditions);
   EXPECT_EQ(b.set, m.set);
   EXPECT_EQ(b.delay_ms, 50.0);
@@ -232,7 +241,7 @@ TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
 }
 
 TEST(ControllerFile, GravityFeedForwardIsWrittenOnlyWhenAskedAndTheHeaderSaysWhatTheTargetAdds) {
-  ctl::ControllerSpec spec = ctl::paper_pid();
+  controller::ControllerSpec spec = controller::paper_pid();
   EXPECT_EQ(cf::to_toml(spec).find("[feedforward]"), std::string::npos);
   EXPECT_NE(
       fuzzypid::codegen::export_header(spec, "ns", "x.toml").find("kGravityFeedforward = false"),
@@ -255,7 +264,7 @@ TEST(ControllerFile, FileHashIsFnv1aOfTheBytes) {
 // value and the expected form (a hand-edited record that can never match is not a record).
 TEST(ControllerFile, AMalformedTrainedOnHashIsRefusedAtItsKey) {
   const std::string good = cf::to_toml(tuned_example());
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(good, "t.toml", spec, error)) << error.to_string();
   for (const char* bad : {"0123456789ABCDEF", "0123456789abcdeg", "0123456789abcde", "", "xyz"}) {
@@ -263,7 +272,7 @@ TEST(ControllerFile, AMalformedTrainedOnHashIsRefusedAtItsKey) {
     const std::size_t at = text.find("\"0123456789abcdef\"");
     ASSERT_NE(at, std::string::npos);
     text.replace(at, 18, std::string("\"") + bad + "\"");
-    ctl::ControllerSpec s;
+    controller::ControllerSpec s;
     fuzzypid::FileError e;
     ASSERT_FALSE(cf::parse(text, "t.toml", s, e)) << bad;
     EXPECT_GT(e.line, 0u) << bad;
@@ -288,7 +297,7 @@ TEST(ControllerFile, TrainedOnIsComparedWithTheRobotAndPathOfARun) {
   std::ofstream(dir + "copy/robot.urdf") << "<robot name=\"r\"/>\n";
   std::ofstream(dir + "other.urdf") << "<robot name=\"other\"/>\n";
   std::ofstream(dir + "path.csv") << "t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad\n";
-  ctl::ControllerSpec spec = tuned_example();
+  controller::ControllerSpec spec = tuned_example();
   spec.tuning->trained_on = {{"urdf", "robot.urdf", cf::file_hash(dir + "robot.urdf")},
                              {"path", "path.csv", cf::file_hash(dir + "path.csv")}};
   const std::string controller = dir + "c.toml";
@@ -331,9 +340,9 @@ TEST(ControllerFile, TrainedOnIsComparedWithTheRobotAndPathOfARun) {
 
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
-  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", ctl::paper_pid()},
-                                   std::pair{"paper_fuzzy.toml", ctl::paper_fuzzy()}}) {
-    ctl::ControllerSpec loaded;
+  for (const auto& [file, spec] : {std::pair{"paper_pid.toml", controller::paper_pid()},
+                                   std::pair{"paper_fuzzy.toml", controller::paper_fuzzy()}}) {
+    controller::ControllerSpec loaded;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
     expect_same(spec, loaded);
@@ -347,7 +356,7 @@ TEST(ControllerFile, ShippedTunedFilesReadBackToTheirOwnText) {
        {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml", "tuned_fuzzy_rules.toml",
         "tuned_scheduled_staged.toml", "ur5_class_tuned_pid.toml", "ur5_class_tuned_scheduled.toml",
         "ur5_class_tuned_fuzzy.toml"}) {
-    ctl::ControllerSpec loaded;
+    controller::ControllerSpec loaded;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
     ASSERT_TRUE(loaded.tuning.has_value()) << file;
@@ -384,7 +393,7 @@ class MalformedFile : public ::testing::TestWithParam<Malformed> {};
 
 TEST_P(MalformedFile, IsRejectedWithFileLineAndColumn) {
   const Malformed& m = GetParam();
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_FALSE(cf::parse(m.text, "bad.toml", spec, error)) << m.what;
   EXPECT_EQ(error.file, "bad.toml");
@@ -455,7 +464,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(ControllerFile, ARuleFileIsResolvedFromTheFilesFolderAndWrittenBackAsGiven) {
   const std::string path = FUZZYPID_SOURCE_DIR "/tests/sim/data/engine_fuzzy.toml";
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::load(path, spec, error)) << error.to_string();
   EXPECT_EQ(spec.supervisor.rule_file, "../../../rulebases/paper.fll");
@@ -463,13 +472,13 @@ TEST(ControllerFile, ARuleFileIsResolvedFromTheFilesFolderAndWrittenBackAsGiven)
   EXPECT_EQ(spec.supervisor.rule_model->num_inputs, 2u);
   // Written back and read again from the same folder: the same text.
   const std::string text = cf::to_toml(spec);
-  ctl::ControllerSpec back;
+  controller::ControllerSpec back;
   ASSERT_TRUE(cf::parse(text, path, back, error)) << error.to_string();
   EXPECT_EQ(cf::to_toml(back), text);
 }
 
 TEST(ControllerFile, AMissingRuleFileIsAnErrorAtItsKey) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_FALSE(
       cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_missing_rule_file.toml", spec, error));
@@ -479,15 +488,15 @@ TEST(ControllerFile, AMissingRuleFileIsAnErrorAtItsKey) {
 }
 
 TEST(ControllerFile, AValidFileIsAccepted) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(kValid, "ok.toml", spec, error)) << error.to_string();
-  EXPECT_EQ(spec.family, ctl::Family::Pid);
+  EXPECT_EQ(spec.family, named_family("pid"));
   EXPECT_EQ(spec.gains.kd, 100.0);
 }
 
 TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   EXPECT_FALSE(cf::load("/nonexistent/controller.toml", spec, error));
   EXPECT_NE(error.to_string().find("/nonexistent/controller.toml"), std::string::npos);
@@ -496,7 +505,7 @@ TEST(ControllerFile, AFileThatCannotBeReadIsAnError) {
 // A file over 1 MiB is refused after a bounded read, never read until memory runs out; a device
 // that never ends and a directory are refused by their kind, before they are opened.
 TEST(ControllerFile, AFileIsReadWithABoundedSize) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   EXPECT_FALSE(cf::load("/dev/zero", spec, error));
   EXPECT_NE(error.message.find("is a character device, not a regular file"), std::string::npos)
@@ -516,7 +525,7 @@ TEST(ControllerFile, AFileIsReadWithABoundedSize) {
 }
 
 TEST(ControllerFile, ANominalGainOutsideItsOwnBoundsIsRefusedAtLoad) {
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   EXPECT_FALSE(
       cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/bad_k0_outside_bounds.toml", spec, error));
@@ -530,36 +539,36 @@ TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
   const std::string text = std::string(kValid) +
                            "[pid]\nderivative = \"difference\"\nderivative_on = \"measurement\"\n"
                            "anti_windup = \"back-calculation\"\n";
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "ok.toml", spec, error)) << error.to_string();
   EXPECT_EQ(spec.pid.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Difference);
   EXPECT_EQ(spec.pid.anti_windup, fuzzypid::pid::AntiWindup::BackCalculation);
-  const auto pc = ctl::pid_config(spec, 1.0);
+  const auto pc = controller::pid_config(spec, 1.0);
   EXPECT_EQ(pc.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Difference);
 }
 
 // gain_update = "incremental" reaches the runtime fuzzy controller's configuration.
 TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
-  ctl::ControllerSpec spec = ctl::paper_fuzzy();
+  controller::ControllerSpec spec = controller::paper_fuzzy();
   spec.supervisor.gain_update = fuzzypid::control::GainUpdate::Incremental;
-  ctl::ControllerSpec back;
+  controller::ControllerSpec back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(cf::to_toml(spec), "inc.toml", back, error)) << error.to_string();
   EXPECT_EQ(back.supervisor.gain_update, fuzzypid::control::GainUpdate::Incremental);
-  EXPECT_EQ(ctl::fuzzy_pid_config(back, 1.0).gain_update,
+  EXPECT_EQ(controller::fuzzy_pid_config(back, 1.0).gain_update,
             fuzzypid::control::GainUpdate::Incremental);
-  EXPECT_EQ(ctl::fuzzy_pid_config(ctl::paper_fuzzy(), 1.0).gain_update,
+  EXPECT_EQ(controller::fuzzy_pid_config(controller::paper_fuzzy(), 1.0).gain_update,
             fuzzypid::control::GainUpdate::Absolute);
 }
 
 // A fuzzy-rules controller with an uneven table, non-uniform centers, R != 1, bounds that clamp
 // and non-default PID options, in the given form.
-ctl::ControllerSpec fuzzy_rules_example(ctl::PidForm form) {
-  ctl::ControllerSpec s;
-  s.family = ctl::Family::FuzzyRules;
+controller::ControllerSpec fuzzy_rules_example(controller::PidForm form) {
+  controller::ControllerSpec s;
+  s.family = named_family("fuzzy-rules");
   s.units.form = form;
   s.gains = {548.2, 6.56, 360.5};
   s.supervisor.error_scale = 84.3;
@@ -587,23 +596,24 @@ ctl::ControllerSpec fuzzy_rules_example(ctl::PidForm form) {
 // setting but the supervisor's, and ticks like the original on random inputs (per-tick and
 // continuous gains).
 TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
-  for (const ctl::PidForm form : {ctl::PidForm::PerTick, ctl::PidForm::Continuous}) {
-    SCOPED_TRACE(ctl::to_string(form));
-    ctl::ControllerSpec rules = fuzzy_rules_example(form);
+  for (const controller::PidForm form :
+       {controller::PidForm::PerTick, controller::PidForm::Continuous}) {
+    SCOPED_TRACE(controller::to_string(form));
+    controller::ControllerSpec rules = fuzzy_rules_example(form);
     rules.description = "tuned";
-    rules.tuning = ctl::Tuning{};
-    ASSERT_EQ(ctl::validate(rules), "");
+    rules.tuning = controller::Tuning{};
+    ASSERT_EQ(controller::validate(rules), "");
     std::string text, error;
-    ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(ctl::rule_table(rules), text, error))
+    ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(controller::rule_table(rules), text, error))
         << error;
     auto model = std::make_shared<fuzzypid::rulefile::Model>();
     fuzzypid::rulefile::LoadError load_error;
     ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "t.fll", *model, load_error))
         << load_error.to_string();
-    const ctl::ControllerSpec fuzzy =
-        ctl::fuzzy_from_rule_table(rules, "../rules/t.fll", model, "exported");
-    ASSERT_EQ(ctl::validate(fuzzy), "");
-    EXPECT_EQ(fuzzy.family, ctl::Family::Fuzzy);
+    const controller::ControllerSpec fuzzy =
+        controller::fuzzy_from_rule_table(rules, "../rules/t.fll", model, "exported");
+    ASSERT_EQ(controller::validate(fuzzy), "");
+    EXPECT_EQ(fuzzy.family, named_family("fuzzy"));
     EXPECT_EQ(fuzzy.description, "exported");
     EXPECT_EQ(fuzzy.units.form, form);
     EXPECT_EQ(fuzzy.gains, rules.gains);
@@ -621,11 +631,11 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     EXPECT_TRUE(fuzzy.feedforward.gravity);
     EXPECT_FALSE(fuzzy.tuning.has_value());
 
-    ctl::Vector limit;
+    controller::Vector limit;
     limit.fill(5.0);  // saturates now and then: the anti-windup paths run too
-    auto a = ctl::JointControllers::create(rules, limit, error);
+    auto a = controller::JointControllers::create(rules, limit, error);
     ASSERT_TRUE(a) << error;
-    auto b = ctl::JointControllers::create(fuzzy, limit, error);
+    auto b = controller::JointControllers::create(fuzzy, limit, error);
     ASSERT_TRUE(b) << error;
     const std::uint64_t seed = 20261202;
     std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
@@ -634,17 +644,17 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     fuzzypid::support::UniformReal<double> e(-0.035, 0.035), ec(-1.2, 1.2);
     double worst = 0.0;
     for (int tick = 0; tick < 4000; ++tick) {
-      ctl::Input in;
-      for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      controller::Input in;
+      for (std::size_t j = 0; j < controller::kJoints; ++j) {
         in.desired_position_rad[j] = 0.1 * static_cast<double>(j);
         in.measured_position_rad[j] =
             in.desired_position_rad[j] - e(rng) * (tick % 7 == 0 ? 0.01 : 1);
         in.measured_velocity_rad_s[j] = ec(rng) * (tick % 5 == 0 ? 0.01 : 1);
       }
-      const ctl::Command ca = a->step(in, rules.units.tick_s);
-      const ctl::Command cb = b->step(in, rules.units.tick_s);
+      const controller::Command ca = a->step(in, rules.units.tick_s);
+      const controller::Command cb = b->step(in, rules.units.tick_s);
       ASSERT_EQ(ca.status, cb.status) << "tick " << tick;
-      for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+      for (std::size_t j = 0; j < controller::kJoints; ++j) {
         const double d = std::fabs(ca.torque_nm[j] - cb.torque_nm[j]) /
                          std::fmax(1.0, std::fabs(ca.torque_nm[j]));
         worst = std::fmax(worst, d);
@@ -676,7 +686,7 @@ std::vector<std::string> fll_blocks(const std::string& text) {
 // A folder under the temporary directory holding `fll` as t.fll and a fuzzy controller file
 // ctl.toml that names it; returns the controller file's path.
 std::string write_controller_with_rule_file(const std::string& folder, const std::string& fll,
-                                            const ctl::ControllerSpec& spec) {
+                                            const controller::ControllerSpec& spec) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / folder;
   fs::create_directories(dir);
@@ -689,9 +699,10 @@ std::string write_controller_with_rule_file(const std::string& folder, const std
 // reordered (the same system to fuzzylite) gives the same controller, bit for bit; names that do
 // not bind are refused at load, naming the names the file has and the names it needs.
 TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks) {
-  const ctl::ControllerSpec rules = fuzzy_rules_example(ctl::PidForm::PerTick);
+  const controller::ControllerSpec rules = fuzzy_rules_example(controller::PidForm::PerTick);
   std::string fll, error;
-  ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(ctl::rule_table(rules), fll, error)) << error;
+  ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(controller::rule_table(rules), fll, error))
+      << error;
   const std::vector<std::string> b = fll_blocks(fll);
   ASSERT_GE(b.size(), 7u);  // header, e, ec, dKp, dKi, dKd, the rule blocks
   ASSERT_EQ(b[1].rfind("InputVariable: e\n", 0), 0u);
@@ -700,9 +711,10 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
   std::string reordered = b[0] + b[2] + b[1] + b[5] + b[3] + b[4];
   for (std::size_t k = 6; k < b.size(); ++k)
     reordered += b[k];
-  const ctl::ControllerSpec spec = ctl::fuzzy_from_rule_table(rules, "t.fll", nullptr, "exported");
+  const controller::ControllerSpec spec =
+      controller::fuzzy_from_rule_table(rules, "t.fll", nullptr, "exported");
 
-  ctl::ControllerSpec original, shuffled;
+  controller::ControllerSpec original, shuffled;
   fuzzypid::FileError file_error;
   ASSERT_TRUE(cf::load(write_controller_with_rule_file("fuzzypid_by_name_a", fll, spec), original,
                        file_error))
@@ -713,26 +725,26 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
   EXPECT_STREQ(shuffled.supervisor.rule_model->inputs[0].name.data(), "ec");
   EXPECT_STREQ(shuffled.supervisor.rule_model->outputs[0].name.data(), "dKd");
 
-  ctl::Vector limit;
+  controller::Vector limit;
   limit.fill(5.0);
-  auto a = ctl::JointControllers::create(original, limit, error);
+  auto a = controller::JointControllers::create(original, limit, error);
   ASSERT_TRUE(a) << error;
-  auto c = ctl::JointControllers::create(shuffled, limit, error);
+  auto c = controller::JointControllers::create(shuffled, limit, error);
   ASSERT_TRUE(c) << error;
   std::mt19937_64 rng(20261203);
   fuzzypid::support::UniformReal<double> e(-0.035, 0.035), ec(-1.2, 1.2);
   int differing = 0;
   for (int tick = 0; tick < 2000; ++tick) {
-    ctl::Input in;
-    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+    controller::Input in;
+    for (std::size_t j = 0; j < controller::kJoints; ++j) {
       in.desired_position_rad[j] = 0.1 * static_cast<double>(j);
       in.measured_position_rad[j] = in.desired_position_rad[j] - e(rng);
       in.measured_velocity_rad_s[j] = ec(rng);
     }
-    const ctl::Command ca = a->step(in, rules.units.tick_s);
-    const ctl::Command cc = c->step(in, rules.units.tick_s);
+    const controller::Command ca = a->step(in, rules.units.tick_s);
+    const controller::Command cc = c->step(in, rules.units.tick_s);
     ASSERT_EQ(ca.status, cc.status) << "tick " << tick;
-    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+    for (std::size_t j = 0; j < controller::kJoints; ++j) {
       differing += ca.torque_nm[j] != cc.torque_nm[j];
       const auto ga = a->gains(j), gc = c->gains(j);
       differing += ga.kp != gc.kp || ga.ki != gc.ki || ga.kd != gc.kd;
@@ -769,7 +781,7 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
     fuzzypid::rulefile::LoadError load_error;
     ASSERT_TRUE(fuzzypid::rulefile::parse_fll(text, "t.fll", model, load_error))
         << load_error.to_string();
-    ctl::ControllerSpec refused;
+    controller::ControllerSpec refused;
     const std::string path = write_controller_with_rule_file("fuzzypid_by_name_bad", text, spec);
     ASSERT_FALSE(cf::load(path, refused, file_error));
     EXPECT_EQ(file_error.file, path);
@@ -791,7 +803,7 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
   fuzzypid::rulefile::LoadError load_error;
   ASSERT_TRUE(fuzzypid::rulefile::parse_fll(twice, "t.fll", model, load_error));
   ASSERT_EQ(load_error.warnings.size(), 1u);
-  ctl::ControllerSpec refused;
+  controller::ControllerSpec refused;
   const std::string path = write_controller_with_rule_file("fuzzypid_by_name_twice", twice, spec);
   ASSERT_FALSE(cf::load(path, refused, file_error));
   EXPECT_NE(file_error.message.find("t.fll:"), std::string::npos) << file_error.to_string();

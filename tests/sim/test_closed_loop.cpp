@@ -32,7 +32,6 @@ namespace {
 
 using namespace fuzzypid;
 namespace cf = controller_file;
-namespace ctl = controller;
 constexpr std::size_t kJ = robot::kNumJoints;
 
 // Equal bit patterns (NaN payloads and the sign of zero included).
@@ -63,7 +62,7 @@ class ClosedLoopTest : public ::testing::Test {
 // file's numbers converted by hand (Ki / dt, Kd dt; scheduled scales K0 (R - 1)).
 TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBitForBit) {
   const std::string path = FUZZYPID_SOURCE_DIR "/tests/sim/data/hand_scheduled.toml";
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(path, spec, err)) << err.to_string();
 
@@ -144,7 +143,7 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
 // built-in tables: the same controller up to rounding (the engine and the table system agree within
 // 3e-16).
 TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
-  ctl::ControllerSpec from_file;
+  controller::ControllerSpec from_file;
   fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/engine_fuzzy.toml", from_file, err))
       << err.to_string();
@@ -152,7 +151,7 @@ TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
   sim::Condition cond;
   cond.initial_error_rad = -0.03;
   const auto a = experiment_->run(cond, from_file);
-  const auto b = experiment_->run(cond, ctl::paper_fuzzy());
+  const auto b = experiment_->run(cond, controller::paper_fuzzy());
   ASSERT_TRUE(a.ok) << a.error;
   ASSERT_TRUE(b.ok) << b.error;
   ASSERT_EQ(a.rows.size(), b.rows.size());
@@ -166,7 +165,8 @@ TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
 }
 
 TEST_F(ClosedLoopTest, ATickAllocatesNothing) {
-  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy()}) {
+  for (const controller::ControllerSpec& spec :
+       {controller::paper_pid(), controller::paper_fuzzy()}) {
     sim::Condition cond;
     cond.noise_position_rad = 1e-4;
     cond.contact_rad_s2 = 0.5;
@@ -208,7 +208,7 @@ TEST(ClosedLoopAnyRobot, ATickAllocatesNothingWithCoupledGravityPayloadAndFeedFo
   cond.payload_kg = 2.0;
   cond.dynamics = robot::PlantCoupling::Coupled;
   cond.gravity = true;
-  ctl::ControllerSpec spec = ctl::paper_fuzzy();
+  controller::ControllerSpec spec = controller::paper_fuzzy();
   spec.feedforward.gravity = true;
   auto loop = sim::ClosedLoop::create(*ex, cond, spec, error);
   ASSERT_TRUE(loop) << error;
@@ -222,10 +222,11 @@ TEST(ClosedLoopAnyRobot, ATickAllocatesNothingWithCoupledGravityPayloadAndFeedFo
 // controller's torque: one tick with the arm 0.3 rad off the path on joints 2 and 3, with and
 // without it, differs by exactly that (g at the measured angles differs by tens of N m).
 TEST_F(ClosedLoopTest, GravityFeedForwardIsTheModelsGravityAtTheDesiredAngles) {
-  ctl::ControllerSpec with_ff = ctl::paper_pid();
+  controller::ControllerSpec with_ff = controller::paper_pid();
   with_ff.feedforward.gravity = true;
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   auto fed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, with_ff, error);
   ASSERT_TRUE(plain && fed) << error;
   robot::JointVector off = experiment_->path().position_rad.front();
@@ -280,7 +281,8 @@ sim::Condition busy_condition() {
 }
 
 TEST_F(ClosedLoopTest, ADefaultInjectionTicksBitForBitLikeThePlainTick) {
-  for (const ctl::ControllerSpec& spec : {ctl::paper_pid(), ctl::paper_fuzzy()}) {
+  for (const controller::ControllerSpec& spec :
+       {controller::paper_pid(), controller::paper_fuzzy()}) {
     std::string error;
     auto plain = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
     auto injected = sim::ClosedLoop::create(*experiment_, busy_condition(), spec, error);
@@ -321,8 +323,9 @@ TEST_F(ClosedLoopTest, AnEncoderFeedsTheControllerQuantisedAnglesAndDifferencedR
   c.effects.encoder_counts = 2048;
   const double count = 2.0 * 3.14159265358979323846 / 2048.0;
   std::string error;
-  auto encoded = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto encoded = sim::ClosedLoop::create(*experiment_, c, controller::paper_pid(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   ASSERT_TRUE(encoded && plain) << error;
   robot::JointVector last{};
   for (std::size_t i = 0; i < kJ; ++i)
@@ -349,7 +352,7 @@ TEST_F(ClosedLoopTest, ADelayOfOneTickAppliesThePreviousTicksCommand) {
   sim::Condition c;
   c.effects.delay_s = experiment_->options().tick_s;
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, c, ctl::paper_pid(), error);
+  auto loop = sim::ClosedLoop::create(*experiment_, c, controller::paper_pid(), error);
   ASSERT_TRUE(loop) << error;
   robot::JointVector previous{};
   for (std::size_t k = 0; k + 1 < loop->samples(); ++k) {
@@ -361,7 +364,8 @@ TEST_F(ClosedLoopTest, ADelayOfOneTickAppliesThePreviousTicksCommand) {
 
 TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
+  auto loop =
+      sim::ClosedLoop::create(*experiment_, busy_condition(), controller::paper_fuzzy(), error);
   ASSERT_TRUE(loop) << error;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -395,8 +399,10 @@ TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   expect_fault_on(loop->tick(loop->sample(k++), offset), 0);
 
   // A finite bias is no fault: it moves the command of its joint alone.
-  auto twin = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
-  auto biased = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
+  auto twin =
+      sim::ClosedLoop::create(*experiment_, busy_condition(), controller::paper_fuzzy(), error);
+  auto biased =
+      sim::ClosedLoop::create(*experiment_, busy_condition(), controller::paper_fuzzy(), error);
   ASSERT_TRUE(twin && biased) << error;
   sim::TickInjection bias;
   bias.measured_position_offset_rad[3] = 0.01;
@@ -416,8 +422,10 @@ TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
 // sees dt on the first tick.
 TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePathsInterval) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
-  auto skewed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
+  auto skewed =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   ASSERT_TRUE(plain && skewed) << error;
   sim::TickInjection clock;
   clock.controller_dt_s = 0.1;
@@ -452,8 +460,10 @@ TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePat
 
 TEST_F(ClosedLoopTest, APlantDtAdvancesThePlantByItAndLeavesTheControllerAlone) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_fuzzy(), error);
-  auto late = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_fuzzy(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_fuzzy(), error);
+  auto late =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_fuzzy(), error);
   ASSERT_TRUE(plain && late) << error;
   sim::TickInjection jitter;
   jitter.plant_dt_s = 0.07;
@@ -467,7 +477,8 @@ TEST_F(ClosedLoopTest, APlantDtAdvancesThePlantByItAndLeavesTheControllerAlone) 
 
 TEST_F(ClosedLoopTest, ResetPlantPutsThePlantAtTheGivenState) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, busy_condition(), ctl::paper_fuzzy(), error);
+  auto loop =
+      sim::ClosedLoop::create(*experiment_, busy_condition(), controller::paper_fuzzy(), error);
   ASSERT_TRUE(loop) << error;
   for (std::size_t k = 0; k < 10; ++k)
     (void)loop->tick(k);
@@ -486,8 +497,10 @@ TEST_F(ClosedLoopTest, ResetPlantPutsThePlantAtTheGivenState) {
 // by (Kp + Ki dt) d on its joint alone.
 TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
-  auto jumped = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
+  auto jumped =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   ASSERT_TRUE(plain && jumped) << error;
   sim::TickInjection jump;
   jump.reference_offset_rad[1] = 0.1;
@@ -507,8 +520,10 @@ TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
 // velocity of its joint and nothing to the others.
 TEST_F(ClosedLoopTest, AnInjectedDisturbanceTorqueAcceleratesItsJointOnly) {
   std::string error;
-  auto plain = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
-  auto pushed = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto plain =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
+  auto pushed =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   ASSERT_TRUE(plain && pushed) << error;
   sim::TickInjection push;
   push.disturbance_torque_nm[0] = 50.0;
@@ -527,7 +542,8 @@ TEST_F(ClosedLoopTest, AnInjectedDisturbanceTorqueAcceleratesItsJointOnly) {
 
 TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
   std::string error;
-  auto loop = sim::ClosedLoop::create(*experiment_, sim::Condition{}, ctl::paper_pid(), error);
+  auto loop =
+      sim::ClosedLoop::create(*experiment_, sim::Condition{}, controller::paper_pid(), error);
   ASSERT_TRUE(loop) << error;
   const std::size_t n = loop->samples();
   const std::uint64_t cycle = 2 * (n - 1);
@@ -559,15 +575,15 @@ TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
 // What a file cannot say (a gain update per joint, an integral limit): the joints run the
 // configurations they were given, and the spec's own configurations run like the spec.
 TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
-  const ctl::ControllerSpec spec = ctl::paper_fuzzy();
+  const controller::ControllerSpec spec = controller::paper_fuzzy();
   const sim::Condition cond = busy_condition();
   const robot::JointVector limit = experiment_->output_limit(cond, spec.units.gains);
   std::array<control::FuzzyPidConfig<double>, kJ> configs;
   for (std::size_t i = 0; i < kJ; ++i)
-    configs[i] = ctl::fuzzy_pid_config(spec, limit[i]);
+    configs[i] = controller::fuzzy_pid_config(spec, limit[i]);
   std::string error;
   auto from_spec = sim::ClosedLoop::create(*experiment_, cond, spec, error);
-  auto same = ctl::JointControllers::create(spec, configs, error);
+  auto same = controller::JointControllers::create(spec, configs, error);
   ASSERT_TRUE(from_spec && same) << error;
   auto same_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*same), error);
   ASSERT_TRUE(same_loop) << error;
@@ -577,7 +593,7 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
     configs[i].pid.integral_min = -0.5;
     configs[i].pid.integral_max = 0.5;
   }
-  auto mixed = ctl::JointControllers::create(spec, configs, error);
+  auto mixed = controller::JointControllers::create(spec, configs, error);
   ASSERT_TRUE(mixed) << error;
   auto mixed_loop = sim::ClosedLoop::create(*experiment_, cond, std::move(*mixed), error);
   ASSERT_TRUE(mixed_loop) << error;
@@ -601,20 +617,20 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
   }
 
   configs[4].pid.integral_min = 1.0;  // above its integral_max of 0.5
-  EXPECT_FALSE(ctl::JointControllers::create(spec, configs, error));
+  EXPECT_FALSE(controller::JointControllers::create(spec, configs, error));
   EXPECT_FALSE(error.empty());
 }
 
 TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
   sim::Condition ahead;
   ahead.initial_error_rad = -0.05;
-  const auto r = experiment_->run(ahead, ctl::paper_pid());
+  const auto r = experiment_->run(ahead, controller::paper_pid());
   ASSERT_TRUE(r.ok) << r.error;
   for (std::size_t i = 0; i < kJ; ++i)
     EXPECT_NEAR(r.rows[i].error, -0.05, 1e-15);  // theta_d - (theta_d + 0.05)
   sim::Condition back;
   back.reverse = true;
-  const auto b = experiment_->run(back, ctl::paper_pid());
+  const auto b = experiment_->run(back, controller::paper_pid());
   ASSERT_TRUE(b.ok) << b.error;
   const auto& fwd = experiment_->path().position_rad;
   for (std::size_t i = 0; i < kJ; ++i) {
@@ -626,9 +642,9 @@ TEST_F(ClosedLoopTest, NegativeInitialErrorStartsAheadAndReverseRunsBToA) {
 // Largest |theta - theta_fine| of the paper's PID on `c` with the default plant step against the
 // same run with every step at most `fine_step_s`.
 double finer_step_error(const sim::Experiment& ex, sim::Condition c, double fine_step_s) {
-  const sim::RunResult coarse = ex.run(c, ctl::paper_pid());
+  const sim::RunResult coarse = ex.run(c, controller::paper_pid());
   c.effects.plant_step_s = fine_step_s;
-  const sim::RunResult fine = ex.run(c, ctl::paper_pid());
+  const sim::RunResult fine = ex.run(c, controller::paper_pid());
   EXPECT_TRUE(coarse.ok && fine.ok) << coarse.error << fine.error;
   EXPECT_EQ(coarse.rows.size(), fine.rows.size());
   double worst = 0.0;
@@ -658,12 +674,12 @@ TEST_F(ClosedLoopTest, AtHighFrictionTheDefaultStepIsWithinAMicroradianOfATenTim
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   sim::Condition bad;
   bad.payload_scale = 0.0;
-  const auto r = experiment_->run(bad, ctl::paper_pid());
+  const auto r = experiment_->run(bad, controller::paper_pid());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("payload"), std::string::npos);
   sim::Condition step;
   step.effects.plant_step_s = -1e-3;
-  const auto s = experiment_->run(step, ctl::paper_pid());
+  const auto s = experiment_->run(step, controller::paper_pid());
   EXPECT_FALSE(s.ok);
   EXPECT_NE(s.error.find("plant_step_ms must be within"), std::string::npos) << s.error;
 }

@@ -8,12 +8,12 @@
 
 namespace {
 
-namespace ctl = fuzzypid::controller;
+namespace controller = fuzzypid::controller;
 namespace sim = fuzzypid::sim;
 
-ctl::ControllerSpec tuned_at(double tick_s) {
-  ctl::ControllerSpec s = ctl::paper_pid();
-  s.tuning = ctl::Tuning{};
+controller::ControllerSpec tuned_at(double tick_s) {
+  controller::ControllerSpec s = controller::paper_pid();
+  s.tuning = controller::Tuning{};
   s.tuning->tick_s = tick_s;
   return s;
 }
@@ -27,11 +27,11 @@ TEST(TickMismatch, AControllerRunAtAnotherTickThanItsTrainingOneIsNamedWithBothT
 TEST(TickMismatch, TheSameTickAnUnrecordedTickAndAnUntunedControllerPass) {
   EXPECT_EQ(sim::tick_mismatch(tuned_at(0.01), 10.0 * 1e-3), "");  // the tick of tick_ms = 10
   EXPECT_EQ(sim::tick_mismatch(tuned_at(0.0), 0.05), "");
-  EXPECT_EQ(sim::tick_mismatch(ctl::paper_pid(), 0.004), "");
+  EXPECT_EQ(sim::tick_mismatch(controller::paper_pid(), 0.004), "");
 }
 
 TEST(FeedforwardMismatch, GravityFeedForwardOnAPlantWithoutGravityIsNamedWithTheCondition) {
-  ctl::ControllerSpec s = ctl::paper_pid();
+  controller::ControllerSpec s = controller::paper_pid();
   sim::Condition c;
   c.name = "flat";
   EXPECT_EQ(sim::feedforward_mismatch(s, c), "");  // no feed-forward

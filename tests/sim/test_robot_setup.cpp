@@ -17,7 +17,6 @@
 namespace fuzzypid::sim {
 namespace {
 
-namespace ctl = controller;
 constexpr double kPi = 3.14159265358979323846;
 const std::string kSource = FUZZYPID_SOURCE_DIR;
 
@@ -213,7 +212,8 @@ TEST(ClosedLoop, AContinuousJointFollowsAPathThroughPiWithoutUnwinding) {
   Condition c;
   c.robot = s;
   c.initial_error_rad = 0.0;
-  const ctl::ControllerSpec pid = default_controller(ExperimentOptions{}, ctl::Family::Pid);
+  const controller::ControllerSpec pid =
+      default_controller(ExperimentOptions{}, controller::paper_pid());
   // The plant starts at 2.9 rad; the reference, unwrapped, ends at 2 pi - 2.6 = 3.68 rad.
   auto loop = ClosedLoop::create(*ex, c, pid, error);
   ASSERT_TRUE(loop) << error;
@@ -245,9 +245,9 @@ TEST(ClosedLoop, GravityFeedForwardCarriesTheLoadTheIntegralOtherwiseMust) {
   c.robot = s;
   c.dynamics = robot::PlantCoupling::Coupled;
   c.gravity = true;
-  ctl::ControllerSpec pid = ctl::paper_pid();
-  pid.units.gains = ctl::GainUnits::Acceleration;  // torque = J^_i u_i
-  pid.units.form = ctl::PidForm::Continuous;
+  controller::ControllerSpec pid = controller::paper_pid();
+  pid.units.gains = controller::GainUnits::Acceleration;  // torque = J^_i u_i
+  pid.units.form = controller::PidForm::Continuous;
   pid.gains = {400.0, 40.0, 40.0};  // 1/s², 1/s³, 1/s
   RunLimits limits;
   limits.max_error_rad = 1.0;
@@ -281,7 +281,8 @@ TEST(ClosedLoop, APayloadMassLoadsThePlantNotTheControllersModel) {
   const robot::JointVector j1 = ex->plant_model(heavy).inertia_diagonal(q);
   EXPECT_GT(j1[0], j0[0] + 1.0);  // 50 kg about 1.5 m from the base axis
   EXPECT_EQ(j1[5], j0[5]);        // a point mass on the last axis adds nothing to it
-  const ctl::ControllerSpec pid = default_controller(ExperimentOptions{}, ctl::Family::Pid);
+  const controller::ControllerSpec pid =
+      default_controller(ExperimentOptions{}, controller::paper_pid());
   const RunResult a = ex->run(light, pid);
   const RunResult b = ex->run(heavy, pid);
   ASSERT_TRUE(a.ok && b.ok);

@@ -68,7 +68,7 @@
 
 namespace {
 
-namespace ctl = fuzzypid::controller;
+namespace controller = fuzzypid::controller;
 namespace cli = fuzzypid::cli;
 namespace control = fuzzypid::control;
 namespace pid = fuzzypid::pid;
@@ -153,19 +153,20 @@ std::optional<Soak> build(const sim::Experiment& experiment, std::string& error)
   condition.torque_limit_rad_s2 = kAccelLimit;
   // The paper's fuzzy PID as sim_ab runs it, with gain bounds [0, 3 K0] (in the file's per-tick
   // units, converted with the gains).
-  ctl::ControllerSpec spec = sim::default_controller(experiment.options(), ctl::Family::Fuzzy);
+  controller::ControllerSpec spec =
+      sim::default_controller(experiment.options(), controller::paper_fuzzy());
   spec.gain_min = {0.0, 0.0, 0.0};
   spec.gain_max = gain_max_of(spec.gains);
   const robot::JointVector u_max = experiment.output_limit(condition, spec.units.gains);
   std::array<control::FuzzyPidConfig<double>, kJoints> configs;
   for (std::size_t i = 0; i < kJoints; ++i) {
-    configs[i] = ctl::fuzzy_pid_config(spec, u_max[i]);
+    configs[i] = controller::fuzzy_pid_config(spec, u_max[i]);
     configs[i].pid.integral_min = -u_max[i];
     configs[i].pid.integral_max = u_max[i];
     configs[i].gain_update =
         i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
   }
-  auto controller = ctl::JointControllers::create(spec, configs, error);
+  auto controller = controller::JointControllers::create(spec, configs, error);
   if (!controller) return std::nullopt;
   auto loop = sim::ClosedLoop::create(experiment, condition, std::move(*controller), error);
   if (!loop) return std::nullopt;
@@ -289,7 +290,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
 
     const sim::TickResult r = loop.tick(sample, injection);
 
-    const ctl::JointControllers& controller = loop.controller();
+    const controller::JointControllers& controller = loop.controller();
     for (std::size_t i = 0; i < kJoints; ++i) {
       const Status st = r.command.joint_status[i];
       if (fuzzypid::is_fault(st)) ++c.faults;

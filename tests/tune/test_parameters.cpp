@@ -10,20 +10,28 @@
 #include <string>
 #include <vector>
 
+#include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/tune/parameters.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
-namespace ctl = fuzzypid::controller;
+namespace controller = fuzzypid::controller;
 namespace tune = fuzzypid::tune;
 
-constexpr std::size_t kSets = ctl::RuleTableSpec::kSets;
+// The family a controller file calls `name` (the test fails for a name no family has).
+controller::Family named_family(std::string_view name) {
+  const std::optional<controller::Family> f = controller::parse_family(name);
+  EXPECT_TRUE(f.has_value()) << name;
+  return f.value_or(controller::Family{});
+}
 
-ctl::ControllerSpec schedule() {
-  ctl::ControllerSpec s = ctl::paper_pid();
-  s.family = ctl::Family::Scheduled;
+constexpr std::size_t kSets = controller::RuleTableSpec::kSets;
+
+controller::ControllerSpec schedule() {
+  controller::ControllerSpec s = controller::paper_pid();
+  s.family = named_family("scheduled");
   s.gains = {40.0, 0.02, 300.0};
   s.supervisor.error_scale = 12.0;
   s.supervisor.error_rate_scale = 0.7;
@@ -31,8 +39,9 @@ ctl::ControllerSpec schedule() {
   return s;
 }
 
-ctl::ControllerSpec converted(const ctl::ControllerSpec& from, ctl::Family to) {
-  ctl::ControllerSpec out;
+controller::ControllerSpec converted(const controller::ControllerSpec& from,
+                                     controller::Family to) {
+  controller::ControllerSpec out;
   std::string error;
   EXPECT_TRUE(tune::convert(from, to, out, error)) << error;
   return out;
@@ -41,28 +50,29 @@ ctl::ControllerSpec converted(const ctl::ControllerSpec& from, ctl::Family to) {
 // Commands of two controllers on the same seeded random inputs, tick after tick (their integrals
 // and filters evolve together as long as the commands agree); returns the largest difference
 // relative to the command's size.
-double largest_relative_difference(const ctl::ControllerSpec& a, const ctl::ControllerSpec& b) {
-  ctl::Vector limit;
+double largest_relative_difference(const controller::ControllerSpec& a,
+                                   const controller::ControllerSpec& b) {
+  controller::Vector limit;
   limit.fill(std::numeric_limits<double>::infinity());
   std::string error;
-  auto ca = ctl::JointControllers::create(a, limit, error);
-  auto cb = ctl::JointControllers::create(b, limit, error);
+  auto ca = controller::JointControllers::create(a, limit, error);
+  auto cb = controller::JointControllers::create(b, limit, error);
   EXPECT_TRUE(ca && cb) << error;
   if (!ca || !cb) return 1e9;
   std::mt19937_64 rng(7);
   fuzzypid::support::UniformReal<double> u(-0.2, 0.2);
   double worst = 0.0;
   for (int tick = 0; tick < 2000; ++tick) {
-    ctl::Input in;
-    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+    controller::Input in;
+    for (std::size_t j = 0; j < controller::kJoints; ++j) {
       in.desired_position_rad[j] = u(rng);
       in.measured_position_rad[j] = u(rng);
       in.desired_velocity_rad_s[j] = 5 * u(rng);
       in.measured_velocity_rad_s[j] = 5 * u(rng);
     }
-    const ctl::Command x = ca->step(in, 0.05);
-    const ctl::Command y = cb->step(in, 0.05);
-    for (std::size_t j = 0; j < ctl::kJoints; ++j) {
+    const controller::Command x = ca->step(in, 0.05);
+    const controller::Command y = cb->step(in, 0.05);
+    for (std::size_t j = 0; j < controller::kJoints; ++j) {
       const double scale = std::max(1.0, std::fabs(x.torque_nm[j]));
       worst = std::max(worst, std::fabs(x.torque_nm[j] - y.torque_nm[j]) / scale);
     }
@@ -74,13 +84,14 @@ double largest_relative_difference(const ctl::ControllerSpec& a, const ctl::Cont
 // tick has five times the natural frequency: kp x 25, ki x 125, kd x 5, kec / 5.
 TEST(BoxForTick, MovesEachGainsBoxByItsExponentOfTheTickRatio) {
   const double d = std::log10(5.0);
-  for (const ctl::Family family : {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy}) {
+  for (const controller::Family family :
+       {named_family("pid"), named_family("scheduled"), named_family("fuzzy")}) {
     const auto base = tune::default_box(family);
     const auto moved = tune::box_for_tick(base, family, 0.05, 0.01);
     ASSERT_EQ(moved.size(), base.size());
     for (std::size_t k = 0; k < base.size(); ++k) {
       const std::string& n = base[k].name;
-      const bool fuzzy = family == ctl::Family::Fuzzy;
+      const bool fuzzy = family == named_family("fuzzy");
       const double exponent = n == "kp" || (fuzzy && n == "sp")   ? 2.0
                               : n == "ki" || (fuzzy && n == "si") ? 3.0
                               : n == "kd" || (fuzzy && n == "sd") ? 1.0
@@ -96,39 +107,39 @@ TEST(BoxForTick, MovesEachGainsBoxByItsExponentOfTheTickRatio) {
 }
 
 TEST(Convert, APidAsAScheduleGivesTheSameCommandsBitForBit) {
-  ctl::ControllerSpec pid = ctl::paper_pid();
+  controller::ControllerSpec pid = controller::paper_pid();
   pid.gains = {40.0, 0.02, 300.0};
-  EXPECT_EQ(largest_relative_difference(pid, converted(pid, ctl::Family::Scheduled)), 0.0);
+  EXPECT_EQ(largest_relative_difference(pid, converted(pid, named_family("scheduled"))), 0.0);
 }
 
 TEST(Convert, AScheduleAsARuleTableGivesTheSameCommandsToRounding) {
-  const ctl::ControllerSpec s = schedule();
-  const ctl::ControllerSpec t = converted(s, ctl::Family::FuzzyRules);
-  EXPECT_EQ(t.family, ctl::Family::FuzzyRules);
+  const controller::ControllerSpec s = schedule();
+  const controller::ControllerSpec t = converted(s, named_family("fuzzy-rules"));
+  EXPECT_EQ(t.family, named_family("fuzzy-rules"));
   EXPECT_EQ(t.supervisor.output_scale, s.supervisor.output_scale);
   // K0 + K0 ((R - 1) w) against K0 + (K0 (R - 1)) w: a few ulp of the gains.
   EXPECT_LT(largest_relative_difference(s, t), 1e-13);
   // and not by accident: one changed cell is seen
-  ctl::ControllerSpec bumped = t;
+  controller::ControllerSpec bumped = t;
   bumped.supervisor.rule_table.ratio[0][kSets / 2][kSets / 2] = 1.01;
   EXPECT_GT(largest_relative_difference(s, bumped), 1e-6);
 }
 
 TEST(Convert, APidAsARuleTableIsThePid) {
-  ctl::ControllerSpec pid = ctl::paper_pid();
+  controller::ControllerSpec pid = controller::paper_pid();
   pid.gains = {40.0, 0.02, 300.0};
-  EXPECT_LT(largest_relative_difference(pid, converted(pid, ctl::Family::FuzzyRules)), 1e-15);
+  EXPECT_LT(largest_relative_difference(pid, converted(pid, named_family("fuzzy-rules"))), 1e-15);
 }
 
 TEST(Convert, ConversionsWithoutAnExactFormAreRefused) {
-  ctl::ControllerSpec out;
+  controller::ControllerSpec out;
   std::string error;
-  EXPECT_FALSE(tune::convert(ctl::paper_fuzzy(), ctl::Family::Scheduled, out, error));
+  EXPECT_FALSE(tune::convert(controller::paper_fuzzy(), named_family("scheduled"), out, error));
   EXPECT_NE(error.find("no exact"), std::string::npos);
-  EXPECT_FALSE(tune::convert(schedule(), ctl::Family::Pid, out, error));
-  EXPECT_FALSE(tune::convert(ctl::paper_fuzzy(), ctl::Family::FuzzyRules, out, error));
-  EXPECT_FALSE(tune::convert(converted(schedule(), ctl::Family::FuzzyRules), ctl::Family::Scheduled,
-                             out, error));
+  EXPECT_FALSE(tune::convert(schedule(), named_family("pid"), out, error));
+  EXPECT_FALSE(tune::convert(controller::paper_fuzzy(), named_family("fuzzy-rules"), out, error));
+  EXPECT_FALSE(tune::convert(converted(schedule(), named_family("fuzzy-rules")),
+                             named_family("scheduled"), out, error));
 }
 
 tune::VisitMap all_visited() {
@@ -145,8 +156,9 @@ tune::ParameterSpace space(tune::Symmetry symmetry, bool partition,
   o.symmetry = symmetry;
   o.partition = partition;
   std::string error;
-  auto p = tune::ParameterSpace::create(
-      ctl::Family::FuzzyRules, converted(schedule(), ctl::Family::FuzzyRules), o, &visits, error);
+  auto p = tune::ParameterSpace::create(named_family("fuzzy-rules"),
+                                        converted(schedule(), named_family("fuzzy-rules")), o,
+                                        &visits, error);
   EXPECT_TRUE(p) << error;
   return *p;
 }
@@ -160,10 +172,10 @@ std::vector<double> random_point(const tune::ParameterSpace& p, unsigned seed) {
 }
 
 TEST(ParameterSpace, EachFamilySearchesItsNamedParameters) {
-  EXPECT_EQ(tune::default_box(ctl::Family::Pid).size(), 3u);
-  EXPECT_EQ(tune::default_box(ctl::Family::Scheduled).size(), 8u);
-  EXPECT_EQ(tune::default_box(ctl::Family::Fuzzy)[5].name, "sp");
-  EXPECT_EQ(tune::default_box(ctl::Family::Scheduled)[5].name, "rp");
+  EXPECT_EQ(tune::default_box(named_family("pid")).size(), 3u);
+  EXPECT_EQ(tune::default_box(named_family("scheduled")).size(), 8u);
+  EXPECT_EQ(tune::default_box(named_family("fuzzy"))[5].name, "sp");
+  EXPECT_EQ(tune::default_box(named_family("scheduled"))[5].name, "rp");
   EXPECT_EQ(space(tune::Symmetry::Even, false).box().size(), 8u + 3 * 16);
   EXPECT_EQ(space(tune::Symmetry::Odd, false).box().size(), 8u + 3 * 24);
   EXPECT_EQ(space(tune::Symmetry::None, true).box().size(), 8u + 4 + 3 * 49);
@@ -176,8 +188,8 @@ TEST(ParameterSpace, APointBecomesAControllerAndComesBack) {
       const tune::ParameterSpace p = space(sym, partition);
       for (unsigned seed = 1; seed <= 20; ++seed) {
         const std::vector<double> x = random_point(p, seed);
-        const ctl::ControllerSpec s = p.to_spec(x);
-        EXPECT_EQ(ctl::validate(s), "");
+        const controller::ControllerSpec s = p.to_spec(x);
+        EXPECT_EQ(controller::validate(s), "");
         const std::vector<double> back = p.from_spec(s);
         ASSERT_EQ(back.size(), x.size());
         for (std::size_t k = 0; k < x.size(); ++k)
@@ -187,12 +199,12 @@ TEST(ParameterSpace, APointBecomesAControllerAndComesBack) {
 }
 
 TEST(ParameterSpace, TheTableHasTheSymmetryItWasAskedFor) {
-  const ctl::ControllerSpec even =
+  const controller::ControllerSpec even =
       space(tune::Symmetry::Even, false)
           .to_spec(random_point(space(tune::Symmetry::Even, false), 3));
-  const ctl::ControllerSpec odd =
+  const controller::ControllerSpec odd =
       space(tune::Symmetry::Odd, false).to_spec(random_point(space(tune::Symmetry::Odd, false), 3));
-  const ctl::ControllerSpec none =
+  const controller::ControllerSpec none =
       space(tune::Symmetry::None, false)
           .to_spec(random_point(space(tune::Symmetry::None, false), 3));
   bool none_is_even = true;
@@ -214,8 +226,8 @@ TEST(ParameterSpace, TheTableHasTheSymmetryItWasAskedFor) {
 TEST(ParameterSpace, TheSearchedPartitionStaysOrderedAndSymmetric) {
   const tune::ParameterSpace p = space(tune::Symmetry::Even, true);
   for (unsigned seed = 1; seed <= 50; ++seed) {
-    const ctl::ControllerSpec s = p.to_spec(random_point(p, seed));
-    EXPECT_EQ(ctl::validate(s.supervisor.rule_table), "");
+    const controller::ControllerSpec s = p.to_spec(random_point(p, seed));
+    EXPECT_EQ(controller::validate(s.supervisor.rule_table), "");
     EXPECT_EQ(s.supervisor.rule_table.error_centers.back(), 1.0);  // the outer center is kept
   }
 }
@@ -225,22 +237,22 @@ TEST(ParameterSpace, CellsTrainingNeverVisitsKeepTheStartsValues) {
   for (std::size_t i = 2; i <= 4; ++i)
     for (std::size_t j = 2; j <= 4; ++j)
       v[i][j] = 1.0 / 9.0;  // only the nine center nodes fire
-  ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
+  controller::ControllerSpec start = converted(schedule(), named_family("fuzzy-rules"));
   start.supervisor.rule_table.ratio[2][0][0] = 3.0;  // an unvisited corner the start sets
   tune::TableOptions o;
   o.symmetry = tune::Symmetry::None;
   std::string error;
-  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, &v, error);
+  auto p = tune::ParameterSpace::create(named_family("fuzzy-rules"), start, o, &v, error);
   ASSERT_TRUE(p) << error;
   EXPECT_EQ(p->box().size(), 8u + 3 * 9);
   EXPECT_EQ(p->held_cells(), 3u * 40);
-  const ctl::ControllerSpec s = p->to_spec(random_point(*p, 9));
+  const controller::ControllerSpec s = p->to_spec(random_point(*p, 9));
   EXPECT_EQ(s.supervisor.rule_table.ratio[2][0][0], 3.0);
   EXPECT_EQ(s.supervisor.rule_table.ratio[0][6][1], 1.0);
   EXPECT_NE(s.supervisor.rule_table.ratio[0][3][3], 1.0);
   // free: every cell searched
   o.unvisited = tune::Unvisited::Free;
-  auto q = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, &v, error);
+  auto q = tune::ParameterSpace::create(named_family("fuzzy-rules"), start, o, &v, error);
   ASSERT_TRUE(q) << error;
   EXPECT_EQ(q->box().size(), 8u + 3 * 49);
   EXPECT_EQ(q->held_cells(), 0u);
@@ -252,11 +264,11 @@ TEST(ParameterSpace, SmoothnessCostsTheSquaredStepsBetweenNeighbours) {
   o.unvisited = tune::Unvisited::Free;
   o.smoothness = 2.0;
   std::string error;
-  const ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
-  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  const controller::ControllerSpec start = converted(schedule(), named_family("fuzzy-rules"));
+  auto p = tune::ParameterSpace::create(named_family("fuzzy-rules"), start, o, nullptr, error);
   ASSERT_TRUE(p) << error;
   EXPECT_EQ(p->penalty(start), 0.0);  // a flat table
-  ctl::ControllerSpec bumped = start;
+  controller::ControllerSpec bumped = start;
   bumped.supervisor.rule_table.ratio[1][3][2] = 100.0;  // log10 step of 2 to four neighbours
   EXPECT_NEAR(p->penalty(bumped), 2.0 * 4 * 4.0, 1e-12);
   bumped.supervisor.rule_table.ratio[1][0][0] = 0.1;  // a corner: two neighbours, step 1
@@ -269,22 +281,22 @@ TEST(ParameterSpace, MonotoneCostsOnlyStepsAgainstTheSchedulesDirection) {
   o.unvisited = tune::Unvisited::Free;
   o.monotone = 1.0;
   std::string error;
-  const ctl::ControllerSpec start = converted(schedule(), ctl::Family::FuzzyRules);
-  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  const controller::ControllerSpec start = converted(schedule(), named_family("fuzzy-rules"));
+  auto p = tune::ParameterSpace::create(named_family("fuzzy-rules"), start, o, nullptr, error);
   ASSERT_TRUE(p) << error;
   // The schedule itself moves each gain monotonically outwards: no cost.
   EXPECT_EQ(p->penalty(start), 0.0);
   // Rp = 0.3 < 1: Kp falls outwards. Lowering the outermost corner keeps it falling: no cost.
-  ctl::ControllerSpec lower = start;
+  controller::ControllerSpec lower = start;
   lower.supervisor.rule_table.ratio[0][6][6] = 0.5;
   EXPECT_EQ(p->penalty(lower), 0.0);
   // Lowering an edge cell makes Kp rise again towards its outer neighbour along the edge: the
   // squared log10 step, once: (log10(0.3) - log10(0.3 x 0.5))^2 ...
-  ctl::ControllerSpec dip = start;
+  controller::ControllerSpec dip = start;
   dip.supervisor.rule_table.ratio[0][6][3] = 0.5;
   EXPECT_NEAR(p->penalty(dip), 2 * std::pow(std::log10(2.0), 2), 1e-12);  // ... on both sides
   // Raising Kp further out costs.
-  ctl::ControllerSpec raise = start;
+  controller::ControllerSpec raise = start;
   raise.supervisor.rule_table.ratio[0][6][6] = 10.0;
   EXPECT_GT(p->penalty(raise), 0.1);
 }
@@ -295,19 +307,19 @@ TEST(ParameterSpace, MonotoneTakesARatioOfOneAsNeverDown) {
   o.symmetry = tune::Symmetry::None;
   o.unvisited = tune::Unvisited::Free;
   o.monotone = 1.0;
-  ctl::ControllerSpec flat = schedule();
+  controller::ControllerSpec flat = schedule();
   flat.supervisor.output_scale = {1.0, 1.0, 1.0};
   std::string error;
-  const ctl::ControllerSpec start = converted(flat, ctl::Family::FuzzyRules);
-  auto p = tune::ParameterSpace::create(ctl::Family::FuzzyRules, start, o, nullptr, error);
+  const controller::ControllerSpec start = converted(flat, named_family("fuzzy-rules"));
+  auto p = tune::ParameterSpace::create(named_family("fuzzy-rules"), start, o, nullptr, error);
   ASSERT_TRUE(p) << error;
   EXPECT_EQ(p->penalty(start), 0.0);
   // Raising Ki's outermost corner keeps it rising outwards: no cost.
-  ctl::ControllerSpec raise = start;
+  controller::ControllerSpec raise = start;
   raise.supervisor.rule_table.ratio[1][6][6] = 10.0;
   EXPECT_EQ(p->penalty(raise), 0.0);
   // Lowering it is a step down from both inner neighbours: (log10 2)^2 twice.
-  ctl::ControllerSpec lower = start;
+  controller::ControllerSpec lower = start;
   lower.supervisor.rule_table.ratio[1][6][6] = 0.5;
   EXPECT_NEAR(p->penalty(lower), 2 * std::pow(std::log10(2.0), 2), 1e-12);
 }
@@ -318,11 +330,11 @@ TEST(ParameterSpace, MonotoneTakesARatioOfOneAsNeverDown) {
 // time constant (s), which to_spec writes into the PID options and from_spec reads back; the
 // family's own parameters keep their places (the partition and cells are read by index).
 TEST(SearchFilter, TfIsTheLastParameterOfEveryFamilyAndRoundTrips) {
-  for (const ctl::Family family :
-       {ctl::Family::Pid, ctl::Family::Scheduled, ctl::Family::Fuzzy, ctl::Family::FuzzyRules}) {
-    const ctl::ControllerSpec start = family == ctl::Family::FuzzyRules
-                                          ? converted(schedule(), ctl::Family::FuzzyRules)
-                                          : ctl::paper_pid();
+  for (const controller::Family family : {named_family("pid"), named_family("scheduled"),
+                                          named_family("fuzzy"), named_family("fuzzy-rules")}) {
+    const controller::ControllerSpec start =
+        family == named_family("fuzzy-rules") ? converted(schedule(), named_family("fuzzy-rules"))
+                                              : controller::paper_pid();
     tune::TableOptions o;
     o.unvisited = tune::Unvisited::Free;
     std::string error;
@@ -338,7 +350,7 @@ TEST(SearchFilter, TfIsTheLastParameterOfEveryFamilyAndRoundTrips) {
 
     std::vector<double> x = plain->from_spec(start);
     x.push_back(std::log10(0.08));
-    const ctl::ControllerSpec s = filtered->to_spec(x);
+    const controller::ControllerSpec s = filtered->to_spec(x);
     EXPECT_NEAR(s.pid.derivative_filter_s, 0.08, 1e-15);
     EXPECT_NEAR(s.gains.kd, plain->to_spec(plain->from_spec(start)).gains.kd,
                 1e-9 * start.gains.kd);
@@ -356,7 +368,7 @@ TEST(SearchFilter, TfIsTheLastParameterOfEveryFamilyAndRoundTrips) {
 // tf is a time: at a 10 ms tick its box moves down by log10(5), like 1 / omega.
 TEST(SearchFilter, TfsBoxMovesWithTheTick) {
   const std::vector<tune::SearchBox> box = {{"tf", -3.0, 0.0}};
-  const auto moved = tune::box_for_tick(box, ctl::Family::Pid, 0.05, 0.01);
+  const auto moved = tune::box_for_tick(box, named_family("pid"), 0.05, 0.01);
   EXPECT_NEAR(moved[0].log10_min, -3.0 - std::log10(5.0), 1e-12);
   EXPECT_NEAR(moved[0].log10_max, -std::log10(5.0), 1e-12);
 }

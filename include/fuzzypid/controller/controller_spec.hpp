@@ -4,7 +4,8 @@
 // feed-forward and, when it was tuned, how. No file format here: controller_file/ reads and writes
 // it as TOML, codegen/ writes it as a C++ header, joint_controllers.hpp builds the runtime.
 //
-// A family is one row of kFamilies plus its supervisor (control/).
+// A family is one file in families/ plus its supervisor (control/), listed in families.hpp;
+// code outside them asks its traits (family.hpp), never its name.
 //
 // Library fuzzypid::controller (set-up code: it allocates and reports errors). The controllers it
 // builds (joint_controllers.hpp) run allocation-free.
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/controller/family.hpp"
 #include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
@@ -31,63 +33,12 @@ namespace fuzzypid::controller {
 // ---------------------------------------------------------------------------------------------
 // Vocabulary. Every enum is parsed from the same table that names it (parse_enum / to_string).
 
-enum class Family : std::uint8_t {
-  Pid,         // Kp, Ki, Kd
-  Scheduled,   // K = K0 + K0 (R - 1) w(Ke e, Kec ec), control/gain_schedule.hpp
-  Fuzzy,       // K = K0 + S dK(Ke e, Kec ec), the paper's supervisor (Eq. 6) or a rule file
-  FuzzyRules,  // K = K0 (1 + (R - 1) w) T(Ke e, Kec ec): the schedule refined by a tuned rule table
-};
-
-// The supervisor that retunes a family's gains every tick (joint_controllers.hpp builds it).
-enum class SupervisorKind : std::uint8_t {
-  None,              // a fixed PID
-  Schedule,          // control::GainSchedule
-  TablesOrRuleFile,  // the paper's Tables 2-4 (paper::System) or a rule file (EngineSupervisor)
-  RuleTable,         // control::RuleTable: the schedule's ramp times a rule table
-};
-
-// One row per family: its name in files and on command lines, what it is, its supervisor.
-struct FamilyRow {
-  Family family;
-  const char* name;
-  const char* summary;
-  SupervisorKind supervisor;
-};
-
-inline constexpr std::array<FamilyRow, 4> kFamilies{{
-    {Family::Pid, "pid", "a fixed PID: Kp, Ki, Kd", SupervisorKind::None},
-    {Family::Scheduled, "scheduled",
-     "K = K0 (1 + (R - 1) min(1, Ke|e| + Kec|ec|)): a gain schedule with eight parameters",
-     SupervisorKind::Schedule},
-    {Family::Fuzzy, "fuzzy",
-     "K = K0 + S dK(Ke e, Kec ec): the paper's Tables 2-4 (Eq. 6) or a .fis/.fll/.fcl rule file",
-     SupervisorKind::TablesOrRuleFile},
-    {Family::FuzzyRules, "fuzzy-rules",
-     "K = K0 (1 + (R - 1) min(1, Ke|e| + Kec|ec|)) T(Ke e, Kec ec): the schedule refined by a "
-     "7x7 rule table per gain (zero-order Sugeno, product AND) over a tunable partition",
-     SupervisorKind::RuleTable},
-}};
-
-[[nodiscard]] constexpr const FamilyRow& row_of(Family f) noexcept {
-  for (const auto& r : kFamilies)
-    if (r.family == f) return r;
-  return kFamilies[0];
-}
-
-[[nodiscard]] constexpr std::array<EnumName<Family>, kFamilies.size()> family_names() noexcept {
-  std::array<EnumName<Family>, kFamilies.size()> out{};
-  for (std::size_t k = 0; k < kFamilies.size(); ++k)
-    out[k] = {kFamilies[k].family, kFamilies[k].name};
-  return out;
-}
-
 // u in rad/s² scaled by the nominal inertia (torque J^_i u_i), or a torque in N·m.
 enum class GainUnits : std::uint8_t { Acceleration, Torque };
 // Ki, Kd per tick (u = Kp e + Ki sum(e) + Kd (e_k - e_{k-1}), the paper's numbers) or continuous
 // (u = Kp e + Ki int(e dt) + Kd de/dt).
 enum class PidForm : std::uint8_t { PerTick, Continuous };
 
-inline constexpr std::array<EnumName<Family>, kFamilies.size()> kFamilyNames = family_names();
 inline constexpr std::array<EnumName<GainUnits>, 2> kGainUnitsNames{
     {{GainUnits::Acceleration, "acceleration"}, {GainUnits::Torque, "torque"}}};
 inline constexpr std::array<EnumName<PidForm>, 2> kPidFormNames{
@@ -112,9 +63,6 @@ inline constexpr std::array<EnumName<control::GainUpdate>, 2> kGainUpdateNames{
 inline constexpr std::array<EnumName<fuzzy::Conjunction>, 2> kConjunctionNames{
     {{fuzzy::Conjunction::Minimum, "min"}, {fuzzy::Conjunction::Product, "prod"}}};
 
-[[nodiscard]] constexpr const char* to_string(Family f) noexcept {
-  return row_of(f).name;
-}
 [[nodiscard]] constexpr const char* to_string(GainUnits g) noexcept {
   return name_of(kGainUnitsNames, g);
 }
@@ -148,7 +96,7 @@ struct Units {
   double tick_s = 0.05;  // the tick the per-tick gains refer to (and the controller's tick)
 };
 
-// fuzzy-rules only: the rule table that refines the schedule (control/rule_table.hpp). The
+// FamilyTraits::rule_table: the rule table that refines the schedule (control/rule_table.hpp). The
 // partitions of x = Ke e and y = Kec ec are 7 sets each (NB NM NS ZO PS PM PB): triangles between
 // neighbouring centers, shoulders outside; centers increasing and symmetric about 0. ratio[g][i][j]
 // is the consequent of the rule "x is set i and y is set j" for gain g (kp, ki, kd): the factor on
@@ -172,21 +120,24 @@ struct RuleTableSpec {
   }
 };
 
+// The supervisor of a supervised family; which fields a family reads, its traits say
+// (family.hpp).
 struct Supervisor {
   double error_scale = 1.0;       // Ke, universe units per rad
   double error_rate_scale = 1.0;  // Kec, universe units per rad/s
-  // fuzzy: Sp, Si, Sd (gain units per table unit); scheduled and fuzzy-rules: the large-error
-  // ratios Rp, Ri, Rd of the schedule.
+  // OutputScale::Scales: Sp, Si, Sd (gain units per table unit); OutputScale::Ratios: the
+  // large-error ratios Rp, Ri, Rd of the schedule.
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
-  control::GainUpdate gain_update = control::GainUpdate::Absolute;  // fuzzy only
-  paper::Tables rule_base = paper::Tables::Printed;                 // fuzzy only
-  fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;     // fuzzy only
-  // fuzzy only: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs e, ec; 3
-  // outputs dKp, dKi, dKd), as written in the file (relative to the file's folder), and the model
-  // load() read from it (shared, immutable).
+  // FamilyTraits::rule_base: the gain update, the built-in tables and their AND.
+  control::GainUpdate gain_update = control::GainUpdate::Absolute;
+  paper::Tables rule_base = paper::Tables::Printed;
+  fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
+  // FamilyTraits::rule_base: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs
+  // e, ec; 3 outputs dKp, dKi, dKd), as written in the file (relative to the file's folder), and
+  // the model load() read from it (shared, immutable).
   std::string rule_file;
   std::shared_ptr<const fuzzy::EngineModel<double>> rule_model;
-  RuleTableSpec rule_table{};  // fuzzy-rules only
+  RuleTableSpec rule_table{};  // FamilyTraits::rule_table
 };
 
 struct PidOptions {
@@ -253,7 +204,7 @@ struct TrainedOn {
 
 // One stage of a staged tuning run.
 struct StageRecord {
-  Family family = Family::Pid;
+  Family family{};
   std::uint64_t budget = 0;
   std::uint64_t evaluations = 0;
   double training_cost = 0.0;
@@ -322,12 +273,12 @@ struct Feedforward {
 };
 
 struct ControllerSpec {
-  Family family = Family::Pid;
+  Family family{};  // the list's first: the fixed PID
   std::string description;
   Units units{};
-  pid::Gains<double> gains = {4.0, 0.001, 100.0};  // pid: the gains; else the nominal K0
-  Supervisor supervisor{};                         // scheduled and fuzzy only
-  pid::Gains<double> gain_min = {0.0, 0.0, 0.0};   // bounds on the retuned gains (file units)
+  pid::Gains<double> gains = paper::kNominalGains<double>;  // pid: the gains; else K0
+  Supervisor supervisor{};                                  // supervised families only
+  pid::Gains<double> gain_min = {0.0, 0.0, 0.0};  // bounds on the retuned gains (file units)
   pid::Gains<double> gain_max = {std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity()};

@@ -83,7 +83,7 @@ struct JointCertificate {
 };
 
 struct Certificate {
-  controller::Family family = controller::Family::Pid;
+  controller::Family family{};
   bool moving_gains = false;
   double delay_s = 0.0;
   std::size_t conditions = 0;

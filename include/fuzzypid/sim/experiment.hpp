@@ -49,7 +49,7 @@ using controller::ControllerSpec;
 struct ExperimentOptions {
   double tick_s = 0.05;  // section 6: sampled once every 0.05 s
   // The paper's nominal gains Kp = 4, Ki = 0.001, Kd = 100, in the units pid_form names.
-  pid::Gains<double> gains = {4.0, 0.001, 100.0};
+  pid::Gains<double> gains = paper::kNominalGains<double>;
   GainUnits gain_units = GainUnits::Acceleration;
   PidForm pid_form = PidForm::PerTick;
   pid::DerivativeSource derivative = pid::DerivativeSource::Rates;
@@ -64,9 +64,10 @@ struct ExperimentOptions {
   robot::PlantConfig plant{};       // condition fields are applied on top
 };
 
-// The paper's fixed PID (Pid) or fuzzy PID (Fuzzy) with the options' gains and settings.
+// `paper` (controller::paper_pid() or paper_fuzzy()) with the options' units, gains and, for a
+// supervised family, supervisor settings.
 [[nodiscard]] ControllerSpec default_controller(const ExperimentOptions& options,
-                                                controller::Family family);
+                                                ControllerSpec paper);
 
 // One row of trajectory.csv: one joint at one tick under one controller.
 struct TrajectoryRow {

@@ -103,7 +103,7 @@ class ParameterSpace {
 
   std::vector<double> from_spec_without_filter(const ControllerSpec& spec) const;
 
-  Family family_ = Family::Pid;
+  Family family_{};
   ControllerSpec start_{};
   TableOptions options_{};
   std::vector<SearchBox> box_;

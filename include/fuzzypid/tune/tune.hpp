@@ -115,7 +115,7 @@ struct Minimum {
                                                          double fraction = 0.01);
 
 struct Options {
-  Family family = Family::Fuzzy;
+  Family family{};               // the list's first (controller/families.hpp): the fixed PID
   std::uint64_t budget = 16000;  // objective evaluations, never exceeded
   std::uint64_t seed = 1;
   unsigned threads = 1;
@@ -169,7 +169,7 @@ struct Result {
 // run's total. With a validation split the result is the stage whose result, converted into the
 // last stage's family, has the lowest validation cost (the last stage without one).
 struct Stage {
-  Family family = Family::Pid;
+  Family family{};
   std::uint64_t budget = 0;
 };
 

@@ -7,19 +7,19 @@
 #include <fuzzypid/controller/joint_controllers.hpp>
 
 int main() {
-  namespace ctl = fuzzypid::controller;
-  const ctl::ControllerSpec spec = ctl::paper_fuzzy();
-  ctl::Vector limit;
+  namespace controller = fuzzypid::controller;
+  const controller::ControllerSpec spec = controller::paper_fuzzy();
+  controller::Vector limit;
   limit.fill(std::numeric_limits<double>::infinity());
   std::string message;
-  auto joints = ctl::JointControllers::create(spec, limit, message);
+  auto joints = controller::JointControllers::create(spec, limit, message);
   if (!joints) {
     std::fprintf(stderr, "%s\n", message.c_str());
     return 1;
   }
-  ctl::Input in;
+  controller::Input in;
   in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
-  const ctl::Command out = joints->step(in, spec.units.tick_s);
-  std::printf("%s: u1 = %.6g\n", ctl::to_string(spec.family), out.torque_nm[0]);
+  const controller::Command out = joints->step(in, spec.units.tick_s);
+  std::printf("%s: u1 = %.6g\n", controller::to_string(spec.family), out.torque_nm[0]);
   return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
 }

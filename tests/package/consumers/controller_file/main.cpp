@@ -10,25 +10,25 @@
 
 int main(int argc, char** argv) {
   namespace cf = fuzzypid::controller_file;
-  namespace ctl = fuzzypid::controller;
+  namespace controller = fuzzypid::controller;
   if (argc != 2) return 2;
-  ctl::ControllerSpec spec;
+  controller::ControllerSpec spec;
   fuzzypid::FileError error;
   if (!cf::load(argv[1], spec, error)) {
     std::fprintf(stderr, "%s\n", error.to_string().c_str());
     return 1;
   }
-  ctl::Vector limit;
+  controller::Vector limit;
   limit.fill(std::numeric_limits<double>::infinity());
   std::string message;
-  auto joints = ctl::JointControllers::create(spec, limit, message);
+  auto joints = controller::JointControllers::create(spec, limit, message);
   if (!joints) {
     std::fprintf(stderr, "%s\n", message.c_str());
     return 1;
   }
-  ctl::Input in;
+  controller::Input in;
   in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
-  const ctl::Command out = joints->step(in, spec.units.tick_s);
-  std::printf("%s: u1 = %.6g\n", ctl::to_string(spec.family), out.torque_nm[0]);
+  const controller::Command out = joints->step(in, spec.units.tick_s);
+  std::printf("%s: u1 = %.6g\n", controller::to_string(spec.family), out.torque_nm[0]);
   return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
 }

@@ -1,0 +1,97 @@
+// The runtime pieces every family builds from: six joints of a fixed PID, or six joints of a
+// fuzzy PID sharing one immutable supervisor that the runtime owns. JointControllers holds one of
+// them; each has the same step/gains/pid surface so the dispatch needs no family's name.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "fuzzypid/control/fuzzy_pid.hpp"
+#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/pid/pid.hpp"
+
+namespace fuzzypid::controller {
+
+inline constexpr std::size_t kJoints = 6;
+
+using Vector = std::array<double, kJoints>;
+using Input = control::JointInput<double, kJoints>;
+using Command = control::JointOutput<double, kJoints>;
+// One configuration per joint (the fixed PID uses configs[i].pid only).
+using JointConfigs = std::array<control::FuzzyPidConfig<double>, kJoints>;
+
+// Six fixed PIDs.
+struct FixedJoints {
+  control::JointController<double, kJoints, pid::Pid<double>> joints;
+
+  [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
+    return joints.step(in, dt_s);
+  }
+  [[nodiscard]] pid::Gains<double> gains(std::size_t i) const noexcept {
+    return joints.joint(i).gains();
+  }
+  [[nodiscard]] const pid::Pid<double>& pid(std::size_t i) const noexcept {
+    return joints.joint(i);
+  }
+};
+
+// Six fuzzy PIDs on one Supervisor. The supervisor lives on the heap so its address, which the
+// joints keep, survives moves of this object; `keep` holds whatever it points into (a rule file's
+// model), or nothing.
+template <class Supervisor>
+struct SupervisedJoints {
+  using Joint = control::FuzzyPid<double, Supervisor>;
+
+  std::shared_ptr<const void> keep;
+  std::unique_ptr<const Supervisor> supervisor;
+  control::JointController<double, kJoints, Joint> joints;
+
+  [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
+    return joints.step(in, dt_s);
+  }
+  [[nodiscard]] pid::Gains<double> gains(std::size_t i) const noexcept {
+    return joints.joint(i).gains();
+  }
+  [[nodiscard]] const pid::Pid<double>& pid(std::size_t i) const noexcept {
+    return joints.joint(i).pid();
+  }
+};
+
+// The six fixed PIDs of `configs`; false with `error` set when one is invalid.
+[[nodiscard]] inline bool make_fixed_joints(const JointConfigs& configs, FixedJoints& out,
+                                            std::string& error) {
+  std::array<pid::Pid<double>, kJoints> joints;
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    if (!configs[i].pid.valid()) {
+      error = "invalid PID configuration";
+      return false;
+    }
+    joints[i] = pid::Pid<double>(configs[i].pid);
+  }
+  out.joints = decltype(out.joints)(joints);
+  return true;
+}
+
+// Six fuzzy PIDs of `configs` on `supervisor` (taken over); false with `error` set when a
+// configuration is invalid. `what` names the controller in that error.
+template <class Supervisor>
+[[nodiscard]] bool make_supervised_joints(std::unique_ptr<const Supervisor> supervisor,
+                                          const JointConfigs& configs, const char* what,
+                                          SupervisedJoints<Supervisor>& out, std::string& error) {
+  std::array<control::FuzzyPid<double, Supervisor>, kJoints> joints;
+  for (std::size_t i = 0; i < kJoints; ++i) {
+    if (!configs[i].valid()) {
+      error = std::string("invalid ") + what + " configuration";
+      return false;
+    }
+    joints[i] = control::FuzzyPid<double, Supervisor>(supervisor.get(), configs[i]);
+  }
+  out.supervisor = std::move(supervisor);
+  out.joints = decltype(out.joints)(joints);
+  return true;
+}
+
+}  // namespace fuzzypid::controller
