@@ -36,9 +36,9 @@ mutants=(
   "incremental_uses_pid_gains|include/fuzzypid/control/fuzzy_pid.hpp|s/gain_update_ == GainUpdate::Absolute ? pid_.gains() : gains_/gain_update_ == GainUpdate::Absolute ? gains_ : pid_.gains()/|bin:test_fuzzy_pid"
   "file_numbers_15_digits|src/controller/controller_spec.cpp|s/\"%.17g\", v);/\"%.15g\", v);/|bin:test_controller_file"
   # Our own: issue 20's output writer, export-header and rt_loop.
-  "writer_accepts_special_files|apps/common/output_files.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
-  "writer_ignores_inputs|apps/common/output_files.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
-  "writer_ignores_flush_errors|apps/common/output_files.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
+  "writer_accepts_special_files|apps/common/output_paths.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
+  "writer_ignores_inputs|apps/common/output_paths.cpp|s/in.st_dev == st.st_dev \&\& in.st_ino == st.st_ino/false/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."
+  "writer_ignores_flush_errors|apps/common/output_file.cpp|s/bool ok = std::fflush(file_) == 0 \&\& std::ferror(file_) == 0;/bool ok = true;/|bin:cli_common_tests build:fuzzypid_cli ctest:^cli\.outputs\."
   "namespace_allows_std|src/codegen/export_header.cpp|s/\"module\", \"std\", \"posix\"/\"module\", \"std_\", \"posix\"/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "float_range_unchecked|src/codegen/export_header.cpp|s/std::fabs(v) > static_cast<double>(FLT_MAX)/std::fabs(v) > 1e300/|build:fuzzypid_cli ctest:^cli\.export_header\."
   "rt_loop_ignores_sigterm|apps/rt_loop/main.cpp|s/for (int sig : {SIGINT, SIGTERM, SIGHUP})/for (int sig : {SIGINT})/|build:rt_loop ctest:^rt_loop\.exit_codes"

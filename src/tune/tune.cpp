@@ -1,278 +1,25 @@
 #include "fuzzypid/tune/tune.hpp"
 
-#include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
-#include <pagmo/algorithms/sade.hpp>
-#include <pagmo/population.hpp>
-#include <pagmo/problem.hpp>
-#include <pagmo/types.hpp>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <stdexcept>
 
+#include "evaluation.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/sim/certify.hpp"
-#include "fuzzypid/sim/metrics.hpp"
 
 namespace fuzzypid::tune {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The terms of one run's cost.
-struct RunCost {
-  double itae = 0.0, overshoot = 0.0, chatter = 0.0, effort = 0.0;
-  bool faulted = false;
-};
-
-// The chatter and effort terms of a run's rows (tick-major, joints 1..6), unweighted.
-void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::JointVector& limit,
-                 double chatter_limit_pct, double& chatter, double& effort) {
-  const std::size_t ticks = rows.size() / robot::kNumJoints;
-  std::vector<double> u(ticks);
-  chatter = 0.0;
-  effort = 0.0;
-  for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
-    double sum_sq = 0.0;
-    for (std::size_t k = 0; k < ticks; ++k) {
-      u[k] = rows[k * robot::kNumJoints + j].u;
-      sum_sq += u[k] * u[k];
-    }
-    chatter += std::max(0.0, sim::reversals_pct(u) - chatter_limit_pct) / 100.0;
-    if (ticks > 0 && limit[j] > 0.0 && std::isfinite(limit[j]))
-      effort += std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
-  }
-}
-
-// The cost of one run; `faulted` set when it adds only the fault cost.
-RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
-                 const Objective& o) {
-  sim::RunLimits limits;
-  limits.max_error_rad = o.divergence_rad;
-  const sim::RunResult r = ex.run(c, spec, limits);
-  RunCost out;
-  out.faulted = !r.ok || r.diverged || r.controller_faults != 0;
-  if (!out.faulted) {
-    const auto m = sim::run_metrics(r.rows, ex.options().tick_s);
-    for (const auto& j : m) {
-      out.itae += j.itae;
-      out.overshoot += o.overshoot_weight * std::max(0.0, j.overshoot_pct - o.overshoot_bound_pct);
-    }
-    if (o.chatter_weight != 0.0 || o.effort_weight != 0.0) {
-      double chatter = 0.0, effort = 0.0;
-      drive_terms(r.rows, ex.output_limit(c, spec.units.gains), o.chatter_limit_pct, chatter,
-                  effort);
-      out.chatter = o.chatter_weight * chatter;
-      out.effort = o.effort_weight * effort;
-    }
-    if (!std::isfinite(out.itae + out.overshoot + out.chatter + out.effort)) out.faulted = true;
-  }
-  if (out.faulted) return RunCost{0.0, 0.0, 0.0, 0.0, true};
-  return out;
-}
-
-double total(const RunCost& r, const Objective& o) {
-  return r.faulted ? o.fault_cost : r.itae + r.overshoot + r.chatter + r.effort;
-}
-
-// The experiment of each condition (conditions[k] runs on *experiments[k]).
-using ExperimentOf = std::vector<const sim::Experiment*>;
-
-ExperimentOf same_experiment(const sim::Experiment& ex, std::size_t n) {
-  return ExperimentOf(n, &ex);
-}
-
-ExperimentOf experiments_of(const sim::ExperimentSet& set, std::size_t n) {
-  ExperimentOf out(n);
-  for (std::size_t k = 0; k < n; ++k)
-    out[k] = &set.of(k);
-  return out;
-}
-
-Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
-                 const std::vector<sim::Condition>& conditions, const ControllerSpec& spec,
-                 const Objective& o) {
-  const std::size_t n = conditions.size();
-  std::vector<RunCost> runs(n);
-  const auto one = [&](std::size_t k) { runs[k] = run_cost(*ex[k], conditions[k], spec, o); };
-  if (arena != nullptr && n > 1) {
-    arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
-  } else {
-    for (std::size_t k = 0; k < n; ++k)
-      one(k);
-  }
-  Cost c;
-  for (const RunCost& r : runs) {  // fixed order: the same sum with any thread count
-    c.total += total(r, o);
-    c.itae += r.itae;
-    c.overshoot_penalty += r.overshoot;
-    c.chatter_penalty += r.chatter;
-    c.effort_penalty += r.effort;
-    c.faulted_runs += r.faulted ? 1 : 0;
-  }
-  return c;
-}
-
-struct MinimizeState {
-  std::function<double(const std::vector<double>&)> f;
-  std::vector<SearchBox> box;
-  std::uint64_t budget = 0;
-  std::uint64_t count = 0;
-  double best = kInf;
-};
-
-// pagmo's user-defined problem: counts every evaluation against the budget.
-struct Problem {
-  std::shared_ptr<MinimizeState> s;
-
-  pagmo::vector_double fitness(const pagmo::vector_double& x) const {
-    MinimizeState& st = *s;
-    if (st.count >= st.budget) throw std::logic_error("evaluation budget exceeded");
-    ++st.count;
-    double v = st.f(x);
-    if (!(v == v)) v = kInf;  // NaN: worst
-    st.best = std::min(st.best, v);
-    return {v};
-  }
-
-  std::pair<pagmo::vector_double, pagmo::vector_double> get_bounds() const {
-    pagmo::vector_double lo, hi;
-    for (const SearchBox& b : s->box) {
-      lo.push_back(b.log10_min);
-      hi.push_back(b.log10_max);
-    }
-    return {lo, hi};
-  }
-
-  std::string get_name() const { return "fuzzypid tuning objective"; }
-};
-
-}  // namespace
-
-Cost evaluate(const sim::Experiment& experiment, const std::vector<sim::Condition>& conditions,
-              const ControllerSpec& controller, const Objective& objective, unsigned threads) {
-  std::unique_ptr<tbb::task_arena> arena;
-  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
-  return evaluate_in(arena.get(), same_experiment(experiment, conditions.size()), conditions,
-                     controller, objective);
-}
-
-Cost evaluate(const sim::ExperimentSet& experiments, const std::vector<sim::Condition>& conditions,
-              const ControllerSpec& controller, const Objective& objective, unsigned threads) {
-  std::unique_ptr<tbb::task_arena> arena;
-  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
-  return evaluate_in(arena.get(), experiments_of(experiments, conditions.size()), conditions,
-                     controller, objective);
-}
-
-std::optional<Minimum> minimize(const std::function<double(const std::vector<double>&)>& f,
-                                const std::vector<SearchBox>& box, const MinimizeOptions& options,
-                                std::string& error) {
-  if (box.empty()) {
-    error = "nothing to search";
-    return std::nullopt;
-  }
-  for (const SearchBox& b : box) {
-    if (!std::isfinite(b.log10_min) || !std::isfinite(b.log10_max) || b.log10_max < b.log10_min) {
-      error = "search box '" + b.name + "' must have finite bounds, min <= max";
-      return std::nullopt;
-    }
-  }
-  const std::uint64_t pop_size =
-      options.population != 0
-          ? options.population
-          : std::max<std::uint64_t>(20, 5 * static_cast<std::uint64_t>(box.size()));
-  if (pop_size < 7) {
-    error = "the population must be at least 7 (differential evolution)";
-    return std::nullopt;
-  }
-  if (options.budget < 2 * pop_size) {
-    error = "the budget (" + std::to_string(options.budget) +
-            ") must cover at least two generations of the population (" +
-            std::to_string(2 * pop_size) + " evaluations)";
-    return std::nullopt;
-  }
-  auto state = std::make_shared<MinimizeState>();
-  state->f = f;
-  state->box = box;
-  state->budget = options.budget;
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-  const auto report = [&] {
-    if (options.progress) options.progress({state->count, options.budget, state->best, elapsed()});
-  };
-  const std::uint64_t generations = (options.budget - pop_size) / pop_size;
-  pagmo::problem prob{Problem{state}};
-  pagmo::population pop{prob, static_cast<pagmo::population::size_type>(pop_size),
-                        static_cast<unsigned>(options.seed)};
-  if (!options.start.empty()) {
-    if (options.start.size() != box.size()) {
-      error = "the start point has " + std::to_string(options.start.size()) +
-              " parameters, the box " + std::to_string(box.size());
-      return std::nullopt;
-    }
-    // Replaces the worst random member (one more evaluation, counted like every other).
-    std::vector<double> x = options.start;
-    for (std::size_t k = 0; k < x.size(); ++k)
-      x[k] = std::clamp(x[k], box[k].log10_min, box[k].log10_max);
-    if (state->count >= state->budget) {
-      error = "the budget does not cover the start point";
-      return std::nullopt;
-    }
-    pop.set_x(pop.worst_idx(), x);
-  }
-  double last_best = kInf;
-  const auto improved = [&] {
-    if (options.improved && pop.champion_f()[0] < last_best) {
-      last_best = pop.champion_f()[0];
-      options.improved(pop.champion_x(), last_best);
-    }
-  };
-  report();
-  improved();
-  // Self-adaptive DE (variant 2: rand/1/exp; jDE adaptation of F and CR), one generation per
-  // call with memory so that the adaptation carries over; no early stop (ftol = xtol = 0).
-  pagmo::sade algo(1u, 2u, 1u, 0.0, 0.0, true, static_cast<unsigned>(options.seed));
-  for (std::uint64_t g = 0; g < generations && state->count + pop_size <= state->budget; ++g) {
-    pop = algo.evolve(pop);
-    report();
-    improved();
-  }
-  Minimum m;
-  m.x = pop.champion_x();
-  m.f = pop.champion_f()[0];
-  m.evaluations = state->count;
-  m.population = pop_size;
-  m.wall_s = elapsed();
-  return m;
-}
-
-std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
-                                           const std::vector<SearchBox>& box, double fraction) {
-  std::vector<controller::BoundHit> hits;
-  for (std::size_t k = 0; k < box.size() && k < x.size(); ++k) {
-    const SearchBox& b = box[k];
-    const double width = b.log10_max - b.log10_min;
-    if (!(width > 0.0)) continue;
-    const double margin = fraction * width;
-    if (x[k] >= b.log10_max - margin) hits.push_back({b.name, true, x[k]});
-    // The bottom of the derivative filter's box (a fiftieth of the tick, box_for_tick) is its
-    // "off" end: a filter below it is inert, so ending there is no sign of a box too small.
-    else if (x[k] <= b.log10_min + margin && b.name != kFilterParameter)
-      hits.push_back({b.name, false, x[k]});
-  }
-  return hits;
-}
-
-namespace {
+using detail::evaluate_in;
+using detail::ExperimentOf;
+using detail::experiments_of;
+using detail::same_experiment;
+using detail::visits_in;
 
 // The runs of the controllers of one evaluation: training and validation conditions.
 struct Split {
@@ -315,72 +62,6 @@ bool check_options(const Options& options, std::size_t conditions, std::string& 
   }
   return true;
 }
-
-VisitMap visits_in(tbb::task_arena* arena, const ExperimentOf& ex,
-                   const std::vector<sim::Condition>& conditions, const ControllerSpec& spec) {
-  const control::RuleTable<double> table = controller::rule_table(spec);
-  const std::size_t n = conditions.size();
-  std::vector<VisitMap> per(n, VisitMap{});
-  const auto one = [&](std::size_t k) {
-    const sim::RunResult r = ex[k]->run(conditions[k], spec);
-    for (const sim::TrajectoryRow& row : r.rows) {
-      const double x = spec.supervisor.error_scale * row.error;
-      const double y = spec.supervisor.error_rate_scale * row.error_rate;
-      if (!std::isfinite(x) || !std::isfinite(y)) continue;
-      const auto c = table.cell(x, y);
-      for (std::size_t a = 0; a < 2; ++a)
-        for (std::size_t b = 0; b < 2; ++b)
-          if (c.i + a < RuleTableSpec::kSets && c.j + b < RuleTableSpec::kSets)
-            per[k][c.i + a][c.j + b] += c.weight[a][b];
-    }
-  };
-  if (arena != nullptr && n > 1)
-    arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
-  else
-    for (std::size_t k = 0; k < n; ++k)
-      one(k);
-  VisitMap sum{};
-  double total = 0.0;
-  for (const VisitMap& m : per)  // fixed order: the same sum with any thread count
-    for (std::size_t i = 0; i < RuleTableSpec::kSets; ++i)
-      for (std::size_t j = 0; j < RuleTableSpec::kSets; ++j) {
-        sum[i][j] += m[i][j];
-        total += m[i][j];
-      }
-  if (total > 0.0)
-    for (auto& row : sum)
-      for (double& v : row)
-        v /= total;
-  return sum;
-}
-
-}  // namespace
-
-double margin_shortfall(const sim::Certificate& cert, const Objective& o) {
-  const sim::MarginSummary m = sim::summarize(cert);
-  double shortfall = 0.0;
-  const auto below = [&](double required, double got) {
-    if (required > 0.0 && !(got >= required))
-      shortfall += (required - std::max(0.0, got)) / required;
-  };
-  below(o.min_disk_margin, m.disk_margin);
-  below(o.min_gain_margin_db, m.gain_margin_db);
-  below(o.min_phase_margin_deg, m.phase_margin_deg);
-  below(o.min_delay_margin_ms, m.delay_margin_ms);
-  return shortfall;
-}
-
-sim::CertifyOptions screening_options(double delay_s) {
-  sim::CertifyOptions c;
-  c.delay_s = delay_s;
-  c.grid_points = 5;
-  c.margin.grid_points = 400;
-  c.margin.delay_ticks = false;
-  c.lyapunov = false;
-  return c;
-}
-
-namespace {
 
 std::optional<Result> tune_on(const ExperimentOf& experiment,
                               const std::vector<sim::Condition>& conditions, const Options& options,
@@ -597,15 +278,6 @@ std::optional<Result> tune_staged(const sim::ExperimentSet& experiments,
                                   std::string& error) {
   return staged_on(experiments_of(experiments, conditions.size()), conditions, stages, options,
                    error);
-}
-
-VisitMap visits(const sim::ExperimentSet& experiments,
-                const std::vector<sim::Condition>& conditions, const ControllerSpec& controller,
-                unsigned threads) {
-  std::unique_ptr<tbb::task_arena> arena;
-  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
-  return visits_in(arena.get(), experiments_of(experiments, conditions.size()), conditions,
-                   controller);
 }
 
 }  // namespace fuzzypid::tune

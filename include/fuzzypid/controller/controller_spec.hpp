@@ -292,7 +292,8 @@ struct ControllerSpec {
 // "nan" (so TOML reads it as a float).
 [[nodiscard]] std::string format_double(double v);
 
-// The paper's controllers in the sim's default units (acceleration, per-tick, 0.05 s).
+// The paper's controllers in the sim's default units (acceleration, per-tick, 0.05 s); defined
+// with their families (src/controller/families/).
 [[nodiscard]] ControllerSpec paper_pid();
 [[nodiscard]] ControllerSpec paper_fuzzy();
 
