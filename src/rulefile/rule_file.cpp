@@ -1,5 +1,6 @@
 // File access, format dispatch and the shared model check of the rule-file readers.
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/fuzzy/engine_model_copy.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
 #include "fuzzypid_support/printable.hpp"
 

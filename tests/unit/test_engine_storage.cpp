@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/fuzzy/engine_model_copy.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 

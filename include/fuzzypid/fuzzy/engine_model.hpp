@@ -3,18 +3,8 @@
 // evaluation (fuzzy/engine.hpp) reads it and writes only into a workspace
 // (fuzzy/engine_workspace.hpp), so one model serves many workspaces.
 //
-// Storage is the template parameter `Cap`, in one of two forms with one evaluation code:
-//   EngineCapacity<...>  fixed-capacity arrays (std::array), no heap, constexpr-constructible: for
-//                        microcontrollers and generated headers. SmallCapacity is the paper's
-//                        shape (2 inputs, 3 outputs, 7 terms, 49 rules); FixedCapacity holds
-//                        8 inputs, 8 outputs, 64 terms per variable, 2,048 rules in 8 blocks.
-//   SizedCapacity<Limits> arrays allocated once with the exact counts of one model (variables,
-//                        terms, coefficients, rules, blocks, antecedent tokens, conclusions, names,
-//                        Discrete points, formula steps), bounded by the fixed capacity `Limits`; copying and
-//                        make_sized() allocate, evaluation does not. DefaultCapacity, what the
-//                        rule-file readers produce, is SizedCapacity<FixedCapacity>.
-// A sized model is filled through copy_model() from a fixed one (readers build into a
-// FixedCapacity model, then copy it to the size of the file). Memory: docs/rule_files.md.
+// Storage is the template parameter `Cap` (fuzzy/engine_storage.hpp: fixed-capacity arrays or
+// arrays sized once to one model); copying between the two forms: fuzzy/engine_model_copy.hpp.
 #pragma once
 
 #include <array>
@@ -25,97 +15,13 @@
 #include <vector>
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
+#include "fuzzypid/fuzzy/engine_storage.hpp"
 #include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
 #include "fuzzypid/scalar.hpp"
 
 namespace fuzzypid::fuzzy {
-
-// An array allocated once with a size given at set-up (SizedCapacity's storage): the indexing of
-// std::array over a std::vector that never grows (a copy allocates exactly the same size).
-template <class T>
-class SizedArray {
- public:
-  SizedArray() noexcept = default;
-  // Set-up: `n` value-initialised elements (allocates; n = 0 allocates nothing).
-  explicit SizedArray(std::size_t n) : items_(n) {}
-
-  T& operator[](std::size_t k) noexcept { return items_[k]; }
-  const T& operator[](std::size_t k) const noexcept { return items_[k]; }
-  T* data() noexcept { return items_.data(); }
-  const T* data() const noexcept { return items_.data(); }
-  std::size_t size() const noexcept { return items_.size(); }
-  T* begin() noexcept { return data(); }
-  T* end() noexcept { return data() + size(); }
-  const T* begin() const noexcept { return data(); }
-  const T* end() const noexcept { return data() + size(); }
-
-  bool operator==(const SizedArray& other) const { return items_ == other.items_; }
-  bool operator!=(const SizedArray& other) const { return !(*this == other); }
-
- private:
-  std::vector<T> items_;
-};
-
-// The compile-time capacity of an engine model, stored in fixed-size arrays.
-template <std::size_t Inputs, std::size_t Outputs, std::size_t Terms, std::size_t Rules,
-          std::size_t Blocks, std::size_t Tokens, std::size_t Conclusions, std::size_t Points,
-          std::size_t Steps = 1>
-struct EngineCapacity {
-  static_assert(Inputs >= 1 && Inputs <= 255 && Outputs >= 1 && Outputs <= 255,
-                "inputs and outputs: 1..255");
-  static_assert(Terms >= 1 && Terms <= 255, "terms per variable: 1..255");
-  static_assert(Rules >= 1 && Blocks >= 1 && Tokens >= 1 && Conclusions >= 1, "empty capacity");
-  static constexpr std::size_t inputs = Inputs;
-  static constexpr std::size_t outputs = Outputs;
-  static constexpr std::size_t terms = Terms;              // per variable
-  static constexpr std::size_t rules = Rules;              // in all blocks
-  static constexpr std::size_t blocks = Blocks;            // rule blocks
-  static constexpr std::size_t tokens = Tokens;            // antecedent tokens of all rules
-  static constexpr std::size_t conclusions = Conclusions;  // conclusions of all rules
-  static constexpr std::size_t points = Points;            // (x, y) pairs of all Discrete terms
-  static constexpr std::size_t steps = Steps;              // formula steps of all Function terms
-  static constexpr std::size_t rule_tokens = 63;           // tokens of one antecedent
-  static constexpr bool sized = false;
-  template <class T, std::size_t N>
-  using Array = std::array<T, N>;
-};
-
-// Storage sized to one model, within the limits of the fixed capacity `Limits`.
-template <class Limits>
-struct SizedCapacity : Limits {
-  static_assert(!Limits::sized, "the limits of a sized capacity are a fixed capacity");
-  using Fixed = Limits;
-  // Hides the fixed capacity's `sized` on purpose: the same name tells the two forms apart.
-  // cppcheck-suppress duplInheritedMember
-  static constexpr bool sized = true;
-  template <class T, std::size_t N>
-  using Array = SizedArray<T>;
-};
-
-using FixedCapacity = EngineCapacity<8, 8, 64, 2048, 8, 16384, 8192, 4096, 4096>;
-using DefaultCapacity = SizedCapacity<FixedCapacity>;
-using SmallCapacity = EngineCapacity<2, 3, 7, 49, 1, 147, 147, 1>;
-
-// The default capacity under short names.
-inline constexpr std::size_t kMaxInputs = DefaultCapacity::inputs;
-inline constexpr std::size_t kMaxOutputs = DefaultCapacity::outputs;
-inline constexpr std::size_t kMaxNameLength = 31;
-inline constexpr std::size_t kMaxHedges = 4;  // per proposition
-
-// A NUL-terminated name of at most kMaxNameLength bytes (any bytes but NUL).
-using Name = std::array<char, kMaxNameLength + 1>;
-
-// Copies `length` bytes of `text` into `name`; false (name unchanged) when too long.
-inline bool set_name(Name& name, const char* text, std::size_t length) noexcept {
-  if (length > kMaxNameLength) return false;
-  std::size_t k = 0;
-  for (; k < length; ++k)
-    name[k] = text[k];
-  name[k] = '\0';  // k = length <= kMaxNameLength: the last element at most
-  return true;
-}
 
 template <class Scalar, class Cap = DefaultCapacity>
 struct InputSpec {
@@ -605,144 +511,5 @@ struct EngineModel {
     return {};
   }
 };
-
-namespace model_detail {
-
-// Fixed storage: checks that `n` fits; sized storage: allocates exactly `n`.
-template <class T, std::size_t N>
-bool reserve_exact(std::array<T, N>&, std::size_t n) noexcept {
-  return n <= N;
-}
-template <class T>
-bool reserve_exact(SizedArray<T>& a, std::size_t n) {
-  a = SizedArray<T>(n);
-  return true;
-}
-
-}  // namespace model_detail
-
-// Copies `from` into `to` element by element, between any two storage forms: a sized `to` is
-// allocated with the exact counts of `from` (set-up: allocates), a fixed `to` must hold them.
-// False (`to` unspecified) when `from` does not fit `to`'s capacity or its own storage.
-template <class Scalar, class From, class To>
-bool copy_model(const EngineModel<Scalar, From>& from, EngineModel<Scalar, To>& to) {
-  using model_detail::reserve_exact;
-  if (!from.storage_holds_counts() || from.num_inputs > To::inputs ||
-      from.num_outputs > To::outputs || from.num_rules > To::rules ||
-      from.num_blocks > To::blocks || from.num_tokens > To::tokens ||
-      from.num_conclusions > To::conclusions || from.num_points > To::points ||
-      from.num_steps > To::steps)
-    return false;
-  to.name = from.name;
-  to.num_inputs = from.num_inputs;
-  to.num_outputs = from.num_outputs;
-  to.num_rules = from.num_rules;
-  to.num_blocks = from.num_blocks;
-  to.num_tokens = from.num_tokens;
-  to.num_conclusions = from.num_conclusions;
-  to.num_points = from.num_points;
-  to.num_steps = from.num_steps;
-  to.chained = from.chained;
-  to.power_hedges = from.power_hedges;
-  if (!reserve_exact(to.inputs, from.num_inputs) || !reserve_exact(to.outputs, from.num_outputs) ||
-      !reserve_exact(to.rules, from.num_rules) || !reserve_exact(to.blocks, from.num_blocks) ||
-      !reserve_exact(to.tokens, from.num_tokens) ||
-      !reserve_exact(to.conclusions, from.num_conclusions) ||
-      !reserve_exact(to.points, 2 * from.num_points) || !reserve_exact(to.steps, from.num_steps))
-    return false;
-  for (std::size_t i = 0; i < from.num_inputs; ++i) {
-    const auto& a = from.inputs[i];
-    auto& b = to.inputs[i];
-    if (a.num_terms > To::terms || !reserve_exact(b.terms, a.num_terms) ||
-        !reserve_exact(b.term_names, a.num_terms))
-      return false;
-    b.name = a.name;
-    b.min = a.min;
-    b.max = a.max;
-    b.lock_range = a.lock_range;
-    b.enabled = a.enabled;
-    b.num_terms = a.num_terms;
-    for (std::size_t t = 0; t < a.num_terms; ++t) {
-      b.terms[t] = a.terms[t];
-      b.term_names[t] = a.term_names[t];
-    }
-  }
-  for (std::size_t o = 0; o < from.num_outputs; ++o) {
-    const auto& a = from.outputs[o];
-    auto& b = to.outputs[o];
-    if (a.num_terms > To::terms || !reserve_exact(b.terms, a.num_terms) ||
-        !reserve_exact(b.term_names, a.num_terms))
-      return false;
-    b.name = a.name;
-    b.min = a.min;
-    b.max = a.max;
-    b.lock_range = a.lock_range;
-    b.lock_previous = a.lock_previous;
-    b.enabled = a.enabled;
-    b.has_aggregation = a.has_aggregation;
-    b.default_value = a.default_value;
-    b.defuzzifier = a.defuzzifier;
-    b.resolution = a.resolution;
-    b.exact_centroid = a.exact_centroid;
-    b.merge_equal_singletons = a.merge_equal_singletons;
-    b.group_by_term = a.group_by_term;
-    b.aggregation = a.aggregation;
-    b.num_terms = a.num_terms;
-    for (std::size_t t = 0; t < a.num_terms; ++t) {
-      const auto& ta = a.terms[t];
-      auto& tb = b.terms[t];
-      tb.kind = ta.kind;
-      tb.membership = ta.membership;
-      const std::size_t n = from.coefficients_of(ta.kind);
-      if (!reserve_exact(tb.coefficients, n)) return false;
-      for (std::size_t c = 0; c < n; ++c)
-        tb.coefficients[c] = ta.coefficients[c];
-      b.term_names[t] = a.term_names[t];
-    }
-  }
-  for (std::size_t r = 0; r < from.num_rules; ++r)
-    to.rules[r] = from.rules[r];
-  for (std::size_t k = 0; k < from.num_blocks; ++k)
-    to.blocks[k] = from.blocks[k];
-  for (std::size_t k = 0; k < from.num_tokens; ++k)
-    to.tokens[k] = from.tokens[k];
-  for (std::size_t k = 0; k < from.num_conclusions; ++k)
-    to.conclusions[k] = from.conclusions[k];
-  for (std::size_t k = 0; k < 2 * from.num_points; ++k)
-    to.points[k] = from.points[k];
-  for (std::size_t k = 0; k < from.num_steps; ++k)
-    to.steps[k] = from.steps[k];
-  return true;
-}
-
-// A model sized to `fixed` (set-up: allocates exactly its counts); a default model when `fixed`
-// does not hold its own counts.
-template <class Scalar, class Cap>
-EngineModel<Scalar, SizedCapacity<Cap>> make_sized(const EngineModel<Scalar, Cap>& fixed) {
-  EngineModel<Scalar, SizedCapacity<Cap>> sized;
-  if (!copy_model(fixed, sized)) return {};
-  return sized;
-}
-
-// The bytes a model occupies: the object and, for a sized model, what it allocated.
-template <class Scalar, class Cap>
-std::size_t model_bytes(const EngineModel<Scalar, Cap>& m) noexcept {
-  std::size_t bytes = sizeof(m);
-  if constexpr (Cap::sized) {
-    bytes += m.inputs.size() * sizeof(m.inputs[0]) + m.outputs.size() * sizeof(m.outputs[0]) +
-             m.rules.size() * sizeof(m.rules[0]) + m.blocks.size() * sizeof(m.blocks[0]) +
-             m.tokens.size() * sizeof(m.tokens[0]) +
-             m.conclusions.size() * sizeof(m.conclusions[0]) + m.points.size() * sizeof(Scalar) +
-             m.steps.size() * sizeof(m.steps[0]);
-    for (const auto& in : m.inputs)
-      bytes += in.terms.size() * sizeof(in.terms[0]) + in.term_names.size() * sizeof(Name);
-    for (const auto& out : m.outputs) {
-      bytes += out.terms.size() * sizeof(out.terms[0]) + out.term_names.size() * sizeof(Name);
-      for (const auto& t : out.terms)
-        bytes += t.coefficients.size() * sizeof(Scalar);
-    }
-  }
-  return bytes;
-}
 
 }  // namespace fuzzypid::fuzzy
