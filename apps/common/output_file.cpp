@@ -3,27 +3,20 @@
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <limits.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <system_error>
 
 #include "output_shared.hpp"
 
 namespace fuzzypid::cli {
 
 namespace fs = std::filesystem;
-using detail::contains_cwd;
 using detail::errno_text;
 using detail::in_quotes;
 using detail::kind_of;
@@ -31,7 +24,6 @@ using detail::lock_file;
 using detail::Removal;
 using detail::remove_on_signal_add;
 using detail::remove_on_signal_drop;
-using detail::rename_exchange;
 using detail::resolve_output;
 
 namespace {

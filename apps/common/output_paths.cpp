@@ -1,20 +1,13 @@
 // The contract of an output path (output_files.hpp): what may be written where.
 #include "output_files.hpp"
 
-#include <dirent.h>
 #include <fcntl.h>
-#include <limits.h>
-#include <signal.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -23,15 +16,9 @@
 namespace fuzzypid::cli {
 
 namespace fs = std::filesystem;
-using detail::contains_cwd;
 using detail::errno_text;
 using detail::in_quotes;
 using detail::kind_of;
-using detail::lock_file;
-using detail::Removal;
-using detail::remove_on_signal_add;
-using detail::remove_on_signal_drop;
-using detail::rename_exchange;
 using detail::resolve_output;
 
 namespace {

@@ -1,20 +1,13 @@
 // OutputSet (output_files.hpp): a folder of outputs replaced as one.
 #include "output_files.hpp"
 
-#include <dirent.h>
 #include <fcntl.h>
-#include <limits.h>
-#include <signal.h>
-#include <sys/file.h>
+#include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <array>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -25,14 +18,11 @@ namespace fuzzypid::cli {
 namespace fs = std::filesystem;
 using detail::contains_cwd;
 using detail::errno_text;
-using detail::in_quotes;
-using detail::kind_of;
 using detail::lock_file;
 using detail::Removal;
 using detail::remove_on_signal_add;
 using detail::remove_on_signal_drop;
 using detail::rename_exchange;
-using detail::resolve_output;
 
 std::unique_ptr<OutputSet> OutputSet::open(const std::string& dir,
                                            const std::vector<std::string>& names,
