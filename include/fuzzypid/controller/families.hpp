@@ -61,20 +61,20 @@ template <class Variant, class... Ts>
 struct Distinct;
 template <class... Seen>
 struct Distinct<std::variant<Seen...>> {
-  using type = std::variant<Seen...>;
+  using Type = std::variant<Seen...>;
 };
 template <class... Seen, class T, class... Rest>
 struct Distinct<std::variant<Seen...>, T, Rest...> {
-  using type =
+  using Type =
       typename std::conditional_t<kContains<T, Seen...>, Distinct<std::variant<Seen...>, Rest...>,
-                                  Distinct<std::variant<Seen..., T>, Rest...>>::type;
+                                  Distinct<std::variant<Seen..., T>, Rest...>>::Type;
 };
 
 template <class Tuple>
 struct RuntimeVariant;
 template <class... Ts>
 struct RuntimeVariant<std::tuple<Ts...>> {
-  using type = typename Distinct<std::variant<>, Ts...>::type;
+  using Type = typename Distinct<std::variant<>, Ts...>::Type;
 };
 
 template <class List>
@@ -87,7 +87,7 @@ struct FamilyTable<FamilyTypes<Families...>> {
   static constexpr std::array<FamilyTraits, kSize> kTraits{{Families::kTraits...}};
 
   using Runtime = typename RuntimeVariant<decltype(std::tuple_cat(
-      std::declval<typename Families::Runtimes>()...))>::type;
+      std::declval<typename Families::Runtimes>()...))>::Type;
 
   template <class F>
   static constexpr std::size_t index_of() noexcept {

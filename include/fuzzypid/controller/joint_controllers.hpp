@@ -46,12 +46,12 @@ class JointControllers {
   // One tick of all joints (see control::JointController::step); the outputs (torque_nm) are
   // in the controller's units (rad/s² with acceleration units).
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
-    return std::visit([&](auto& joints) noexcept { return joints.step(in, dt_s); }, joints_);
+    return visit_joints(joints_, [&](auto& joints) noexcept { return joints.step(in, dt_s); });
   }
 
   // The gains joint i used in its last step, in continuous SI form.
   pid::Gains<double> gains(std::size_t i) const noexcept {
-    return std::visit([i](const auto& joints) noexcept { return joints.gains(i); }, joints_);
+    return visit_joints(joints_, [i](const auto& joints) noexcept { return joints.gains(i); });
   }
   // The same in the file's units (per-tick when the file's form is per-tick).
   pid::Gains<double> file_gains(std::size_t i) const noexcept {
@@ -59,9 +59,9 @@ class JointControllers {
   }
   // The inner PID of joint i (its integral, output and saturation after the last step).
   const pid::Pid<double>& pid(std::size_t i) const noexcept {
-    return std::visit(
-        [i](const auto& joints) noexcept -> const pid::Pid<double>& { return joints.pid(i); },
-        joints_);
+    return visit_joints(joints_, [i](const auto& joints) noexcept -> const pid::Pid<double>& {
+      return joints.pid(i);
+    });
   }
 
   const ControllerSpec& spec() const noexcept { return spec_; }

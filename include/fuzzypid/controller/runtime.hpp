@@ -7,7 +7,9 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/control/joint_controller.hpp"
@@ -59,6 +61,20 @@ struct SupervisedJoints {
     return joints.joint(i).pid();
   }
 };
+
+// fn(alternative) for the alternative `joints` holds: the tick's dispatch over the families'
+// runtimes. One comparison per alternative before the held one; unlike std::visit it cannot
+// throw (a variant left valueless by a failed set-up is never stepped: JointControllers is not
+// created then).
+template <std::size_t I = 0, class Variant, class Fn>
+[[nodiscard]] decltype(auto) visit_joints(Variant& joints, Fn&& fn) noexcept {
+  if constexpr (I + 1 == std::variant_size_v<std::remove_const_t<Variant>>) {
+    return fn(*std::get_if<I>(&joints));
+  } else {
+    if (joints.index() == I) return fn(*std::get_if<I>(&joints));
+    return visit_joints<I + 1>(joints, std::forward<Fn>(fn));
+  }
+}
 
 // The six fixed PIDs of `configs`; false with `error` set when one is invalid.
 [[nodiscard]] inline bool make_fixed_joints(const JointConfigs& configs, FixedJoints& out,
