@@ -308,7 +308,7 @@ bool convert(const ControllerSpec& from, Family to, ControllerSpec& out, std::st
   out.family = to;
   // pid -> scheduled: R = 1 moves nothing, whatever Ke and Kec. pid or scheduled -> fuzzy-rules:
   // the schedule's Ke, Kec and R with T = 1, the schedule itself.
-  controller::Supervisor s;
+  controller::SupervisorSpec s;
   if (!pid) {
     s.error_scale = from.supervisor.error_scale;
     s.error_rate_scale = from.supervisor.error_rate_scale;

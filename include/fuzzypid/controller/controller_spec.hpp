@@ -122,7 +122,7 @@ struct RuleTableSpec {
 
 // The supervisor of a supervised family; which fields a family reads, its traits say
 // (family.hpp).
-struct Supervisor {
+struct SupervisorSpec {
   double error_scale = 1.0;       // Ke, universe units per rad
   double error_rate_scale = 1.0;  // Kec, universe units per rad/s
   // OutputScale::Scales: Sp, Si, Sd (gain units per table unit); OutputScale::Ratios: the
@@ -277,7 +277,7 @@ struct ControllerSpec {
   std::string description;
   Units units{};
   pid::Gains<double> gains = paper::kNominalGains<double>;  // pid: the gains; else K0
-  Supervisor supervisor{};                                  // supervised families only
+  SupervisorSpec supervisor{};                              // supervised families only
   pid::Gains<double> gain_min = {0.0, 0.0, 0.0};  // bounds on the retuned gains (file units)
   pid::Gains<double> gain_max = {std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity(),

@@ -39,7 +39,7 @@ struct Fuzzy {
   // file), a rule file's model and its supervisor.
   template <class Code>
   [[nodiscard]] static SupervisorCode header_code(const ControllerSpec& spec, const Code& code) {
-    const Supervisor& sup = spec.supervisor;
+    const SupervisorSpec& sup = spec.supervisor;
     if (sup.rule_model != nullptr)
       return {
           "#include <array>\n\n#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
