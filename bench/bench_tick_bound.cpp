@@ -78,7 +78,7 @@ class SpecialisedTick {
       const Located b = locate(y, ec_min_, ec_max_, ec_inverse_step_);
       const Weights w = weights(a, b);
       const double scale = 1.0 / (w.w00 + w.w01 + w.w10 + w.w11);
-      out.torque_nm[i] = finish(i, in, dt_s, e, ec, a, b, w, scale);
+      out.output[i] = finish(i, in, dt_s, e, ec, a, b, w, scale);
       out.joint_status[i] = fp::Status::Ok;
     }
     out.status = fp::Status::Ok;
@@ -106,7 +106,7 @@ class SpecialisedTick {
       scale[i] = 1.0 / (w[i].w00 + w[i].w01 + w[i].w10 + w[i].w11);
     Output out;
     for (std::size_t i = 0; i < kJoints; ++i) {
-      out.torque_nm[i] = finish(i, in, dt_s, e[i], ec[i], a[i], b[i], w[i], scale[i]);
+      out.output[i] = finish(i, in, dt_s, e[i], ec[i], a[i], b[i], w[i], scale[i]);
       out.joint_status[i] = fp::Status::Ok;
     }
     out.status = fp::Status::Ok;
@@ -160,7 +160,7 @@ class SpecialisedTick {
         clamp(k0.kd + config_.output_scale[2] * delta[2], config_.gain_min.kd,
               config_.gain_max.kd)};
     const fp::pid::Config<double>& c = config_.pid;
-    const double ff = in.feed_forward_nm[i];
+    const double ff = in.feed_forward[i];
     const double p = g.kp * e;
     const double d = g.kd * ec;
     const double increment = g.ki * e * dt_s;
@@ -213,7 +213,7 @@ void run_bound(benchmark::State& state) {
       const Output mine = Lanes ? check.lanes(t, kDt) : check.per_joint(t, kDt);
       const Output theirs = library.step(t, kDt);
       for (std::size_t j = 0; j < kJoints; ++j)
-        max_abs_diff = max(max_abs_diff, fp::detail::abs(mine.torque_nm[j] - theirs.torque_nm[j]));
+        max_abs_diff = max(max_abs_diff, fp::detail::abs(mine.output[j] - theirs.output[j]));
     }
     state.counters["max_abs_diff"] = max_abs_diff;
     if (max_abs_diff != 0.0) {

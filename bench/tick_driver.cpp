@@ -39,7 +39,7 @@ template <class Joint>
   for (long k = 0; k < n; ++k) {
     const auto out =
         controller.step(g_table[static_cast<std::size_t>(k) & fuzzypid::bench::kTableMask], 0.05);
-    sum += out.torque_nm[0] + static_cast<double>(out.status);
+    sum += out.output[0] + static_cast<double>(out.status);
   }
   return sum;
 }
@@ -60,7 +60,7 @@ template <class Joint>
   for (long k = 0; k < n; ++k) {
     const auto out =
         controllers->step(g_table[static_cast<std::size_t>(k) & fuzzypid::bench::kTableMask], 0.05);
-    sum += out.torque_nm[0] + static_cast<double>(out.status);
+    sum += out.output[0] + static_cast<double>(out.status);
   }
   return sum;
 }

@@ -119,14 +119,14 @@ std::uint64_t run(Controller& controller, long ticks, bool print, fuzzypid::Stat
     worst = fuzzypid::worst(worst, out.status);
     if (print) {
       std::printf("%08lx %08lx %08lx %08lx %08lx %08lx\n",
-                  static_cast<unsigned long>(bits(out.torque_nm[0])),
-                  static_cast<unsigned long>(bits(out.torque_nm[1])),
-                  static_cast<unsigned long>(bits(out.torque_nm[2])),
-                  static_cast<unsigned long>(bits(out.torque_nm[3])),
-                  static_cast<unsigned long>(bits(out.torque_nm[4])),
-                  static_cast<unsigned long>(bits(out.torque_nm[5])));
+                  static_cast<unsigned long>(bits(out.output[0])),
+                  static_cast<unsigned long>(bits(out.output[1])),
+                  static_cast<unsigned long>(bits(out.output[2])),
+                  static_cast<unsigned long>(bits(out.output[3])),
+                  static_cast<unsigned long>(bits(out.output[4])),
+                  static_cast<unsigned long>(bits(out.output[5])));
     }
-    plant.step(out.torque_nm.data(), kDt);
+    plant.step(out.output.data(), kDt);
   }
   return counts;
 }

@@ -171,7 +171,7 @@ TickResult ClosedLoop::tick(const PathSample& sample, const TickInjection& injec
     }
   }
   r.command = controller_->step(in, injection.controller_dt_s.value_or(tick_s_));
-  r.torque_nm = experiment_->torque_from_command(r.command.torque_nm, units_);
+  r.torque_nm = experiment_->torque_from_command(r.command.output, units_);
   if (feedforward_model_) {
     const robot::JointVector g = feedforward_model_->gravity_torque(sample.theta_d);
     for (std::size_t i = 0; i < robot::kNumJoints; ++i)

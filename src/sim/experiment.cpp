@@ -335,7 +335,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
       row.theta = r.theta[i];
       row.error = e;
       row.error_rate = r.theta_d_dot[i] - r.theta_dot[i];
-      row.u = r.command.torque_nm[i];
+      row.u = r.command.output[i];
       const pid::Gains<double> g = loop->controller().file_gains(i);
       row.kp = g.kp;
       row.ki = g.ki;

@@ -73,11 +73,11 @@ int expect_equal_to_file(const char* file, const Controller& prototype,
     const auto a = from_file->step(in, spec.units.tick_s);
     const auto b = from_header.step(in, tuned_pid::kTickS);
     for (std::size_t i = 0; i < kJ; ++i) {
-      EXPECT_TRUE(same_bits(a.torque_nm[i], b.torque_nm[i]))
-          << file << " tick " << k << " joint " << i << ": " << a.torque_nm[i] << " vs "
-          << b.torque_nm[i];
+      EXPECT_TRUE(same_bits(a.output[i], b.output[i]))
+          << file << " tick " << k << " joint " << i << ": " << a.output[i] << " vs "
+          << b.output[i];
       EXPECT_EQ(a.joint_status[i], b.joint_status[i]);
-      if (a.joint_status[i] != b.joint_status[i] || !same_bits(a.torque_nm[i], b.torque_nm[i]))
+      if (a.joint_status[i] != b.joint_status[i] || !same_bits(a.output[i], b.output[i]))
         return fired;
       fired += a.joint_status[i] == Status::Ok ? 1 : 0;
     }

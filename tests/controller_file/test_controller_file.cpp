@@ -655,8 +655,8 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
       const controller::Command cb = b->step(in, rules.units.tick_s);
       ASSERT_EQ(ca.status, cb.status) << "tick " << tick;
       for (std::size_t j = 0; j < controller::kJoints; ++j) {
-        const double d = std::fabs(ca.torque_nm[j] - cb.torque_nm[j]) /
-                         std::fmax(1.0, std::fabs(ca.torque_nm[j]));
+        const double d =
+            std::fabs(ca.output[j] - cb.output[j]) / std::fmax(1.0, std::fabs(ca.output[j]));
         worst = std::fmax(worst, d);
         const auto ga = a->gains(j), gb = b->gains(j);
         EXPECT_NEAR(gb.kp, ga.kp, 1e-9 * ga.kp) << "tick " << tick;
@@ -745,7 +745,7 @@ TEST(ControllerFile, ASupervisorRuleFileIsReadByNameWhateverTheOrderOfItsBlocks)
     const controller::Command cc = c->step(in, rules.units.tick_s);
     ASSERT_EQ(ca.status, cc.status) << "tick " << tick;
     for (std::size_t j = 0; j < controller::kJoints; ++j) {
-      differing += ca.torque_nm[j] != cc.torque_nm[j];
+      differing += ca.output[j] != cc.output[j];
       const auto ga = a->gains(j), gc = c->gains(j);
       differing += ga.kp != gc.kp || ga.ki != gc.ki || ga.kd != gc.kd;
     }

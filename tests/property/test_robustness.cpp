@@ -121,11 +121,11 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
       } else if (i != bad_joint) {
         ASSERT_FALSE(fuzzypid::is_fault(s)) << "tick " << tick << " joint " << i;
       }
-      ASSERT_EQ(command.torque_nm[i], controller.joint(i).output());
+      ASSERT_EQ(command.output[i], controller.joint(i).output());
       expect_sane(controller.joint(i), i, tick);
       // Unit double integrator, exact over dt with the command held.
-      position[i] += velocity[i] * dt + 0.5 * command.torque_nm[i] * dt * dt;
-      velocity[i] += command.torque_nm[i] * dt;
+      position[i] += velocity[i] * dt + 0.5 * command.output[i] * dt * dt;
+      velocity[i] += command.output[i] * dt;
     }
     if (!bad_dt && bad_joint < 6 && !std::isfinite(injected)) ++nonfinite_injected;
   }
@@ -141,8 +141,8 @@ TEST(Robustness, JitteredAndInvalidTimeStepsNaNMeasurementsAndSetpointJumpsKeepE
     const auto command = controller.step(in, 0.05);
     ASSERT_FALSE(fuzzypid::is_fault(command.status));
     for (std::size_t i = 0; i < 6; ++i) {
-      position[i] += velocity[i] * 0.05 + 0.5 * command.torque_nm[i] * 0.0025;
-      velocity[i] += command.torque_nm[i] * 0.05;
+      position[i] += velocity[i] * 0.05 + 0.5 * command.output[i] * 0.0025;
+      velocity[i] += command.output[i] * 0.05;
     }
   }
   for (std::size_t i = 0; i < 6; i += 2)  // the absolute-update joints settle

@@ -111,7 +111,7 @@ TEST(Allocation, JointControllerFuzzyTicksNeverAllocate) {
                               trajectory->v[s], k % 2 == 0 ? feed_forward : zero},
         0.05);
     worst = fuzzypid::worst(worst, out.status);
-    checksum += out.torque_nm[k % 6] + controller.joint(k % 6).gains().kd;
+    checksum += out.output[k % 6] + controller.joint(k % 6).gains().kd;
   }
   const std::size_t allocations = allocation_count() - start;
   report("joint_controller_fuzzy", allocations, kSeed);
@@ -157,7 +157,7 @@ TEST(Allocation, PidTicksNeverAllocate) {
     const auto out = joints.step(JointInput<double, 6>{trajectory->qd[s], trajectory->vd[s],
                                                        trajectory->q[s], trajectory->v[s]},
                                  0.001);
-    checksum += pid.output() + out.torque_nm[5];
+    checksum += pid.output() + out.output[5];
   }
   const std::size_t allocations = allocation_count() - start;
   report("pid", allocations, kSeed + 1);
@@ -211,7 +211,7 @@ TEST(Allocation, FloatFuzzyJointControllerNeverAllocates) {
     in.desired_velocity_rad_s = vd;
     in.measured_position_rad = q;
     in.measured_velocity_rad_s = v;
-    checksum += controller.step(in, 0.05f).torque_nm[k % 6];
+    checksum += controller.step(in, 0.05f).output[k % 6];
   }
   EXPECT_EQ(allocation_count() - start, 0u);
   EXPECT_TRUE(std::isfinite(checksum));

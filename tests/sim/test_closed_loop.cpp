@@ -131,8 +131,8 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
     const auto cmd = controller.step(in, dt);
     robot::JointVector torque{}, dist{};
     for (std::size_t i = 0; i < kJ; ++i) {
-      ASSERT_TRUE(same_bits(r.rows[k * kJ + i].u, cmd.torque_nm[i])) << "tick " << k;
-      torque[i] = J[i] * cmd.torque_nm[i];
+      ASSERT_TRUE(same_bits(r.rows[k * kJ + i].u, cmd.output[i])) << "tick " << k;
+      torque[i] = J[i] * cmd.output[i];
       dist[i] = pulses.at(p.time_s[k]) * J[i];
     }
     if (k + 1 < p.time_s.size()) (void)plant.step(torque, p.time_s[k + 1] - p.time_s[k], dist);
@@ -241,7 +241,7 @@ TEST_F(ClosedLoopTest, GravityFeedForwardIsTheModelsGravityAtTheDesiredAngles) {
   const robot::JointVector g_measured = model_->gravity_torque(b.theta);
   double apart = 0.0;
   for (std::size_t i = 0; i < kJ; ++i) {
-    EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i])) << i;
+    EXPECT_TRUE(same_bits(a.command.output[i], b.command.output[i])) << i;
     EXPECT_NEAR(b.torque_nm[i] - a.torque_nm[i], g_desired[i], 1e-9 * (1 + std::fabs(g_desired[i])))
         << "joint " << i;
     apart = std::fmax(apart, std::fabs(g_desired[i] - g_measured[i]));
@@ -261,7 +261,7 @@ void expect_same_tick(const sim::TickResult& a, const sim::TickResult& b, std::s
     EXPECT_TRUE(same_bits(a.theta_d_dot[i], b.theta_d_dot[i])) << "tick " << k << " joint " << i;
     EXPECT_TRUE(same_bits(a.theta[i], b.theta[i])) << "tick " << k << " joint " << i;
     EXPECT_TRUE(same_bits(a.theta_dot[i], b.theta_dot[i])) << "tick " << k << " joint " << i;
-    EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i]))
+    EXPECT_TRUE(same_bits(a.command.output[i], b.command.output[i]))
         << "tick " << k << " joint " << i;
     EXPECT_EQ(a.command.joint_status[i], b.command.joint_status[i]) << "tick " << k;
     EXPECT_TRUE(same_bits(a.torque_nm[i], b.torque_nm[i])) << "tick " << k << " joint " << i;
@@ -411,9 +411,9 @@ TEST_F(ClosedLoopTest, AnInjectedNonFiniteMeasurementFaultsItsJointOnly) {
   EXPECT_TRUE(faulted_joints(b).empty());
   for (std::size_t i = 0; i < kJ; ++i) {
     if (i == 3) {
-      EXPECT_LT(b.command.torque_nm[i], a.command.torque_nm[i]);  // reads ahead: pushes less
+      EXPECT_LT(b.command.output[i], a.command.output[i]);  // reads ahead: pushes less
     } else {
-      EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i])) << i;
+      EXPECT_TRUE(same_bits(a.command.output[i], b.command.output[i])) << i;
     }
   }
 }
@@ -434,8 +434,8 @@ TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePat
   const double ki = 0.001 / 0.05;
   for (std::size_t i = 0; i < kJ; ++i) {
     const double e = a.theta_d[i] - a.theta[i];
-    EXPECT_NEAR(b.command.torque_nm[i] - a.command.torque_nm[i], ki * e * (0.1 - 0.05), 1e-15);
-    EXPECT_NE(b.command.torque_nm[i], a.command.torque_nm[i]);
+    EXPECT_NEAR(b.command.output[i] - a.command.output[i], ki * e * (0.1 - 0.05), 1e-15);
+    EXPECT_NE(b.command.output[i], a.command.output[i]);
   }
   const double interval = plain->sample(0).dt_s;
   EXPECT_EQ(interval, experiment_->path().time_s[1] - experiment_->path().time_s[0]);
@@ -451,7 +451,7 @@ TEST_F(ClosedLoopTest, AControllerDtChangesTheCommandWhileThePlantAdvancesThePat
     const sim::TickResult r = skewed->tick(skewed->sample(1), broken);
     for (std::size_t i = 0; i < kJ; ++i) {
       EXPECT_EQ(r.command.joint_status[i], Status::InvalidTimeStep) << bad;
-      EXPECT_EQ(r.command.torque_nm[i], b.command.torque_nm[i]) << bad;
+      EXPECT_EQ(r.command.output[i], b.command.output[i]) << bad;
     }
     EXPECT_EQ(r.plant, robot::PlantStatus::Ok);
     EXPECT_EQ(skewed->plant().time_s(), before + skewed->sample(1).dt_s);
@@ -507,12 +507,12 @@ TEST_F(ClosedLoopTest, AReferenceOffsetShiftsTheErrorOfItsJointOnly) {
   const sim::TickResult a = plain->tick(0);
   const sim::TickResult b = jumped->tick(jumped->sample(0), jump);
   EXPECT_EQ(b.theta_d[1], a.theta_d[1] + 0.1);
-  EXPECT_NEAR(b.command.torque_nm[1] - a.command.torque_nm[1], (4.0 + 0.001) * 0.1, 1e-12);
+  EXPECT_NEAR(b.command.output[1] - a.command.output[1], (4.0 + 0.001) * 0.1, 1e-12);
   for (std::size_t i = 0; i < kJ; ++i) {
     EXPECT_TRUE(same_bits(a.theta_d_dot[i], b.theta_d_dot[i]));
     if (i == 1) continue;
     EXPECT_TRUE(same_bits(a.theta_d[i], b.theta_d[i])) << i;
-    EXPECT_TRUE(same_bits(a.command.torque_nm[i], b.command.torque_nm[i])) << i;
+    EXPECT_TRUE(same_bits(a.command.output[i], b.command.output[i])) << i;
   }
 }
 

@@ -298,7 +298,7 @@ const char* run(Soak& s, const Options& o, Counters& c) {
         return "bad dt not reported as invalid_time_step";
       if (!bad_dt && i == bad_joint && st != Status::NonFiniteInput)
         return "NaN/inf measurement not reported as non_finite_input";
-      const double u = r.command.torque_nm[i];
+      const double u = r.command.output[i];
       if (!std::isfinite(u)) {
         ++c.nonfinite;
         return "non-finite command";

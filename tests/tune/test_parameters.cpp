@@ -73,8 +73,8 @@ double largest_relative_difference(const controller::ControllerSpec& a,
     const controller::Command x = ca->step(in, 0.05);
     const controller::Command y = cb->step(in, 0.05);
     for (std::size_t j = 0; j < controller::kJoints; ++j) {
-      const double scale = std::max(1.0, std::fabs(x.torque_nm[j]));
-      worst = std::max(worst, std::fabs(x.torque_nm[j] - y.torque_nm[j]) / scale);
+      const double scale = std::max(1.0, std::fabs(x.output[j]));
+      worst = std::max(worst, std::fabs(x.output[j] - y.output[j]) / scale);
     }
   }
   return worst;

@@ -32,7 +32,7 @@ JointInput<Scalar, N> input(const std::array<Scalar, N>& qd, const std::array<Sc
   in.desired_velocity_rad_s = vd;
   in.measured_position_rad = q;
   in.measured_velocity_rad_s = v;
-  in.feed_forward_nm = ff;
+  in.feed_forward = ff;
   return in;
 }
 
@@ -115,7 +115,7 @@ TYPED_TEST(JointControllerTyped, EachJointEqualsItsOwnStandaloneController) {
       in.measurement_rate = v[i];
       in.feed_forward = ff[i];
       ASSERT_EQ(standalone[i].update(in, Scalar(0.01)), Status::Ok);
-      ASSERT_EQ(out.torque_nm[i], standalone[i].output()) << "joint " << i;
+      ASSERT_EQ(out.output[i], standalone[i].output()) << "joint " << i;
       ASSERT_EQ(out.joint_status[i], Status::Ok);
       ASSERT_EQ(controller.joint(i).output(), standalone[i].output());
     }
@@ -142,16 +142,16 @@ TYPED_TEST(JointControllerTyped, ANaNOnOneJointFaultsOnlyThatJointAndHoldsItsCom
   for (std::size_t i = 0; i < kJoints; ++i) {
     if (i == 2 || i == 4) {
       EXPECT_EQ(out.joint_status[i], Status::NonFiniteInput) << "joint " << i;
-      EXPECT_EQ(out.torque_nm[i], first.torque_nm[i]) << "joint " << i;
+      EXPECT_EQ(out.output[i], first.output[i]) << "joint " << i;
     } else {
       EXPECT_EQ(out.joint_status[i], Status::Ok) << "joint " << i;
-      EXPECT_EQ(out.torque_nm[i], reference.torque_nm[i]) << "joint " << i;
+      EXPECT_EQ(out.output[i], reference.output[i]) << "joint " << i;
     }
   }
   // The faulty joints recover on the next good tick.
   const auto next = controller.step(input(qd, vd, q, v), Scalar(0.01));
   EXPECT_EQ(next.status, Status::Ok);
-  EXPECT_EQ(next.torque_nm[0], twin.step(input(qd, vd, q, v), Scalar(0.01)).torque_nm[0]);
+  EXPECT_EQ(next.output[0], twin.step(input(qd, vd, q, v), Scalar(0.01)).output[0]);
 }
 
 TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryCommand) {
@@ -165,7 +165,7 @@ TYPED_TEST(JointControllerTyped, ABadTimeStepFaultsEveryJointAndHoldsEveryComman
   EXPECT_EQ(out.status, Status::InvalidTimeStep);
   for (std::size_t i = 0; i < kJoints; ++i) {
     EXPECT_EQ(out.joint_status[i], Status::InvalidTimeStep);
-    EXPECT_EQ(out.torque_nm[i], first.torque_nm[i]);
+    EXPECT_EQ(out.output[i], first.output[i]);
   }
 }
 
@@ -189,7 +189,7 @@ TEST(JointController, PrototypeConstructorCopiesOneControllerIntoEveryJoint) {
   ASSERT_EQ(out.status, Status::Ok);
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(controller.joint(i).gains().kp, 2.0);
-    EXPECT_NEAR(out.torque_nm[i], 2.0 * (i + 1.0) + 0.5 * (i + 1.0) * 0.01, 1e-12);
+    EXPECT_NEAR(out.output[i], 2.0 * (i + 1.0) + 0.5 * (i + 1.0) * 0.01, 1e-12);
   }
 }
 

@@ -21,7 +21,9 @@ struct JointInput {
   JointVector<Scalar, N> desired_velocity_rad_s{};
   JointVector<Scalar, N> measured_position_rad{};
   JointVector<Scalar, N> measured_velocity_rad_s{};
-  JointVector<Scalar, N> feed_forward_nm{};  // added to each joint's output
+  // Added to each joint's output, in the output's units (N·m, or rad/s² with gains normalised by
+  // inertia).
+  JointVector<Scalar, N> feed_forward{};
 };
 
 // The commands of one tick. A joint whose input is faulty holds its previous command and reports
@@ -29,9 +31,10 @@ struct JointInput {
 // the per-joint statuses.
 template <class Scalar, std::size_t N>
 struct JointOutput {
-  // The controllers' outputs: joint torques, N·m, with gains in N·m/rad (gains normalised by
-  // inertia give accelerations here instead, rad/s²).
-  JointVector<Scalar, N> torque_nm{};
+  // The controllers' outputs u: joint torques, N·m, with gains in N·m/rad, or accelerations,
+  // rad/s², with gains normalised by inertia (controller files' acceleration units; the caller
+  // applies J^_i u_i). No unit in the name because it is the gains' choice.
+  JointVector<Scalar, N> output{};
   std::array<Status, N> joint_status{};
   Status status = Status::Ok;
 };
@@ -69,7 +72,7 @@ class JointController {
       joint.measurement = in.measured_position_rad[i];
       joint.setpoint_rate = in.desired_velocity_rad_s[i];
       joint.measurement_rate = in.measured_velocity_rad_s[i];
-      joint.feed_forward = in.feed_forward_nm[i];
+      joint.feed_forward = in.feed_forward[i];
       const Status s = joints_[i].update(joint, dt_s);
       joint_status[i] = s;
       status = worst(status, s);

@@ -43,7 +43,7 @@ class JointControllers {
                                                               const JointConfigs& configs,
                                                               std::string& error);
 
-  // One tick of all joints (see control::JointController::step); the outputs (torque_nm) are
+  // One tick of all joints (see control::JointController::step); the outputs (`output`) are
   // in the controller's units (rad/s² with acceleration units).
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
     return visit_joints(joints_, [&](auto& joints) noexcept { return joints.step(in, dt_s); });

@@ -16,5 +16,5 @@ int main() {
     std::fprintf(stderr, "load failed: %s\n", loaded.error.c_str());
     return 1;
   }
-  return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
+  return out.status == fuzzypid::Status::Ok && out.output[0] > 0.0 ? 0 : 1;
 }

@@ -29,6 +29,6 @@ int main(int argc, char** argv) {
   controller::Input in;
   in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
   const controller::Command out = joints->step(in, spec.units.tick_s);
-  std::printf("%s: u1 = %.6g\n", controller::to_string(spec.family), out.torque_nm[0]);
-  return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
+  std::printf("%s: u1 = %.6g\n", controller::to_string(spec.family), out.output[0]);
+  return out.status == fuzzypid::Status::Ok && out.output[0] > 0.0 ? 0 : 1;
 }

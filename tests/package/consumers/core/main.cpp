@@ -7,5 +7,5 @@ int main() {
   in.desired_position_rad = {0.1, 0, 0, 0, 0, 0};
   const auto out = controller.step(in, 0.05);
   // Kp e = 4 * 0.1 plus the retuned gain's share: the command must be positive and finite.
-  return out.status == fuzzypid::Status::Ok && out.torque_nm[0] > 0.0 ? 0 : 1;
+  return out.status == fuzzypid::Status::Ok && out.output[0] > 0.0 ? 0 : 1;
 }
