@@ -336,6 +336,21 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
         tu.stages.push_back(rec);
       }
     }
+    if (const toml::array* front = t->array("front", false)) {
+      for (const toml::node& entry : *front) {
+        const auto* ft = entry.as_table();
+        if (ft == nullptr)
+          t->fail(entry,
+                  "front entries must be { objective = \"...\", training = x, validation = x }");
+        TableReader fr(*ft, file);
+        FrontObjective f;
+        f.name = fr.text("objective");
+        f.training = fr.number("training", std::nullopt, true);
+        f.validation = fr.number("validation", std::numeric_limits<double>::quiet_NaN(), true);
+        fr.finish();
+        tu.front.push_back(f);
+      }
+    }
     if (auto g = t->table("regulariser", false)) {
       TableRegulariser reg;
       reg.symmetry = g->text("symmetry");
@@ -555,6 +570,15 @@ std::string to_toml(const ControllerSpec& s) {
              (std::isnan(st.validation_cost)
                   ? std::string()
                   : ", validation_cost = " + format_double(st.validation_cost)) +
+             " },\n";
+      o += "]\n";
+    }
+    if (!t.front.empty()) {
+      o += "front = [  # this point's objectives (fuzzypid tune --objectives), all minimised\n";
+      for (const FrontObjective& f : t.front)
+        o += "  { objective = " + quoted(f.name) + ", training = " + format_double(f.training) +
+             (std::isnan(f.validation) ? std::string()
+                                       : ", validation = " + format_double(f.validation)) +
              " },\n";
       o += "]\n";
     }

@@ -16,15 +16,12 @@ namespace fuzzypid::tune {
 
 namespace {
 
-// The terms of one run's cost.
-struct RunCost {
-  double itae = 0.0, overshoot = 0.0, chatter = 0.0, effort = 0.0;
-  bool faulted = false;
-};
+using detail::RunCost;
 
-// The chatter and effort terms of a run's rows (tick-major, joints 1..6), unweighted.
+// The chatter and effort terms of a run's rows (tick-major, joints 1..6), unweighted; with
+// `metrics` also the unlimited reversal share and the effort share summed over the joints.
 void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::JointVector& limit,
-                 double chatter_limit_pct, double& chatter, double& effort) {
+                 double chatter_limit_pct, double& chatter, double& effort, RunCost* metrics) {
   const std::size_t ticks = rows.size() / robot::kNumJoints;
   std::vector<double> u(ticks);
   chatter = 0.0;
@@ -35,15 +32,29 @@ void drive_terms(const std::vector<sim::TrajectoryRow>& rows, const robot::Joint
       u[k] = rows[k * robot::kNumJoints + j].u;
       sum_sq += u[k] * u[k];
     }
-    chatter += std::max(0.0, sim::reversals_pct(u) - chatter_limit_pct) / 100.0;
+    const double reversals = sim::reversals_pct(u);
+    chatter += std::max(0.0, reversals - chatter_limit_pct) / 100.0;
+    double share = 0.0;
     if (ticks > 0 && limit[j] > 0.0 && std::isfinite(limit[j]))
-      effort += std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
+      share = std::sqrt(sum_sq / static_cast<double>(ticks)) / limit[j];
+    effort += share;
+    if (metrics != nullptr) {
+      metrics->reversals_pct += reversals;
+      metrics->effort_share += share;
+    }
   }
 }
 
-// The cost of one run; `faulted` set when it adds only the fault cost.
+double total(const RunCost& r, const Objective& o) {
+  return r.faulted ? o.fault_cost : r.itae + r.overshoot + r.chatter + r.effort;
+}
+
+}  // namespace
+
+namespace detail {
+
 RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const ControllerSpec& spec,
-                 const Objective& o) {
+                 const Objective& o, bool metrics) {
   sim::RunLimits limits;
   limits.max_error_rad = o.divergence_rad;
   const sim::RunResult r = ex.run(c, spec, limits);
@@ -54,25 +65,24 @@ RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const Contr
     for (const auto& j : m) {
       out.itae += j.itae;
       out.overshoot += o.overshoot_weight * std::max(0.0, j.overshoot_pct - o.overshoot_bound_pct);
+      if (metrics) out.overshoot_pct += j.overshoot_pct;
     }
-    if (o.chatter_weight != 0.0 || o.effort_weight != 0.0) {
+    if (o.chatter_weight != 0.0 || o.effort_weight != 0.0 || metrics) {
       double chatter = 0.0, effort = 0.0;
       drive_terms(r.rows, ex.output_limit(c, spec.units.gains), o.chatter_limit_pct, chatter,
-                  effort);
+                  effort, metrics ? &out : nullptr);
       out.chatter = o.chatter_weight * chatter;
       out.effort = o.effort_weight * effort;
     }
     if (!std::isfinite(out.itae + out.overshoot + out.chatter + out.effort)) out.faulted = true;
+    if (metrics && !std::isfinite(out.effort_share + out.reversals_pct + out.overshoot_pct))
+      out.faulted = true;
   }
-  if (out.faulted) return RunCost{0.0, 0.0, 0.0, 0.0, true};
+  if (out.faulted) return RunCost{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, true};
   return out;
 }
 
-double total(const RunCost& r, const Objective& o) {
-  return r.faulted ? o.fault_cost : r.itae + r.overshoot + r.chatter + r.effort;
-}
-
-}  // namespace
+}  // namespace detail
 
 namespace detail {
 
@@ -87,18 +97,7 @@ ExperimentOf experiments_of(const sim::ExperimentSet& set, std::size_t n) {
   return out;
 }
 
-Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
-                 const std::vector<sim::Condition>& conditions, const ControllerSpec& spec,
-                 const Objective& o) {
-  const std::size_t n = conditions.size();
-  std::vector<RunCost> runs(n);
-  const auto one = [&](std::size_t k) { runs[k] = run_cost(*ex[k], conditions[k], spec, o); };
-  if (arena != nullptr && n > 1) {
-    arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
-  } else {
-    for (std::size_t k = 0; k < n; ++k)
-      one(k);
-  }
+Cost sum(const std::vector<RunCost>& runs, const Objective& o) {
   Cost c;
   for (const RunCost& r : runs) {  // fixed order: the same sum with any thread count
     c.total += total(r, o);
@@ -109,6 +108,23 @@ Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
     c.faulted_runs += r.faulted ? 1 : 0;
   }
   return c;
+}
+
+Cost evaluate_in(tbb::task_arena* arena, const ExperimentOf& ex,
+                 const std::vector<sim::Condition>& conditions, const ControllerSpec& spec,
+                 const Objective& o) {
+  const std::size_t n = conditions.size();
+  std::vector<RunCost> runs(n);
+  const auto one = [&](std::size_t k) {
+    runs[k] = run_cost(*ex[k], conditions[k], spec, o, false);
+  };
+  if (arena != nullptr && n > 1) {
+    arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, one); });
+  } else {
+    for (std::size_t k = 0; k < n; ++k)
+      one(k);
+  }
+  return sum(runs, o);
 }
 
 }  // namespace detail

@@ -10,141 +10,68 @@
 #include "evaluation.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/sim/certify.hpp"
+#include "search.hpp"
 
 namespace fuzzypid::tune {
 
 namespace {
 
-using detail::evaluate_in;
 using detail::ExperimentOf;
 using detail::experiments_of;
 using detail::same_experiment;
-using detail::visits_in;
-
-// The runs of the controllers of one evaluation: training and validation conditions.
-struct Split {
-  ExperimentOf training_ex, validation_ex;
-  std::vector<sim::Condition> training, validation;
-};
-
-Split split(const ExperimentOf& ex, const std::vector<sim::Condition>& conditions,
-            std::size_t validation) {
-  Split s;
-  const std::size_t n = conditions.size() - validation;
-  s.training_ex.assign(ex.begin(), ex.begin() + static_cast<std::ptrdiff_t>(n));
-  s.validation_ex.assign(ex.begin() + static_cast<std::ptrdiff_t>(n), ex.end());
-  s.training.assign(conditions.begin(), conditions.begin() + static_cast<std::ptrdiff_t>(n));
-  s.validation.assign(conditions.begin() + static_cast<std::ptrdiff_t>(n), conditions.end());
-  return s;
-}
-
-bool check_options(const Options& options, std::size_t conditions, std::string& error) {
-  if (options.validation >= conditions) {
-    error = "no training conditions (" + std::to_string(conditions) + " given, " +
-            std::to_string(options.validation) + " held back for validation)";
-    return false;
-  }
-  if (const std::string bad = controller::validate(options.base); !bad.empty()) {
-    error = "base controller: " + bad;
-    return false;
-  }
-  const Objective& o = options.objective;
-  if (!std::isfinite(o.overshoot_bound_pct) || o.overshoot_bound_pct < 0 ||
-      !std::isfinite(o.overshoot_weight) || o.overshoot_weight < 0 ||
-      !std::isfinite(o.fault_cost) || o.fault_cost < 0 || !(o.divergence_rad > 0) ||
-      !(o.chatter_weight >= 0.0 && std::isfinite(o.chatter_weight)) ||
-      !(o.effort_weight >= 0.0 && std::isfinite(o.effort_weight)) ||
-      !(o.chatter_limit_pct >= 0.0 && o.chatter_limit_pct <= 100.0)) {
-    error =
-        "objective weights must be finite and >= 0, the divergence bound > 0, the chatter limit "
-        "within 0 .. 100 %";
-    return false;
-  }
-  return true;
-}
 
 std::optional<Result> tune_on(const ExperimentOf& experiment,
                               const std::vector<sim::Condition>& conditions, const Options& options,
                               std::string& error) {
-  if (!check_options(options, conditions.size(), error)) return std::nullopt;
-  const Split data = split(experiment, conditions, options.validation);
-  const unsigned threads = std::max(1u, options.threads);
-  std::unique_ptr<tbb::task_arena> arena;
-  if (threads > 1) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
-
-  // The start, as a controller of the family; it also says which table cells are visited.
-  // With --init the start must convert exactly; without one the base is only the template of
-  // units, options and rule base (a fuzzy-rules table starts at ones).
-  ControllerSpec start_spec;
-  if (options.init) {
-    if (!convert(*options.init, options.family, start_spec, error)) return std::nullopt;
-  } else if (std::string ignored; !convert(options.base, options.family, start_spec, ignored)) {
-    start_spec = options.base;
-    start_spec.family = options.family;
-    start_spec.tuning.reset();
-    if (controller::family_traits(options.family).rule_table) {
-      start_spec.supervisor.rule_table = controller::RuleTableSpec{};
-      start_spec.supervisor.rule_file.clear();
-      start_spec.supervisor.rule_model.reset();
-    }
-  }
-  const ControllerSpec* start = &start_spec;
-  VisitMap visit_map{};
-  if (controller::family_traits(options.family).rule_table &&
-      options.table.unvisited == Unvisited::Seed)
-    visit_map = visits_in(arena.get(), data.training_ex, data.training, *start);
-  auto space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error,
-                                      options.search_filter);
-  if (!space) return std::nullopt;
-
-  // The default box moves with the training tick when all training conditions share one.
-  std::vector<SearchBox> box = space->box();
-  if (start->units.form == controller::PidForm::PerTick && !data.training_ex.empty()) {
-    const double tick = data.training_ex.front()->options().tick_s;
-    bool one_tick = true;
-    for (const sim::Experiment* e : data.training_ex)
-      one_tick = one_tick && e->options().tick_s == tick;
-    if (one_tick) box = box_for_tick(box, options.family, start->units.tick_s, tick);
-  }
-  for (const SearchBox& b : options.box) {
-    const auto it =
-        std::find_if(box.begin(), box.end(), [&](const SearchBox& d) { return d.name == b.name; });
-    if (it == box.end()) {
-      error = "the " + std::string(controller::to_string(options.family)) +
-              " family has no parameter '" + b.name + "'";
+  detail::Search search;
+  if (!detail::prepare(experiment, conditions, options, options.objective.requires_margins(), false,
+                       search, error))
+    return std::nullopt;
+  const detail::Split& data = search.data;
+  const unsigned threads = search.threads;
+  const ControllerSpec* start = &search.start;
+  const auto& space = search.space;
+  const std::vector<SearchBox>& box = search.box;
+  tbb::task_arena* const arena = search.arena.get();
+  const Objective& o = options.objective;
+  // Margins required: every candidate's frozen-gain margins over the training plants are checked
+  // before it is simulated.
+  const detail::ConditionSet& training_set = search.training;
+  const std::optional<sim::PlantRanges>& ranges = training_set.ranges;
+  detail::Runner runner(arena, options.transport, *space, o, {&search.training, &search.validation},
+                        false);
+  if (runner.worker()) {
+    const std::vector<double> chosen = runner.serve();
+    if (chosen.empty()) {
+      error = "rank 0 stopped the search";
       return std::nullopt;
     }
-    *it = b;
-  }
-  const Objective& o = options.objective;
-  // Margins required: the plants of the training conditions, computed once; every candidate's
-  // frozen-gain margins over them are checked before it is simulated.
-  std::optional<sim::PlantRanges> ranges;
-  double delay_s = 0.0;
-  if (o.requires_margins()) {
-    ranges = sim::plant_ranges(data.training, data.training_ex, error);
-    if (!ranges) return std::nullopt;
-    delay_s = sim::largest_delay_s(data.training);
+    Result served;
+    served.served = true;
+    served.controller = space->to_spec(chosen);
+    return served;
   }
   const double infeasible_cost = static_cast<double>(data.training.size() + 1) * o.fault_cost;
+  const auto cost_of = [&](const std::vector<double>& x, int set) {
+    return detail::sum(runner.run({x}, set, false).runs, o);
+  };
   const auto objective = [&](const std::vector<double>& x) {
     const ControllerSpec spec = space->to_spec(x);
     if (ranges) {
       std::string ignored;
-      const auto cert = sim::certify(spec, *ranges, screening_options(delay_s), ignored);
+      const auto cert =
+          sim::certify(spec, *ranges, screening_options(training_set.delay_s), ignored);
       const double shortfall = cert ? margin_shortfall(*cert, o) : 1.0;
       // More than any feasible candidate (whose runs cost at most fault_cost each), and less the
       // closer it comes: the search is led back to the feasible region.
       if (shortfall > 0.0) return infeasible_cost * (1.0 + shortfall);
     }
-    const Cost c = evaluate_in(arena.get(), data.training_ex, data.training, spec, o);
-    return c.total + space->penalty(spec);
+    return cost_of(x, 0).total + space->penalty(spec);
   };
   // Early stopping: every new best point of the search is scored on the validation conditions;
   // the result is the one that scores best there.
   std::vector<double> chosen;
   std::optional<Cost> chosen_validation;
-  std::uint64_t validation_runs = 0;
   MinimizeOptions mo;
   mo.budget = options.budget;
   mo.seed = options.seed;
@@ -154,9 +81,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   if (!data.validation.empty())
     mo.improved = [&](const std::vector<double>& x, double f) {
       if (ranges && f >= infeasible_cost) return;  // below the required margins
-      const Cost v =
-          evaluate_in(arena.get(), data.validation_ex, data.validation, space->to_spec(x), o);
-      ++validation_runs;
+      const Cost v = cost_of(x, 1);
       if (!chosen_validation || v.total <= chosen_validation->total) {
         chosen_validation = v;
         chosen = x;
@@ -171,7 +96,8 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   result.population = m->population;
   result.wall_s = m->wall_s;
   result.controller = space->to_spec(chosen);
-  result.cost = evaluate_in(arena.get(), data.training_ex, data.training, result.controller, o);
+  result.cost = cost_of(chosen, 0);
+  runner.finish(chosen);
   result.penalty = space->penalty(result.controller);
   result.validation = chosen_validation;
   controller::Tuning t;
@@ -222,6 +148,11 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
          r->validation ? r->validation->total : std::numeric_limits<double>::quiet_NaN()});
     init = r->controller;
     results.push_back(std::move(*r));
+  }
+  if (results.back().served) {  // another rank's stages: nothing of its own to choose
+    Result served;
+    served.served = true;
+    return served;
   }
   // Every stage's result as a controller of the last family (exact), chosen by validation.
   std::size_t pick = results.size() - 1;

@@ -211,6 +211,14 @@ struct StageRecord {
   double validation_cost = std::numeric_limits<double>::quiet_NaN();  // NaN: no validation set
 };
 
+// One objective of a point of a front (`fuzzypid tune --objectives`, tune/front.hpp): its name
+// and its value on the training conditions and on the validation ones (NaN: none held back).
+struct FrontObjective {
+  std::string name;
+  double training = 0.0;
+  double validation = std::numeric_limits<double>::quiet_NaN();
+};
+
 // How a fuzzy-rules table was kept readable and safe where training never goes (tune/).
 struct TableRegulariser {
   std::string symmetry = "even";   // even | odd | none (tune::kSymmetryNames)
@@ -247,6 +255,7 @@ struct Tuning {
   std::uint64_t validation_conditions = 0;
   double validation_cost = std::numeric_limits<double>::quiet_NaN();
   std::optional<TableRegulariser> regulariser;  // fuzzy-rules only
+  std::vector<FrontObjective> front;            // a point of a front: its objectives
 };
 
 // What `fuzzypid certify` found for the controller (sim/certify.hpp, docs/margins.md) over the

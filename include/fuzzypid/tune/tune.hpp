@@ -41,6 +41,7 @@
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/parameters.hpp"
+#include "fuzzypid/tune/transport.hpp"
 
 namespace fuzzypid::tune {
 
@@ -139,6 +140,9 @@ struct Options {
   std::size_t validation = 0;
   // Called after every generation (and once at the end); may print.
   std::function<void(const Progress&)> progress;
+  // The ranks sharing the runs (transport.hpp); null: this process alone. Every rank calls the
+  // same function with the same options and conditions; only rank 0's result holds a controller.
+  const Transport* transport = nullptr;
 };
 
 struct Result {
@@ -150,6 +154,7 @@ struct Result {
   std::uint64_t evaluations = 0;
   std::uint64_t population = 0;
   double wall_s = 0.0;
+  bool served = false;  // a rank other than 0: it ran rank 0's runs and holds no result
 };
 
 // Tunes on `conditions` (the last options.validation of them held back); returns nullopt with
