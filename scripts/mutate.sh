@@ -25,6 +25,7 @@ mutants=(
   "pid_config_drops_derivative_on|src/controller/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
   "incremental_gain_update_ignored|include/fuzzypid/controller/families/fuzzy.hpp|s/config.gain_update = spec.supervisor.gain_update;/config.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
   "family_dispatch_always_first|include/fuzzypid/controller/families.hpp|s/(family.index() == I ?/(I == 0 ?/|bin:test_sixth_family bin:test_controller_file"
+  "runner_worker_takes_rank0_block|src/tune/runner.cpp|s/block_begin(jobs, transport_->rank, transport_->size),/block_begin(jobs, transport_->rank - 1, transport_->size),/|bin:test_front"
   "tuner_swaps_output_scales|src/tune/parameters.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune bin:test_parameters"
   "mc_friction_from_payload_draw|src/sim/condition_set.cpp|s/(friction.second - friction.first) \* u_friction;/(friction.second - friction.first) * u_payload;/|bin:test_condition_set"
   # Our own: the core.
