@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numeric>
-#include <stdexcept>
+#include <exception>
+#include <limits>
 
 #include "evaluation.hpp"
 #include "fuzzypid/controller/families.hpp"

@@ -82,10 +82,6 @@ RunCost run_cost(const sim::Experiment& ex, const sim::Condition& c, const Contr
   return out;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 ExperimentOf same_experiment(const sim::Experiment& ex, std::size_t n) {
   return ExperimentOf(n, &ex);
 }

@@ -6,6 +6,8 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "evaluation.hpp"
@@ -120,9 +122,15 @@ Runner::Batch Runner::run(const std::vector<std::vector<double>>& xs, int set, b
   } else {
     records = compute(xs, set, margins, 0, jobs);
   }
+  // A rank answering another number of records breaks the protocol: an exception (tune_front
+  // reports it as its error), never a batch read short.
+  if (records.size() != jobs * kRecord)
+    throw std::runtime_error("the ranks answered " + std::to_string(records.size()) +
+                             " values for " + std::to_string(jobs) + " runs of " +
+                             std::to_string(kRecord));
   Batch b;
   b.runs.reserve(xs.size() * cs.conditions.size());
-  for (std::size_t j = 0; j < jobs && (j + 1) * kRecord <= records.size(); ++j) {
+  for (std::size_t j = 0; j < jobs; ++j) {
     const double* r = &records[j * kRecord];
     if (j % per < cs.conditions.size()) {
       b.runs.push_back(RunCost{r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7] != 0.0});

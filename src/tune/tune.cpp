@@ -2,10 +2,8 @@
 
 #include <oneapi/tbb/task_arena.h>
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
-#include <memory>
+#include <utility>
 
 #include "evaluation.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"

@@ -144,6 +144,33 @@ TEST_F(FrontOnTheRobot, PointsAreMutuallyNonDominatedAndRecordTheirObjectives) {
     EXPECT_LE(training[k - 1][0], training[k][0]);  // by training ITAE
 }
 
+TEST_F(FrontOnTheRobot, APointsFileReadsBackWithItsObjectivesAndABadEntryIsRefused) {
+  const auto f = front(options(1));
+  ASSERT_TRUE(f && !f->points.empty());
+  controller::ControllerSpec point = f->points.front().controller;
+  point.tuning->conditions = "conditions.toml";  // the caller names them, as for tune()
+  point.tuning->set = "training";
+  const std::string text = cf::to_toml(point);
+  controller::ControllerSpec back;
+  fuzzypid::FileError error;
+  ASSERT_TRUE(cf::parse(text, "point.toml", back, error)) << error.to_string() << "\n" << text;
+  ASSERT_TRUE(back.tuning);
+  const auto& want = f->points.front().controller.tuning->front;
+  ASSERT_EQ(back.tuning->front.size(), want.size());
+  for (std::size_t m = 0; m < want.size(); ++m) {
+    EXPECT_EQ(back.tuning->front[m].name, want[m].name);
+    EXPECT_EQ(back.tuning->front[m].training, want[m].training);
+    EXPECT_EQ(back.tuning->front[m].validation, want[m].validation);
+  }
+  const std::size_t at = text.find("\nfront = [");
+  ASSERT_NE(at, std::string::npos);
+  std::string bad = text;
+  bad.insert(text.find('\n', at + 1) + 1, "  1,\n");  // a number where an entry belongs
+  EXPECT_FALSE(cf::parse(bad, "bad.toml", back, error));
+  EXPECT_NE(error.to_string().find("front entries must be"), std::string::npos)
+      << error.to_string();
+}
+
 TEST_F(FrontOnTheRobot, TheFrontIsTheSameWithAnyThreadCount) {
   const auto one = front(options(1));
   const auto two = front(options(2));

@@ -51,7 +51,10 @@ struct FrontState {
 };
 
 struct FrontOptions {
-  Options tune;                    // everything but the scalar weights of tune.objective
+  // The family, budget, seed, threads, population, box, start and split as tune() takes them;
+  // tune.objective gives the fault cost, the divergence bound and any required margins, and its
+  // weights only the scalar cost each point records (training_cost, validation_cost).
+  Options tune;
   std::vector<Metric> objectives;  // 2 .. 5, distinct, in the order of every objective vector
   // Continue from this state (of a search with the same options); empty: start afresh.
   std::optional<FrontState> resume;
