@@ -76,6 +76,14 @@ class OutputSet {
 
   // The open file of names[index].
   [[nodiscard]] std::FILE* file(std::size_t index) const { return files_.at(index); }
+  // Opens one more file of the set, `name` (a plain file name, not one of the set's yet), for a
+  // set whose names are known only once its contents are: its index is the next one. Null and
+  // `error` on failure; the set stays usable.
+  [[nodiscard]] std::FILE* add(const std::string& name, std::string& error);
+  // Files of the target whose names start with `prefix` are the set's own: at the commit those
+  // not written again are left out instead of carried over (a front of fewer points than the
+  // last one's leaves no stale point files).
+  void replace_all_starting_with(const std::string& prefix) { owned_prefix_ = prefix; }
   // The directory being written (the temporary one until commit).
   [[nodiscard]] const std::string& temporary_dir() const { return temp_dir_; }
 
@@ -97,6 +105,7 @@ class OutputSet {
   std::vector<std::string> names_;
   std::vector<std::FILE*> files_;
   std::vector<int> signal_slots_;  // the paths a signal removes
+  std::string owned_prefix_;       // replace_all_starting_with
   bool done_ = false;
 };
 

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
@@ -128,6 +129,31 @@ std::unique_ptr<OutputSet> OutputSet::open(const std::string& dir,
   return set;
 }
 
+std::FILE* OutputSet::add(const std::string& name, std::string& error) {
+  if (done_) {
+    error = "the output set was already committed or discarded";
+    return nullptr;
+  }
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos ||
+      std::find(names_.begin(), names_.end(), name) != names_.end()) {
+    error = "cannot add '" + name + "' to the output set: not a new plain file name";
+    return nullptr;
+  }
+  const std::string path = temp_dir_ + "/" + name;
+  const int slot = remove_on_signal_add(path, Removal::Unlink);
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) {
+    error = "cannot write " + path + ": " + errno_text(errno);
+    std::vector<int> slots{slot};
+    remove_on_signal_drop(slots);
+    return nullptr;
+  }
+  signal_slots_.push_back(slot);
+  names_.push_back(name);
+  files_.push_back(f);
+  return f;
+}
+
 OutputSet::~OutputSet() {
   if (!done_) discard();
 }
@@ -184,7 +210,7 @@ bool OutputSet::commit(std::string& error) {
     // swap), then swap the directories.
     for (const fs::directory_entry& entry : fs::directory_iterator(target_, ec)) {
       const std::string file_name = entry.path().filename().string();
-      bool ours = false;
+      bool ours = !owned_prefix_.empty() && file_name.rfind(owned_prefix_, 0) == 0;
       for (const std::string& n : names_)
         ours = ours || n == file_name;
       if (ours) continue;

@@ -1,9 +1,13 @@
 // `fuzzypid tune`: robust tuning of a controller family on a condition set (docs/tuning.md), and
 // `fuzzypid export-header`: a controller file as a self-contained C++ header.
+#include <signal.h>
+
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cinttypes>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +22,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "front_checkpoint.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
@@ -26,7 +31,9 @@
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/tune/front.hpp"
 #include "fuzzypid/tune/tune.hpp"
+#include "fuzzypid_support/bounded_read.hpp"
 #include "output_files.hpp"
 #include "robot_options.hpp"
 
@@ -90,7 +97,26 @@ struct TuneOptions {
   bool quiet = false;
   bool search_filter = true;
   GivenOptions given;
+  // A front (--objectives): its folder, and the checkpoint written after every generation and the
+  // one resumed from.
+  std::string objectives, front_out, checkpoint, resume;
+  // The ranks sharing the runs (null: this process alone); asked once the options are parsed.
+  std::function<const tune::Transport*()> transport;
 };
+
+// "itae,effort" -> the metrics, in order; empty when any name is unknown or repeated.
+std::vector<tune::Metric> parse_objectives(const std::string& text) {
+  std::vector<tune::Metric> out;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const auto m = fuzzypid::parse_enum(tune::kMetricNames, text.substr(begin, end - begin));
+    if (!m || std::find(out.begin(), out.end(), *m) != out.end()) return {};
+    out.push_back(*m);
+    begin = end + 1;
+  }
+  return out;
+}
 
 // The largest total budget: --budget's own upper bound, which the stages' sum may not pass either.
 constexpr std::uint64_t kMaxBudget = 100000000;
@@ -120,20 +146,384 @@ bool parse_stages(const std::string& text, std::vector<tune::Stage>& stages, std
   return !stages.empty();
 }
 
-int run_tune(const TuneOptions& t) {
-  // The output is checked before anything else: a refused --out never costs the budget.
-  if (const std::string bad = check_output_path(
-          t.out, {t.conditions, t.base_file, t.init_file, robot::default_urdf_path()});
-      !bad.empty()) {
-    std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+// How a result stands once its record is complete: its margins over the training conditions and
+// whether it misses a margin the options require (judged as the search judged it).
+struct Completion {
+  sim::MarginSummary margins;
+  bool short_of_required = false;
+};
+
+// Completes the tuning record of `spec`, to be written to `out`: every file name in it relative to
+// out's folder, as a reader resolves it (the rule file, named relative to the folder of the file it
+// came from, the base or else the start; the conditions, robots, paths and start), the files'
+// hashes, the tick, the set and the description; and its [margins] and certificate over the
+// training conditions (validation ones included). Progress notes go to stderr unless --quiet.
+std::optional<Completion> complete_record(const TuneOptions& t, const std::string& out,
+                                          controller::Family family, const tune::Options& opt,
+                                          const sim::ConditionSet& training,
+                                          const sim::ExperimentSet& experiments,
+                                          controller::ControllerSpec& spec, std::string& error) {
+  if (!spec.supervisor.rule_file.empty()) {
+    const std::filesystem::path from =
+        std::filesystem::path(t.base_file.empty() ? t.init_file : t.base_file).parent_path();
+    spec.supervisor.rule_file =
+        path_from_folder_of(out, (from / spec.supervisor.rule_file).string());
+  }
+  controller::Tuning& record = *spec.tuning;
+  record.conditions = path_from_folder_of(out, t.conditions);
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    const sim::RobotSetup& setup = experiments.experiment(k).setup();
+    const auto add = [&](const char* kind, const std::string& file) {
+      const std::string written = path_from_folder_of(out, file);
+      for (const auto& f : record.trained_on)
+        if (f.kind == kind && f.file == written) return;
+      record.trained_on.push_back({kind, written, cf::file_hash(file)});
+    };
+    if (!setup.urdf.empty()) add("urdf", setup.urdf);
+    if (!setup.path.empty()) add("path", setup.path);
+  }
+  {
+    double tick = experiments.experiment(0).options().tick_s;
+    for (std::size_t k = 1; k < experiments.size(); ++k)
+      if (experiments.experiment(k).options().tick_s != tick) tick = 0.0;
+    record.tick_s = tick;
+  }
+  record.set = t.set;
+  if (!t.init_file.empty()) record.init = path_from_folder_of(out, t.init_file);
+  spec.description = "tuned " + std::string(controller::to_string(family)) + " on " + t.conditions +
+                     " [" + t.set + "]";
+  sim::CertifyOptions co;
+  co.delay_s = sim::largest_delay_s(training.conditions);
+  const auto cert = sim::certify(spec, training.conditions, experiments, co, error);
+  if (!cert) return std::nullopt;
+  spec.margins = sim::margin_record(*cert);
+  spec.margins->conditions = record.conditions;
+  spec.margins->set = t.set;
+  Completion done;
+  done.margins = sim::summarize(*cert);
+  if (!t.quiet)
+    std::fprintf(stderr,
+                 "fuzzypid tune: margins over the training plants: disk %.3f, gain %.2f dB, "
+                 "phase %.1f deg, delay %.1f ms; %s\n",
+                 done.margins.disk_margin, done.margins.gain_margin_db,
+                 done.margins.phase_margin_deg, done.margins.delay_margin_ms,
+                 cert->verdict.c_str());
+  // The requirement is judged as the search judged it: on the training conditions (the
+  // validation ones held back) with the screening options.
+  if (opt.objective.requires_margins()) {
+    const std::vector<sim::Condition> trained(
+        training.conditions.begin(),
+        training.conditions.end() - static_cast<std::ptrdiff_t>(t.validation));
+    const auto screened = sim::certify(
+        spec, trained, experiments, tune::screening_options(sim::largest_delay_s(trained)), error);
+    if (!screened) return std::nullopt;
+    done.short_of_required = tune::margin_shortfall(*screened, opt.objective) > 0.0;
+  }
+  return done;
+}
+
+// Set by SIGINT or SIGTERM while a checkpointed front search runs: the search stops once the
+// generation under way is done and its state saved.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void request_stop(int sig) {
+  g_stop_signal = sig;
+}
+
+// Installs request_stop for SIGINT and SIGTERM while it lives (on every rank, so that a signal
+// mpirun forwards stops no worker before rank 0 is done). The outputs' clean-up then leaves these
+// signals alone: the run ends normally and discards what it has not committed.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    struct sigaction sa {};
+    sa.sa_handler = request_stop;
+    sigemptyset(&sa.sa_mask);
+    for (std::size_t k = 0; k < kSignals.size(); ++k)
+      installed_[k] = sigaction(kSignals[k], &sa, &previous_[k]) == 0;
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  ~StopOnSignal() {
+    for (std::size_t k = 0; k < kSignals.size(); ++k)
+      if (installed_[k]) sigaction(kSignals[k], &previous_[k], nullptr);
+  }
+
+ private:
+  static constexpr std::array<int, 2> kSignals{SIGINT, SIGTERM};
+  std::array<struct sigaction, 2> previous_{};
+  std::array<bool, 2> installed_{};
+};
+
+// A value on one line of a checkpoint.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+std::string exact(double d) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%a", d);
+  return buf;
+}
+
+// What a front search's result depends on: every option that shapes it and the contents of its
+// inputs (not the threads, the ranks or the outputs, which change nothing of it).
+Fingerprint fingerprint_of(const TuneOptions& t, const tune::FrontOptions& fo,
+                           const sim::ConditionSet& training) {
+  const controller::Objective& o = fo.tune.objective;
+  std::string objectives, boxes;
+  for (const tune::Metric m : fo.objectives)
+    objectives +=
+        (objectives.empty() ? "" : ",") + std::string(fuzzypid::name_of(tune::kMetricNames, m));
+  for (const std::string& b : t.boxes)
+    boxes += (boxes.empty() ? "" : " ") + b;
+  const auto hash = [](const std::string& file) {
+    return file.empty() ? std::string("-") : cf::file_hash(file);
+  };
+  Fingerprint f = {
+      {"family", t.family_name},
+      {"objectives", objectives},
+      {"budget", std::to_string(t.budget)},
+      {"seed", std::to_string(t.seed)},
+      {"population", std::to_string(t.population)},
+      {"validation", std::to_string(t.validation)},
+      {"set", one_line(t.set)},
+      {"conditions-fnv1a64", hash(t.conditions)},
+      {"base-fnv1a64", hash(t.base_file)},
+      {"init-fnv1a64", hash(t.init_file)},
+      {"search-filter", t.search_filter ? "yes" : "no"},
+      {"symmetry", t.symmetry},
+      {"unvisited", t.unvisited},
+      {"partition", t.partition},
+      {"smoothness", exact(t.table.smoothness)},
+      {"monotone", exact(t.table.monotone)},
+      {"visit-threshold", exact(t.table.visit_threshold)},
+      {"cell-log10", exact(t.table.cell_log10)},
+      {"overshoot-bound", exact(o.overshoot_bound_pct)},
+      {"overshoot-weight", exact(o.overshoot_weight)},
+      {"fault-cost", exact(o.fault_cost)},
+      {"chatter-weight", exact(o.chatter_weight)},
+      {"chatter-limit", exact(o.chatter_limit_pct)},
+      {"effort-weight", exact(o.effort_weight)},
+      {"min-disk-margin", exact(o.min_disk_margin)},
+      {"min-gain-margin", exact(o.min_gain_margin_db)},
+      {"min-phase-margin", exact(o.min_phase_margin_deg)},
+      {"min-delay-margin", exact(o.min_delay_margin_ms)},
+      {"divergence", exact(o.divergence_rad)},
+      {"box", one_line(boxes.empty() ? "-" : boxes)},
+  };
+  std::vector<std::string> seen;
+  for (const sim::Condition& c : training.conditions)
+    for (const std::string& file : {c.robot.urdf, c.robot.path})
+      if (!file.empty() && std::find(seen.begin(), seen.end(), file) == seen.end()) {
+        seen.push_back(file);
+        f.emplace_back("input-fnv1a64", one_line(file) + " " + hash(file));
+      }
+  return f;
+}
+
+// The largest checkpoint read back: a state of 10^6 members would be far below it.
+constexpr std::size_t kMaxCheckpointBytes = std::size_t{1} << 30;
+
+// `fuzzypid tune --objectives ... --front-out DIR`: the front of `family` written as DIR/front.csv
+// and one controller file per point; `out_set` is null on ranks other than 0.
+int run_front(const TuneOptions& t, controller::Family family, const tune::Options& opt,
+              const sim::ConditionSet& training, const sim::ExperimentSet& experiments,
+              OutputSet* out_set) {
+  tune::FrontOptions fo;
+  fo.tune = opt;
+  fo.objectives = parse_objectives(t.objectives);
+  const Fingerprint fingerprint = fingerprint_of(t, fo, training);
+  std::string error;
+  if (!t.resume.empty() && out_set != nullptr) {
+    std::string text, reason;
+    if (!support::read_file_bounded(t.resume, kMaxCheckpointBytes, text, reason)) {
+      std::fprintf(stderr, "fuzzypid tune: --resume: %s\n", reason.c_str());
+      return kExitFailure;
+    }
+    fo.resume = parse_checkpoint(text, t.resume, fingerprint, error);
+    if (!fo.resume) {
+      std::fprintf(stderr, "fuzzypid tune: --resume: %s\n", error.c_str());
+      return kExitFailure;
+    }
+    if (!t.quiet)
+      std::fprintf(stderr,
+                   "fuzzypid tune: resuming after generation %" PRIu64 " (%" PRIu64
+                   " evaluations) from %s\n",
+                   fo.resume->generation, fo.resume->evaluations, t.resume.c_str());
+  }
+  std::optional<StopOnSignal> stop_on_signal;
+  g_stop_signal = 0;
+  if (!t.checkpoint.empty()) stop_on_signal.emplace();
+  std::string checkpoint_error;
+  if (!t.checkpoint.empty() && out_set != nullptr)
+    fo.generation_done = [&](const tune::FrontState& state) {
+      checkpoint_error =
+          write_output_file(t.checkpoint, checkpoint_text(fingerprint, state), "tune");
+      return checkpoint_error.empty() && g_stop_signal == 0;
+    };
+  auto front = tune::tune_front(experiments, training.conditions, fo, error);
+  if (!front) {
+    std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return kExitUsage;
   }
-  // Held (locked) from here to the commit: a second run writing the same file is refused now, not
-  // after both have spent their budgets and one result has replaced the other.
+  if (front->served) return kExitOk;
+  if (front->stopped) {
+    if (!checkpoint_error.empty()) {
+      std::fprintf(stderr, "fuzzypid tune: --checkpoint: %s; the search stopped, nothing written\n",
+                   checkpoint_error.c_str());
+      return kExitFailure;
+    }
+    std::fprintf(stderr,
+                 "fuzzypid tune: stopped by signal %d; the state after the last whole generation "
+                 "is in %s: run the same command with --resume %s to continue (%s not written)\n",
+                 static_cast<int>(g_stop_signal), t.checkpoint.c_str(), t.checkpoint.c_str(),
+                 t.front_out.c_str());
+    return 128 + static_cast<int>(g_stop_signal);
+  }
+  // Each point's record, as a single result's; points short of a required margin are left out.
+  TuneOptions per_point = t;
+  per_point.quiet = true;  // no margin line per point
+  std::vector<tune::FrontPoint> kept;
+  for (std::size_t k = 0; k < front->points.size(); ++k) {
+    tune::FrontPoint& point = front->points[k];
+    char name[32];
+    std::snprintf(name, sizeof name, "point_%03zu.toml", kept.size());
+    const std::string out = (std::filesystem::path(t.front_out) / name).string();
+    const auto done =
+        complete_record(t, out, family, opt, training, experiments, point.controller, error);
+    if (!done) {
+      std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
+      return kExitFailure;
+    }
+    if (done->short_of_required) {
+      std::fprintf(stderr,
+                   "fuzzypid tune: warning: a front point below the required margins (disk %.3f) "
+                   "is left out\n",
+                   done->margins.disk_margin);
+      continue;
+    }
+    kept.push_back(std::move(point));
+  }
+  if (kept.empty()) {
+    std::fprintf(stderr,
+                 "fuzzypid tune: no point of the front kept the required margins; %s not "
+                 "written\n",
+                 t.front_out.c_str());
+    return kExitFailure;
+  }
+  const bool validation = !kept.front().validation.empty();
+  std::string csv = "point,file";
+  for (const char* prefix : {"", "validation_"}) {
+    if (*prefix != '\0' && !validation) continue;
+    for (const tune::Metric m : fo.objectives)
+      csv += std::string(",") + prefix + fuzzypid::name_of(tune::kMetricNames, m);
+  }
+  csv += '\n';
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "point_%03zu.toml", k);
+    csv += std::to_string(k) + "," + name;
+    char buf[40];
+    for (const auto* values : {&kept[k].training, &kept[k].validation})
+      for (const double v : *values) {
+        std::snprintf(buf, sizeof buf, ",%.17g", v);
+        csv += buf;
+      }
+    csv += '\n';
+    std::FILE* f = out_set->add(name, error);
+    const std::string text = cf::to_toml(kept[k].controller);
+    if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
+      std::fprintf(stderr, "fuzzypid tune: %s: %s\n", t.front_out.c_str(),
+                   f == nullptr ? error.c_str() : std::strerror(errno != 0 ? errno : EIO));
+      return kExitFailure;
+    }
+  }
+  if (std::fwrite(csv.data(), 1, csv.size(), out_set->file(0)) != csv.size() ||
+      !out_set->commit(error)) {
+    std::fprintf(stderr, "fuzzypid tune: %s: %s\n", t.front_out.c_str(),
+                 error.empty() ? std::strerror(errno != 0 ? errno : EIO) : error.c_str());
+    return kExitFailure;
+  }
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    std::printf("point %03zu:", k);
+    for (std::size_t i = 0; i < fo.objectives.size(); ++i)
+      std::printf(" %s %.6g%s", fuzzypid::name_of(tune::kMetricNames, fo.objectives[i]),
+                  kept[k].training[i], i + 1 < fo.objectives.size() ? "," : "");
+    if (validation) {
+      std::printf(" (validation");
+      for (std::size_t i = 0; i < fo.objectives.size(); ++i)
+        std::printf(" %.6g", kept[k].validation[i]);
+      std::printf(")");
+    }
+    std::printf("\n");
+  }
+  const double rate =
+      front->wall_s > 0.0 ? static_cast<double>(front->evaluations) / front->wall_s : 0.0;
+  std::printf("front of family %s: %zu points, %" PRIu64 " evaluations (population %" PRIu64
+              ", %" PRIu64 " generations) in %.1f s, %.1f evaluations/s -> %s\n",
+              controller::to_string(family), kept.size(), front->evaluations, front->population,
+              front->generations, front->wall_s, rate, t.front_out.c_str());
+  return kExitOk;
+}
+
+// True when the file `file` lies in the folder `dir` (both resolved as far as they exist).
+bool lies_in(const std::string& dir, const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(fs::absolute(dir, ec), ec);
+  const fs::path parent = fs::weakly_canonical(fs::absolute(file, ec).parent_path(), ec);
+  return !ec && folder == parent;
+}
+
+int run_tune(const TuneOptions& t) {
+  const bool front = !t.front_out.empty();
+  const tune::Transport* transport = t.transport ? t.transport() : nullptr;
+  // Ranks other than 0 serve runs only: they write, lock and print nothing.
+  const bool writer = transport == nullptr || transport->rank == 0;
+  const bool quiet = t.quiet || !writer;
+  const std::string out_option = front ? "--front-out" : "--out";
+  // "" when the outputs may be written by a run reading `inputs`, else why. A front's folder is
+  // replaced whole, so it may hold no input at all.
+  const auto refuse_outputs = [&](std::vector<std::string> inputs) -> std::string {
+    if (!writer) return "";
+    if (!front) return check_output_path(t.out, inputs);
+    if (std::string bad = check_output_dir(t.front_out, {"front.csv"}, inputs); !bad.empty())
+      return bad;
+    for (const std::string& input : inputs)
+      if (!input.empty() && lies_in(t.front_out, input))
+        return "the front's folder " + t.front_out + " holds the input " + input +
+               ", and it is replaced as a whole: write the front to another folder";
+    if (t.checkpoint.empty()) return "";
+    if (lies_in(t.front_out, t.checkpoint))
+      return "--checkpoint " + t.checkpoint + " lies in the front's folder " + t.front_out +
+             ", which is replaced as a whole: keep it elsewhere";
+    // The checkpoint may be the state it resumes from.
+    inputs.erase(std::remove(inputs.begin(), inputs.end(), t.resume), inputs.end());
+    if (std::string bad = check_output_path(t.checkpoint, inputs); !bad.empty())
+      return "--checkpoint: " + bad;
+    return "";
+  };
+  // The outputs are checked before anything else: a refused output never costs the budget.
+  if (const std::string bad = refuse_outputs(
+          {t.conditions, t.base_file, t.init_file, t.resume, robot::default_urdf_path()});
+      !bad.empty()) {
+    std::fprintf(stderr, "fuzzypid tune: %s: %s\n", out_option.c_str(), bad.c_str());
+    return kExitUsage;
+  }
+  // Held (locked) from here to the commit: a second run writing the same output is refused now,
+  // not after both have spent their budgets and one result has replaced the other.
   std::string open_error;
-  const std::unique_ptr<OutputFile> out_file = OutputFile::open(t.out, open_error, "tune");
-  if (!out_file) {
-    std::fprintf(stderr, "fuzzypid tune: --out: %s\n", open_error.c_str());
+  std::unique_ptr<OutputFile> out_file;
+  std::unique_ptr<OutputSet> out_set;
+  if (writer && !front) out_file = OutputFile::open(t.out, open_error, "tune");
+  if (writer && front) {
+    out_set = OutputSet::open(t.front_out, {"front.csv"}, open_error);
+    if (out_set) out_set->replace_all_starting_with("point_");
+  }
+  if (writer && !out_file && !out_set) {
+    std::fprintf(stderr, "fuzzypid tune: %s: %s\n", out_option.c_str(), open_error.c_str());
     return kExitFailure;
   }
   std::vector<tune::Stage> stages;
@@ -234,8 +624,8 @@ int run_tune(const TuneOptions& t) {
       const std::string rules =
           (std::filesystem::path(t.base_file).parent_path() / opt.base.supervisor.rule_file)
               .string();
-      if (const std::string bad = check_output_path(t.out, {rules}); !bad.empty()) {
-        std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+      if (const std::string bad = refuse_outputs({rules}); !bad.empty()) {
+        std::fprintf(stderr, "fuzzypid tune: %s: %s\n", out_option.c_str(), bad.c_str());
         return kExitUsage;
       }
     }
@@ -299,8 +689,8 @@ int run_tune(const TuneOptions& t) {
   for (const sim::Condition& c : training->conditions)
     for (const std::string& input : {c.robot.urdf, c.robot.path})
       if (!input.empty())
-        if (const std::string bad = check_output_path(t.out, {input}); !bad.empty()) {
-          std::fprintf(stderr, "fuzzypid tune: --out: %s\n", bad.c_str());
+        if (const std::string bad = refuse_outputs({input}); !bad.empty()) {
+          std::fprintf(stderr, "fuzzypid tune: %s: %s\n", out_option.c_str(), bad.c_str());
           return kExitUsage;
         }
   // Each training condition on its own robot and path (keys urdf, path, tick_ms, ...).
@@ -313,13 +703,13 @@ int run_tune(const TuneOptions& t) {
     return 1;
   }
   for (std::size_t k = 0; k < experiments->size(); ++k) {
-    if (!t.quiet) print_robot_note("fuzzypid tune", experiments->experiment(k));
-    print_model_notes("fuzzypid tune", experiments->experiment(k));
+    if (!quiet) print_robot_note("fuzzypid tune", experiments->experiment(k));
+    if (writer) print_model_notes("fuzzypid tune", experiments->experiment(k));
   }
-  for (std::size_t k = 0; k < training->conditions.size(); ++k)
+  for (std::size_t k = 0; writer && k < training->conditions.size(); ++k)
     warn_about_payload("fuzzypid tune", experiments->of(k), training->conditions[k]);
 
-  if (!t.quiet) {
+  if (!quiet) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
@@ -349,6 +739,8 @@ int run_tune(const TuneOptions& t) {
                  t.validation, t.set.c_str(), training->conditions.size());
     return kExitUsage;
   }
+  opt.transport = transport;
+  if (front) return run_front(t, family, opt, *training, *experiments, out_set.get());
   auto result = stages.empty()
                     ? tune::tune(*experiments, training->conditions, opt, error)
                     : tune::tune_staged(*experiments, training->conditions, stages, opt, error);
@@ -356,78 +748,22 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 2;
   }
-  // Every file name written into the result is relative to the result's folder, as a reader
-  // resolves it: the rule file (named relative to the folder of the file it came from, the base or
-  // else the start) and the tuning record's conditions, robots, paths and start.
-  if (!result->controller.supervisor.rule_file.empty()) {
-    const std::filesystem::path from =
-        std::filesystem::path(t.base_file.empty() ? t.init_file : t.base_file).parent_path();
-    result->controller.supervisor.rule_file =
-        path_from_folder_of(t.out, (from / result->controller.supervisor.rule_file).string());
+  if (result->served) return kExitOk;
+  std::optional<Completion> done =
+      complete_record(t, t.out, family, opt, *training, *experiments, result->controller, error);
+  if (!done) {
+    std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
+    return 1;
   }
-  result->controller.tuning->conditions = path_from_folder_of(t.out, t.conditions);
-  for (std::size_t k = 0; k < experiments->size(); ++k) {
-    const sim::RobotSetup& setup = experiments->experiment(k).setup();
-    const auto add = [&](const char* kind, const std::string& file) {
-      const std::string written = path_from_folder_of(t.out, file);
-      for (const auto& f : result->controller.tuning->trained_on)
-        if (f.kind == kind && f.file == written) return;
-      result->controller.tuning->trained_on.push_back({kind, written, cf::file_hash(file)});
-    };
-    if (!setup.urdf.empty()) add("urdf", setup.urdf);
-    if (!setup.path.empty()) add("path", setup.path);
-  }
-  {
-    double tick = experiments->experiment(0).options().tick_s;
-    for (std::size_t k = 1; k < experiments->size(); ++k)
-      if (experiments->experiment(k).options().tick_s != tick) tick = 0.0;
-    result->controller.tuning->tick_s = tick;
-  }
-  result->controller.tuning->set = t.set;
-  if (!t.init_file.empty())
-    result->controller.tuning->init = path_from_folder_of(t.out, t.init_file);
-  result->controller.description = "tuned " + std::string(controller::to_string(family)) + " on " +
-                                   t.conditions + " [" + t.set + "]";
-  // The result's margins and certificate over its training conditions (validation ones
-  // included), recorded in [margins]; a result below a required margin is not written.
-  {
-    sim::CertifyOptions co;
-    co.delay_s = sim::largest_delay_s(training->conditions);
-    const auto cert =
-        sim::certify(result->controller, training->conditions, *experiments, co, error);
-    if (!cert) {
-      std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
-      return 1;
-    }
-    result->controller.margins = sim::margin_record(*cert);
-    result->controller.margins->conditions = result->controller.tuning->conditions;
-    result->controller.margins->set = t.set;
-    const sim::MarginSummary m = sim::summarize(*cert);
-    if (!t.quiet)
-      std::fprintf(stderr,
-                   "fuzzypid tune: margins over the training plants: disk %.3f, gain %.2f dB, "
-                   "phase %.1f deg, delay %.1f ms; %s\n",
-                   m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
-                   cert->verdict.c_str());
-    // The requirement is judged as the search judged it: on the training conditions (the
-    // validation ones held back) with the screening options.
-    const std::vector<sim::Condition> trained(
-        training->conditions.begin(),
-        training->conditions.end() - static_cast<std::ptrdiff_t>(t.validation));
-    const auto screened =
-        opt.objective.requires_margins()
-            ? sim::certify(result->controller, trained, *experiments,
-                           tune::screening_options(sim::largest_delay_s(trained)), error)
-            : std::nullopt;
-    if (screened && tune::margin_shortfall(*screened, opt.objective) > 0.0) {
-      std::fprintf(stderr,
-                   "fuzzypid tune: no candidate within the budget kept the required margins "
-                   "(the best: disk %.3f, gain %.2f dB, phase %.1f deg, delay %.1f ms); %s not "
-                   "written\n",
-                   m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
-                   t.out.c_str());
-      return 1;
-    }
+  if (done->short_of_required) {
+    const sim::MarginSummary& m = done->margins;
+    std::fprintf(stderr,
+                 "fuzzypid tune: no candidate within the budget kept the required margins "
+                 "(the best: disk %.3f, gain %.2f dB, phase %.1f deg, delay %.1f ms); %s not "
+                 "written\n",
+                 m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
+                 t.out.c_str());
+    return 1;
   }
   const std::string text = cf::to_toml(result->controller);
   if (std::fwrite(text.data(), 1, text.size(), out_file->file()) != text.size()) {
@@ -687,7 +1023,35 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--population", t->population,
                   "population size (default 5 x parameters, at least 20)")
       ->check(unsigned_in(7, 100000));
-  cmd->add_option("--out", t->out, "controller file to write")->required();
+  CLI::Option* out = cmd->add_option("--out", t->out, "controller file to write");
+  CLI::Option* objectives =
+      cmd->add_option("--objectives", t->objectives,
+                      "tune a Pareto front over 2 to 5 of itae, effort, chatter, overshoot and "
+                      "margin, comma-separated (pagmo2's NSGA-II; docs/tuning.md, \"Fronts\")")
+          ->check([](const std::string& text) {
+            const std::size_t n = parse_objectives(text).size();
+            return n >= 2 ? std::string()
+                          : "expected 2 to 5 distinct objectives of " +
+                                fuzzypid::names_of(tune::kMetricNames) + ", comma-separated";
+          });
+  CLI::Option* front_out =
+      cmd->add_option("--front-out", t->front_out,
+                      "with --objectives: the folder to write the front to (front.csv and one "
+                      "controller file per point, replaced as a whole)")
+          ->excludes(out);
+  CLI::Option* checkpoint =
+      cmd->add_option("--checkpoint", t->checkpoint,
+                      "with --objectives: write the search's state to this file after every "
+                      "generation (atomically); SIGINT or SIGTERM then stop the search after the "
+                      "generation under way, its state saved")
+          ->needs(objectives);
+  cmd->add_option("--resume", t->resume,
+                  "with --objectives: continue the search whose state this checkpoint holds "
+                  "(the same options; it may also be --checkpoint's file)")
+      ->needs(objectives);
+  objectives->needs(front_out);
+  front_out->needs(objectives);
+  (void)checkpoint;
   cmd->add_option("--base", t->base_file,
                   "controller file whose units, PID options, bounds and rule base the result "
                   "keeps (default: the paper's, acceleration units per tick at 0.05 s)");
@@ -735,7 +1099,12 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                 "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
                 "[-3, 0] at a 50 ms tick; default), or keep the start's Tf");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
-  cmd->callback([&run, t, budget, cmd] {
+  cmd->callback([&run, t, budget, cmd, out, front_out] {
+    if (out->count() == 0 && front_out->count() == 0)
+      throw CLI::RequiredError("--out or --objectives with --front-out");
+    if (front_out->count() > 0 && !t->stages.empty())
+      throw CLI::ValidationError("--stages",
+                                 "a front tunes one family: give --family, not --stages");
     t->budget_given = budget->count() > 0;
     t->given = GivenOptions(*cmd);
     run = [t] { return run_tune(*t); };

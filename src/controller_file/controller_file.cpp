@@ -228,7 +228,7 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     if (tu.evaluations > tu.budget)
       t->fail(*t->raw().get("evaluations"), "evaluations exceed the budget");
     tu.seed = t->count("seed");
-    tu.threads = t->count("threads");
+    tu.threads = t->count("threads", 0);  // absent: a result that does not depend on it
     tu.population = t->count("population");
     tu.training_cost = t->number("training_cost", std::nullopt, true);
     auto o = t->table("objective", true);
@@ -528,7 +528,7 @@ std::string to_toml(const ControllerSpec& s) {
     o += "budget = " + std::to_string(t.budget) + "\n";
     o += "evaluations = " + std::to_string(t.evaluations) + "\n";
     o += "seed = " + std::to_string(t.seed) + "\n";
-    o += "threads = " + std::to_string(t.threads) + "\n";
+    if (t.threads != 0) o += "threads = " + std::to_string(t.threads) + "\n";
     o += "population = " + std::to_string(t.population) + "\n";
     o += "training_cost = " + format_double(t.training_cost) + "\n";
     o += "box = [  # log10 of each searched parameter\n";

@@ -333,7 +333,7 @@ std::optional<Front> tune_front(const sim::ExperimentSet& experiments,
     t.budget = to.budget;
     t.evaluations = state.evaluations;
     t.seed = to.seed;
-    t.threads = search.threads;
+    t.threads = 0;  // not recorded: the front is the same for any threads and ranks
     t.population = pop;
     t.training_cost = training_cost[k].total + penalty;
     t.objective = o;

@@ -84,6 +84,29 @@ TEST_F(OutputFilesTest, CommitReplacesThePreviousSetAndKeepsOtherRegularFiles) {
   EXPECT_EQ(entries(root_), (std::set<std::string>{"out"}));
 }
 
+TEST_F(OutputFilesTest, FilesAddedLaterJoinTheSetAndItsOwnPrefixDropsStaleOnes) {
+  write_set(root_ / "out", "one\n");
+  std::ofstream(root_ / "out" / "point_007.toml") << "stale";
+  std::ofstream(root_ / "out" / "plot.png") << "png";
+  std::string error;
+  auto set = OutputSet::open((root_ / "out").string(), names_, error);
+  ASSERT_TRUE(set) << error;
+  set->replace_all_starting_with("point_");
+  std::FILE* added = set->add("point_000.toml", error);
+  ASSERT_NE(added, nullptr) << error;
+  std::fputs("fresh", added);
+  EXPECT_EQ(set->file(2), added);
+  // A name already in the set, or one that is not a plain file name, is refused.
+  EXPECT_EQ(set->add("a.csv", error), nullptr);
+  EXPECT_EQ(set->add("../escape", error), nullptr);
+  EXPECT_NE(error.find("not a new plain file name"), std::string::npos) << error;
+  ASSERT_TRUE(set->commit(error)) << error;
+  EXPECT_EQ(entries(root_ / "out"),
+            (std::set<std::string>{"a.csv", "b.csv", "plot.png", "point_000.toml"}));
+  EXPECT_EQ(read(root_ / "out" / "point_000.toml"), "fresh");
+  EXPECT_EQ(entries(root_), (std::set<std::string>{"out"}));
+}
+
 TEST_F(OutputFilesTest, DiscardedSetLeavesThePreviousOneUntouched) {
   write_set(root_ / "out", "one\n");
   std::string error;
