@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev liborocos-kdl-dev liburdfdom-dev liburdfdom-headers-dev
   libgtest-dev libgmock-dev libbenchmark-dev libfuzzylite-dev
   libpagmo-dev libtbb-dev libtomlplusplus-dev libcli11-dev libsdpa-dev
+  libopenmpi-dev openmpi-bin
   clang clang-format clang-tidy cppcheck libclang-rt-14-dev
   gcc-arm-none-eabi libstdc++-arm-none-eabi-newlib libnewlib-arm-none-eabi qemu-system-arm
   python3-matplotlib python3-numpy python3-venv

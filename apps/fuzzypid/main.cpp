@@ -3,6 +3,9 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#if FUZZYPID_HAVE_MPI
+#include "mpi_transport.hpp"
+#endif
 
 namespace {
 
@@ -33,5 +36,9 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return fuzzypid::cli::run_main("fuzzypid", [&] { return run(argc, argv); });
+  const int code = fuzzypid::cli::run_main("fuzzypid", [&] { return run(argc, argv); });
+#if FUZZYPID_HAVE_MPI
+  fuzzypid::cli::mpi_finish(code);
+#endif
+  return code;
 }

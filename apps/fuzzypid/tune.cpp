@@ -23,6 +23,9 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "front_checkpoint.hpp"
+#if FUZZYPID_HAVE_MPI
+#include "mpi_transport.hpp"
+#endif
 #include "fuzzypid/codegen/export_header.hpp"
 #include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
@@ -1099,6 +1102,9 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                 "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
                 "[-3, 0] at a 50 ms tick; default), or keep the start's Tf");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
+#if FUZZYPID_HAVE_MPI
+  t->transport = mpi_transport;
+#endif
   cmd->callback([&run, t, budget, cmd, out, front_out] {
     if (out->count() == 0 && front_out->count() == 0)
       throw CLI::RequiredError("--out or --objectives with --front-out");

@@ -28,6 +28,7 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 #include "fuzzypid/sim/mismatch.hpp"
+#include "fuzzypid_support/bounded_read.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
 #include "robot_options.hpp"
@@ -378,6 +379,47 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
   return faults_exit(o, faulted_runs);
 }
 
+// The controller files of a front written by `fuzzypid tune --front-out DIR`, in the order of
+// DIR/front.csv (its `file` column, each a file in DIR); false with `error` when the folder holds
+// no readable front.
+bool front_files(const std::string& dir, std::vector<std::string>& files, std::string& error) {
+  constexpr std::size_t kMaxFrontBytes = std::size_t{16} << 20;
+  const std::string csv = (fs::path(dir) / "front.csv").string();
+  std::string text;
+  if (!support::read_file_bounded(csv, kMaxFrontBytes, text, error)) {
+    error = dir + " is a folder but not a front: " + error;
+    return false;
+  }
+  std::size_t begin = 0, line = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string row = text.substr(begin, end - begin);
+    begin = end + 1;
+    ++line;
+    if (line == 1) {
+      if (row.rfind("point,file,", 0) != 0) {
+        error = csv + ": line 1 is not a front's header (point,file,...)";
+        return false;
+      }
+      continue;
+    }
+    if (row.empty()) continue;
+    const std::size_t a = row.find(',');
+    const std::size_t b = a == std::string::npos ? a : row.find(',', a + 1);
+    const std::string file = b == std::string::npos ? "" : row.substr(a + 1, b - a - 1);
+    if (file.empty() || file == "." || file == ".." || file.find('/') != std::string::npos) {
+      error = csv + ": line " + std::to_string(line) + ": no file of the front's folder";
+      return false;
+    }
+    files.push_back((fs::path(dir) / file).string());
+  }
+  if (files.empty()) {
+    error = csv + ": a front of no point";
+    return false;
+  }
+  return true;
+}
+
 int run_sim_ab(int argc, char** argv) {
   sim_ab::Options o;
   switch (sim_ab::parse(argc, argv, o)) {
@@ -387,6 +429,34 @@ int run_sim_ab(int argc, char** argv) {
       return 2;
     case sim_ab::ParseResult::Run:
       break;
+  }
+  // A front's folder stands for its points, named FOLDER_point_NNN.
+  std::vector<std::string> prefixes;
+  {
+    std::vector<std::string> expanded;
+    for (const std::string& path : o.controllers) {
+      std::error_code ec;
+      if (!fs::is_directory(path, ec)) {
+        expanded.push_back(path);
+        prefixes.emplace_back();
+        continue;
+      }
+      std::string error;
+      std::vector<std::string> points;
+      if (!front_files(path, points, error)) {
+        std::fprintf(stderr, "sim_ab: --controller: %s\n", error.c_str());
+        return 1;
+      }
+      const std::string folder = fs::path(path).lexically_normal().filename().string();
+      for (const std::string& p : points) {
+        expanded.push_back(p);
+        prefixes.push_back(
+            (folder.empty() ? fs::path(path).lexically_normal().parent_path().filename().string()
+                            : folder) +
+            "_");
+      }
+    }
+    o.controllers = expanded;
   }
   // The output folder is checked before any work (apps/common/output_files.hpp): a refused --out
   // is a usage error, like a bad option.
@@ -404,14 +474,15 @@ int run_sim_ab(int argc, char** argv) {
 
   // Controllers: the files, or the paper's two.
   std::vector<NamedController> controllers;
-  for (const std::string& path : o.controllers) {
+  for (std::size_t k = 0; k < o.controllers.size(); ++k) {
+    const std::string& path = o.controllers[k];
     NamedController c;
     fuzzypid::FileError err;
     if (!cf::load(path, c.spec, err)) {
       std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
       return 1;
     }
-    c.name = fs::path(path).stem().string();
+    c.name = prefixes[k] + fs::path(path).stem().string();
     c.source = path;
     for (const auto& other : controllers) {
       if (other.name == c.name) {

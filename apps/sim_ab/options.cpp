@@ -119,8 +119,10 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
                                     "condition-set file (TOML, e.g. tuning/robust.toml)");
   app.add_option("--set", o.sets, "set of --conditions to run (repeatable; default: all sets)")
       ->needs(conditions);
-  app.add_option("--controller", o.controllers,
-                 "controller file (repeatable; default: the paper's pid and fuzzy)");
+  app.add_option(
+      "--controller", o.controllers,
+      "controller file, or a front's folder (fuzzypid tune --front-out: each of its points) "
+      "(repeatable; default: the paper's pid and fuzzy)");
   app.add_option_function<std::string>(
       "--sweep",
       [&o](const std::string& s) {
