@@ -102,7 +102,7 @@ struct TuneOptions {
   GivenOptions given;
   // A front (--objectives): its folder, and the checkpoint written after every generation and the
   // one resumed from.
-  std::string objectives, front_out, checkpoint, resume;
+  std::string objectives, front_out, checkpoint, resume, report_set;
   // The ranks sharing the runs (null: this process alone); asked once the options are parsed.
   std::function<const tune::Transport*()> transport;
 };
@@ -160,7 +160,8 @@ struct Completion {
 // out's folder, as a reader resolves it (the rule file, named relative to the folder of the file it
 // came from, the base or else the start; the conditions, robots, paths and start), the files'
 // hashes, the tick, the set and the description; and its [margins] and certificate over the
-// training conditions (validation ones included). Progress notes go to stderr unless --quiet.
+// training conditions (validation ones included). training.conditions[k] runs on
+// experiments.of(k). Progress notes go to stderr unless --quiet.
 std::optional<Completion> complete_record(const TuneOptions& t, const std::string& out,
                                           controller::Family family, const tune::Options& opt,
                                           const sim::ConditionSet& training,
@@ -174,8 +175,8 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
   }
   controller::Tuning& record = *spec.tuning;
   record.conditions = path_from_folder_of(out, t.conditions);
-  for (std::size_t k = 0; k < experiments.size(); ++k) {
-    const sim::RobotSetup& setup = experiments.experiment(k).setup();
+  for (std::size_t k = 0; k < training.conditions.size(); ++k) {
+    const sim::RobotSetup& setup = experiments.of(k).setup();
     const auto add = [&](const char* kind, const std::string& file) {
       const std::string written = path_from_folder_of(out, file);
       for (const auto& f : record.trained_on)
@@ -186,9 +187,9 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
     if (!setup.path.empty()) add("path", setup.path);
   }
   {
-    double tick = experiments.experiment(0).options().tick_s;
-    for (std::size_t k = 1; k < experiments.size(); ++k)
-      if (experiments.experiment(k).options().tick_s != tick) tick = 0.0;
+    double tick = experiments.of(0).options().tick_s;
+    for (std::size_t k = 1; k < training.conditions.size(); ++k)
+      if (experiments.of(k).options().tick_s != tick) tick = 0.0;
     record.tick_s = tick;
   }
   record.set = t.set;
@@ -292,6 +293,7 @@ Fingerprint fingerprint_of(const TuneOptions& t, const tune::FrontOptions& fo,
       {"population", std::to_string(t.population)},
       {"validation", std::to_string(t.validation)},
       {"set", one_line(t.set)},
+      {"report-set", one_line(t.report_set.empty() ? "-" : t.report_set)},
       {"conditions-fnv1a64", hash(t.conditions)},
       {"base-fnv1a64", hash(t.base_file)},
       {"init-fnv1a64", hash(t.init_file)},
@@ -331,13 +333,15 @@ constexpr std::size_t kMaxCheckpointBytes = std::size_t{1} << 30;
 
 // `fuzzypid tune --objectives ... --front-out DIR`: the front of `family` written as DIR/front.csv
 // and one controller file per point; `out_set` is null on ranks other than 0.
+// `searched` is the training set, followed by --report-set's conditions when given (the front's
+// validation conditions then).
 int run_front(const TuneOptions& t, controller::Family family, const tune::Options& opt,
-              const sim::ConditionSet& training, const sim::ExperimentSet& experiments,
-              OutputSet* out_set) {
+              const sim::ConditionSet& training, const sim::ConditionSet& searched,
+              const sim::ExperimentSet& experiments, OutputSet* out_set) {
   tune::FrontOptions fo;
   fo.tune = opt;
   fo.objectives = parse_objectives(t.objectives);
-  const Fingerprint fingerprint = fingerprint_of(t, fo, training);
+  const Fingerprint fingerprint = fingerprint_of(t, fo, searched);
   std::string error;
   if (!t.resume.empty() && out_set != nullptr) {
     std::string text, reason;
@@ -366,7 +370,7 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
           write_output_file(t.checkpoint, checkpoint_text(fingerprint, state), "tune");
       return checkpoint_error.empty() && g_stop_signal == 0;
     };
-  auto front = tune::tune_front(experiments, training.conditions, fo, error);
+  auto front = tune::tune_front(experiments, searched.conditions, fo, error);
   if (!front) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return kExitUsage;
@@ -688,8 +692,21 @@ int run_tune(const TuneOptions& t) {
                  t.set.c_str(), file.set_names().c_str());
     return 1;
   }
+  // --report-set: its conditions follow the training set's as a front's validation conditions,
+  // run on the final front only; the search never sees them.
+  sim::ConditionSet searched = *training;
+  if (!t.report_set.empty()) {
+    const sim::ConditionSet* report = file.find(t.report_set);
+    if (report == nullptr) {
+      std::fprintf(stderr, "fuzzypid tune: %s has no set '%s' (it has: %s)\n", t.conditions.c_str(),
+                   t.report_set.c_str(), file.set_names().c_str());
+      return 1;
+    }
+    searched.conditions.insert(searched.conditions.end(), report->conditions.begin(),
+                               report->conditions.end());
+  }
   // The robots and paths the conditions name are inputs too: --out must not replace them.
-  for (const sim::Condition& c : training->conditions)
+  for (const sim::Condition& c : searched.conditions)
     for (const std::string& input : {c.robot.urdf, c.robot.path})
       if (!input.empty())
         if (const std::string bad = refuse_outputs({input}); !bad.empty()) {
@@ -700,7 +717,7 @@ int run_tune(const TuneOptions& t) {
   sim::ExperimentOptions eo;
   eo.tick_s = opt.base.units.tick_s;
   std::string error;
-  const auto experiments = sim::ExperimentSet::create(training->conditions, eo, error);
+  const auto experiments = sim::ExperimentSet::create(searched.conditions, eo, error);
   if (!experiments) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
@@ -743,7 +760,10 @@ int run_tune(const TuneOptions& t) {
     return kExitUsage;
   }
   opt.transport = transport;
-  if (front) return run_front(t, family, opt, *training, *experiments, out_set.get());
+  if (front) {
+    opt.validation = searched.conditions.size() - training->conditions.size() + t.validation;
+    return run_front(t, family, opt, *training, searched, *experiments, out_set.get());
+  }
   auto result = stages.empty()
                     ? tune::tune(*experiments, training->conditions, opt, error)
                     : tune::tune_staged(*experiments, training->conditions, stages, opt, error);
@@ -1048,6 +1068,12 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                       "generation (atomically); SIGINT or SIGTERM then stop the search after the "
                       "generation under way, its state saved")
           ->needs(objectives);
+  cmd->add_option("--report-set", t->report_set,
+                  "with --objectives: also run the final front on this set of --conditions (the "
+                  "held-out one, say), reported as its validation columns; the search never sees "
+                  "it")
+      ->needs(objectives)
+      ->excludes("--validation");
   cmd->add_option("--resume", t->resume,
                   "with --objectives: continue the search whose state this checkpoint holds "
                   "(the same options; it may also be --checkpoint's file)")
