@@ -393,8 +393,7 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
   TuneOptions per_point = t;
   per_point.quiet = true;  // no margin line per point
   std::vector<tune::FrontPoint> kept;
-  for (std::size_t k = 0; k < front->points.size(); ++k) {
-    tune::FrontPoint& point = front->points[k];
+  for (tune::FrontPoint& point : front->points) {
     char name[32];
     std::snprintf(name, sizeof name, "point_%03zu.toml", kept.size());
     const std::string out = (std::filesystem::path(t.front_out) / name).string();
