@@ -8,7 +8,8 @@
 #   CONDITIONS=F  (default tuning/robust_drive.toml)        OUT=DIR  (default out/fronts)
 #   THREADS=N     threads per run (default: all cores)
 # Outputs: OUT/<family>/ (front.csv, point_NNN.toml), OUT/<family>.txt (the tune's report),
-# OUT/hypervolume.csv, OUT/fronts.png.
+# OUT/union_{training,held_out}.md (scripts/front_union.py), OUT/hypervolume_{training,held_out}.csv,
+# OUT/fronts.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 budget="${BUDGET:-4000}"
@@ -29,5 +30,8 @@ for family in "${families[@]}"; do
 done
 dirs=()
 for family in "${families[@]}"; do dirs+=("$out/$family"); done
-build/bin/fuzzypid hypervolume "${dirs[@]}" --on validation | tee "$out/hypervolume.csv"
+python3 scripts/front_union.py "${dirs[@]}" --on training | tee "$out/union_training.md"
+python3 scripts/front_union.py "${dirs[@]}" --on validation | tee "$out/union_held_out.md"
+build/bin/fuzzypid hypervolume "${dirs[@]}" --on training | tee "$out/hypervolume_training.csv"
+build/bin/fuzzypid hypervolume "${dirs[@]}" --on validation | tee "$out/hypervolume_held_out.csv"
 python3 scripts/plot_front.py "${dirs[@]}" --on validation --out "$out/fronts.png"
