@@ -21,6 +21,8 @@ void add_tune_command(CLI::App& app, std::function<int()>& run);           // tu
 void add_export_header_command(CLI::App& app, std::function<int()>& run);  // tune.cpp
 void add_export_rules_command(CLI::App& app, std::function<int()>& run);   // export_rules.cpp
 void add_certify_command(CLI::App& app, std::function<int()>& run);        // certify.cpp
+void add_pick_command(CLI::App& app, std::function<int()>& run);           // pick.cpp
+void add_hypervolume_command(CLI::App& app, std::function<int()>& run);    // pick.cpp
 #endif
 
 }  // namespace fuzzypid::cli

@@ -26,6 +26,8 @@ int run(int argc, char** argv) {
   fuzzypid::cli::add_export_header_command(app, run);
   fuzzypid::cli::add_export_rules_command(app, run);
   fuzzypid::cli::add_certify_command(app, run);
+  fuzzypid::cli::add_pick_command(app, run);
+  fuzzypid::cli::add_hypervolume_command(app, run);
 #endif
   if (const auto code = fuzzypid::cli::parse(app, argc, argv)) return *code;
   const int code = run();
