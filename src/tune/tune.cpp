@@ -26,7 +26,6 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
                        search, error))
     return std::nullopt;
   const detail::Split& data = search.data;
-  const unsigned threads = search.threads;
   const ControllerSpec* start = &search.start;
   const auto& space = search.space;
   const std::vector<SearchBox>& box = search.box;
@@ -103,7 +102,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   t.budget = options.budget;
   t.evaluations = m->evaluations;
   t.seed = options.seed;
-  t.threads = threads;
+  t.threads = 0;  // not recorded: the result is the same for any threads and ranks
   t.population = m->population;
   t.training_cost = result.cost.total + result.penalty;
   t.objective = o;

@@ -109,7 +109,7 @@ mpi)
   check_points two
   single="tune --family pid --conditions $conditions --budget 200 --population 20 --seed 5 --quiet"
   # shellcheck disable=SC2086
-  "$fuzzypid" $single --threads 1 --out one.toml
+  "$fuzzypid" $single --threads 2 --out one.toml
   # shellcheck disable=SC2086
   "$tool" -np 2 --oversubscribe "$fuzzypid" $single --threads 1 --out two.toml
   cmp one.toml two.toml || fail "two ranks gave another one-objective result"
