@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -409,6 +410,12 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
                    "is left out\n",
                    done->margins.disk_margin);
       continue;
+    }
+    if (!t.report_set.empty()) {
+      // The validation values came from another set, not from conditions held back.
+      point.controller.tuning->validation_conditions = 0;
+      point.controller.tuning->validation_cost = std::numeric_limits<double>::quiet_NaN();
+      point.controller.description += "; front validation on [" + t.report_set + "]";
     }
     kept.push_back(std::move(point));
   }
