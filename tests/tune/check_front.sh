@@ -7,7 +7,9 @@
 #              written, and resumed from the checkpoint ends with the same files as an
 #              uninterrupted run;
 #   mpi        mpirun -np 2 gives the same front, byte for byte, as one process (and the
-#              one-objective tuner the same file).
+#              one-objective tuner the same file); a rank killed mid-search ends the job with an
+#              error naming it and no front written, and the last checkpoint resumes to the same
+#              front.
 # Usage: check_front.sh CASE FUZZYPID CONDITIONS WORKDIR [SIM_AB (points) | MPIRUN (mpi)]
 set -eu
 case_name=$1
@@ -113,6 +115,33 @@ mpi)
   # shellcheck disable=SC2086
   "$tool" -np 2 --oversubscribe "$fuzzypid" $single --threads 1 --out two.toml
   cmp one.toml two.toml || fail "two ranks gave another one-objective result"
+  # Rank 1 killed once a generation is saved.
+  # shellcheck disable=SC2086
+  "$fuzzypid" $args --budget 1000 --threads 2 --front-out whole >/dev/null
+  # shellcheck disable=SC2086
+  "$tool" -np 2 --oversubscribe "$fuzzypid" $args --budget 1000 --threads 1 --front-out lost \
+    --checkpoint lost.txt >/dev/null 2>lost.err &
+  job=$!
+  tries=0
+  until grep -q '^generation [1-9]' lost.txt 2>/dev/null; do
+    tries=$((tries + 1))
+    [ "$tries" -lt 1200 ] || fail "no checkpoint after 60 s"
+    sleep 0.05
+  done
+  for p in $(pgrep -f -- "--front-out lost"); do
+    if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
+      kill -9 "$p"
+    fi
+  done
+  code=0
+  wait "$job" || code=$?
+  [ "$code" -ne 0 ] || fail "a job that lost a rank exited 0"
+  grep -q 'rank 1' lost.err || fail "no rank named: $(cat lost.err)"
+  [ ! -e lost ] || fail "a job that lost a rank wrote its front"
+  # shellcheck disable=SC2086
+  "$tool" -np 2 --oversubscribe "$fuzzypid" $args --budget 1000 --threads 1 --front-out lost \
+    --checkpoint lost.txt --resume lost.txt >/dev/null
+  diff -r whole lost || fail "the front resumed after a lost rank differs"
   ;;
 *)
   fail "unknown case"
