@@ -51,6 +51,16 @@ check_points() {
     }' "$dir/front.csv" || fail "the front has dominated points"
 }
 
+# Waits until the checkpoint FILE holds a generation after the first population.
+wait_for_generation() {
+  tries=0
+  until grep -q '^generation [1-9]' "$1" 2>/dev/null; do
+    tries=$((tries + 1))
+    [ "$tries" -lt 1200 ] || fail "no checkpoint in $1 after 60 s"
+    sleep 0.05
+  done
+}
+
 args="tune --family pid --objectives itae,effort,overshoot --conditions $conditions --validation 4
       --population 20 --seed 5 --quiet"
 case "$case_name" in
@@ -73,12 +83,7 @@ resume)
     >/dev/null 2>stopped.err &
   pid=$!
   # Stop it once a generation after the first population is saved.
-  tries=0
-  until grep -q '^generation [1-9]' state.txt 2>/dev/null; do
-    tries=$((tries + 1))
-    [ "$tries" -lt 600 ] || fail "no checkpoint after 60 s"
-    sleep 0.1
-  done
+  wait_for_generation state.txt
   kill -TERM "$pid"
   code=0
   wait "$pid" || code=$?
@@ -122,12 +127,7 @@ mpi)
   "$tool" -np 2 --oversubscribe "$fuzzypid" $args --budget 1000 --threads 1 --front-out lost \
     --checkpoint lost.txt >/dev/null 2>lost.err &
   job=$!
-  tries=0
-  until grep -q '^generation [1-9]' lost.txt 2>/dev/null; do
-    tries=$((tries + 1))
-    [ "$tries" -lt 1200 ] || fail "no checkpoint after 60 s"
-    sleep 0.05
-  done
+  wait_for_generation lost.txt
   for p in $(pgrep -f -- "--front-out lost"); do
     if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx 'OMPI_COMM_WORLD_RANK=1'; then
       kill -9 "$p"
