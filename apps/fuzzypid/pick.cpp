@@ -3,6 +3,7 @@
 // reference point (tune/pick.hpp, docs/tuning.md "Picking a point").
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,7 +53,7 @@ int run_pick(const PickOptions& o) {
     std::fprintf(stderr, "%s: %s: %s\n", kTool, o.dir.c_str(), error.c_str());
     return kExitFailure;
   }
-  std::printf("%s/%s\n", o.dir.c_str(), table->files[*chosen].c_str());
+  std::printf("%s\n", (std::filesystem::path(o.dir) / table->files[*chosen]).string().c_str());
   std::fprintf(stderr, "%s: point %zu by %s on %s:", kTool, *chosen, o.rule.c_str(), o.on.c_str());
   for (std::size_t i = 0; i < table->objectives.size(); ++i)
     std::fprintf(stderr, " %s %.6g", table->objectives[i].c_str(), (*points)[*chosen][i]);
