@@ -7,10 +7,10 @@
 #include <cstddef>
 
 #include "bench_inputs.hpp"
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 
 namespace {
 
@@ -25,7 +25,7 @@ using fuzzypid::bench::TickInput;
 // Every joint runs a copy of `joint`.
 template <class Joint>
 void run_ticks(benchmark::State& state, const Joint& joint) {
-  fuzzypid::control::JointController<double, kJoints, Joint> controller(joint);
+  fuzzypid::supervisor::JointController<double, kJoints, Joint> controller(joint);
   const auto table = fuzzypid::bench::make_tick_table();
   std::size_t k = 0;
   for (auto _ : state) {

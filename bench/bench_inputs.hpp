@@ -6,12 +6,12 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/gain_schedule.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
-#include "fuzzypid/control/rule_table.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/gain_schedule.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
+#include "fuzzypid/supervisor/rule_table.hpp"
 
 namespace fuzzypid::bench {
 
@@ -57,7 +57,7 @@ inline std::array<ErrorPair, kTableSize> make_error_table(std::uint64_t seed = 4
 // One 6-joint tick's input per entry: tracking errors of up to +-0.35 rad and +-0.35 rad/s around
 // a moving reference, so the fuzzy supervisor sees inputs across its whole universe and slightly
 // outside it.
-using TickInput = control::JointInput<double, 6>;
+using TickInput = supervisor::JointInput<double, 6>;
 
 inline std::array<TickInput, kTableSize> make_tick_table() {
   std::array<TickInput, kTableSize> table{};
@@ -83,9 +83,9 @@ inline pid::Config<double> tick_pid_config() {
 }
 
 // The supervised families as the tuner builds them (K0 the tick PID's gains, Ke = 12, Kec = 0.7).
-inline control::FuzzyPidConfig<double> supervised_config(
+inline supervisor::FuzzyPidConfig<double> supervised_config(
     const std::array<double, 3>& output_scale) {
-  control::FuzzyPidConfig<double> c;
+  supervisor::FuzzyPidConfig<double> c;
   c.pid = tick_pid_config();
   c.error_scale = 12.0;
   c.error_rate_scale = 0.7;
@@ -94,16 +94,16 @@ inline control::FuzzyPidConfig<double> supervised_config(
 }
 
 // A gain schedule (the default ramp), its output scale S = (R - 1) K0 with R = (0.3, 4, 1.6).
-inline control::FuzzyPid<double, control::GainSchedule<double>> scheduled_joint() {
-  static constexpr control::GainSchedule<double> kSchedule{};
+inline supervisor::FuzzyPid<double, supervisor::GainSchedule<double>> scheduled_joint() {
+  static constexpr supervisor::GainSchedule<double> kSchedule{};
   const auto k0 = tick_pid_config().gains;
   return {&kSchedule, supervised_config({-0.7 * k0.kp, 3.0 * k0.ki, 0.6 * k0.kd})};
 }
 
 // A fuzzy-rules table with the same ramp and cells from 1.0 to 1.2 (the cost of a tick does not
 // depend on the cells' values; S = K0).
-inline control::FuzzyPid<double, control::RuleTable<double>> fuzzy_rules_joint() {
-  using Table = control::RuleTable<double>;
+inline supervisor::FuzzyPid<double, supervisor::RuleTable<double>> fuzzy_rules_joint() {
+  using Table = supervisor::RuleTable<double>;
   static const Table kTable = [] {
     Table t;
     t.schedule_ratio = {0.3, 4.0, 1.6};

@@ -36,12 +36,12 @@ using fp::detail::min;
 
 constexpr std::size_t kJoints = 6;
 constexpr double kDt = 0.05;  // s
-using Output = fp::control::JointOutput<double, kJoints>;
+using Output = fp::supervisor::JointOutput<double, kJoints>;
 using System = fp::paper::System<double>;
 
 class SpecialisedTick {
  public:
-  SpecialisedTick(const System& system, const fp::control::FuzzyPidConfig<double>& config)
+  SpecialisedTick(const System& system, const fp::supervisor::FuzzyPidConfig<double>& config)
       : system_(system),
         e_min_(system.e.min()),
         e_max_(system.e.max()),
@@ -53,14 +53,14 @@ class SpecialisedTick {
 
   // True when this tick reproduces the library's configuration (the benchmark checks the
   // commands as well).
-  bool matches(const fp::control::FuzzyPidConfig<double>& c) const noexcept {
+  bool matches(const fp::supervisor::FuzzyPidConfig<double>& c) const noexcept {
     using fp::pid::AntiWindup;
     using fp::pid::DerivativeOn;
     using fp::pid::DerivativeSource;
     return system_.e.is_uniform() && system_.ec.is_uniform() &&
            system_.conjunction == fp::fuzzy::Conjunction::Minimum &&
            system_.defuzzifier == fp::fuzzy::TskDefuzzifier::WeightedAverage &&
-           c.gain_update == fp::control::GainUpdate::Absolute &&
+           c.gain_update == fp::supervisor::GainUpdate::Absolute &&
            c.pid.derivative_source == DerivativeSource::Rates &&
            c.pid.derivative_on == DerivativeOn::Error && c.pid.derivative_filter_s == 0.0 &&
            c.pid.anti_windup == AntiWindup::Clamping;
@@ -187,7 +187,7 @@ class SpecialisedTick {
   const System& system_;
   double e_min_, e_max_, ec_min_, ec_max_;
   double e_inverse_step_, ec_inverse_step_;
-  fp::control::FuzzyPidConfig<double> config_;
+  fp::supervisor::FuzzyPidConfig<double> config_;
   std::array<double, kJoints> integral_{};
   std::array<fp::pid::Gains<double>, kJoints> gains_{};  // this tick's gains, as FuzzyPid::gains()
 };

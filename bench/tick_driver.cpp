@@ -34,7 +34,7 @@ constexpr const char* kUsage =
 // n ticks of six joints, each a copy of `joint`.
 template <class Joint>
 [[gnu::noinline]] double run(const Joint& joint, long n) {
-  fuzzypid::control::JointController<double, 6, Joint> controller(joint);
+  fuzzypid::supervisor::JointController<double, 6, Joint> controller(joint);
   double sum = 0.0;
   for (long k = 0; k < n; ++k) {
     const auto out =

@@ -56,7 +56,7 @@ function(fuzzypid_install_package)
   # install their own folders (fuzzypid_install_part).
   file(GLOB core_headers ${PROJECT_SOURCE_DIR}/include/fuzzypid/*.hpp)
   install(FILES ${core_headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzypid)
-  foreach(dir control fuzzy pid)
+  foreach(dir supervisor fuzzy pid)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/fuzzypid/${dir}
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fuzzypid)
   endforeach()

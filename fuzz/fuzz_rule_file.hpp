@@ -10,9 +10,9 @@
 #include <string>
 #include <string_view>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
 
 namespace fuzzypid::fuzz {
 

@@ -23,7 +23,7 @@ mutants=(
   "d_on_measurement_uses_setpoint_rate|include/fuzzypid/pid/pid.hpp|s/d_raw = in.setpoint_rate \* Scalar(0) - in.measurement_rate;/d_raw = in.setpoint_rate - in.measurement_rate;/|bin:test_pid"
   "reader_drops_derivative_on|src/controller_file/controller_file.cpp|s/s.pid.derivative_on = p->choice(\"derivative_on\"/(void)p->choice(\"derivative_on\"/|bin:test_controller_file"
   "pid_config_drops_derivative_on|src/controller/joint_controllers.cpp|/c.derivative_on = spec.pid.derivative_on;/d|bin:test_controller_file bin:test_joint_controller"
-  "incremental_gain_update_ignored|include/fuzzypid/controller/families/fuzzy.hpp|s/config.gain_update = spec.supervisor.gain_update;/config.gain_update = control::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
+  "incremental_gain_update_ignored|include/fuzzypid/controller/families/fuzzy.hpp|s/config.gain_update = spec.supervisor.gain_update;/config.gain_update = supervisor::GainUpdate::Absolute;/|bin:test_controller_file bin:test_joint_controller"
   "family_dispatch_always_first|include/fuzzypid/controller/families.hpp|s/(family.index() == I ?/(I == 0 ?/|bin:test_sixth_family bin:test_controller_file"
   "runner_worker_takes_rank0_block|src/tune/runner.cpp|s/block_begin(jobs, transport_->rank, transport_->size),/block_begin(jobs, transport_->rank - 1, transport_->size),/|bin:test_front"
   "tuner_swaps_output_scales|src/tune/parameters.cpp|s/s.supervisor.output_scale = {p(5), p(6), p(7)};/s.supervisor.output_scale = {p(5), p(7), p(6)};/|bin:test_tune bin:test_parameters"
@@ -34,7 +34,7 @@ mutants=(
   "integral_ignores_dt|include/fuzzypid/pid/pid.hpp|s/const Scalar increment = g.ki \* e \* dt_s;/const Scalar increment = g.ki * e;/|bin:test_pid"
   "clamping_upper_side_drops_increment_check|include/fuzzypid/pid/pid.hpp|s/if (trial > hi \&\& increment > Scalar(0))/if (trial > hi)/|bin:test_pid"
   "back_calculation_sign|include/fuzzypid/pid/pid.hpp|s/config_.tracking_gain_per_s \* (u - v) \* dt_s/config_.tracking_gain_per_s * (v - u) * dt_s/|bin:test_pid"
-  "incremental_uses_pid_gains|include/fuzzypid/control/fuzzy_pid.hpp|s/gain_update_ == GainUpdate::Absolute ? pid_.gains() : gains_/gain_update_ == GainUpdate::Absolute ? gains_ : pid_.gains()/|bin:test_fuzzy_pid"
+  "incremental_uses_pid_gains|include/fuzzypid/supervisor/fuzzy_pid.hpp|s/gain_update_ == GainUpdate::Absolute ? pid_.gains() : gains_/gain_update_ == GainUpdate::Absolute ? gains_ : pid_.gains()/|bin:test_fuzzy_pid"
   "file_numbers_15_digits|src/controller/controller_spec.cpp|s/\"%.17g\", v);/\"%.15g\", v);/|bin:test_controller_file"
   # Our own: issue 20's output writer, export-header and rt_loop.
   "writer_accepts_special_files|apps/common/output_paths.cpp|s/  if (!S_ISREG(st.st_mode))$/  if (false)/|bin:cli_common_tests build:fuzzypid_cli build:rt_loop build:sim_ab ctest:^cli\.outputs\."

@@ -1,4 +1,4 @@
-// `fuzzypid export-rules`: a fuzzy-rules controller's supervisor (control::RuleTable) as a
+// `fuzzypid export-rules`: a fuzzy-rules controller's supervisor (supervisor::RuleTable) as a
 // .fll/.fcl/.fis rule file, the `fuzzy` controller file that runs it, and its gain-ratio surfaces
 // as CSV (docs/tuning.md, "Exporting a tuned rule base").
 #include <algorithm>
@@ -63,7 +63,7 @@ int usage(const std::string& message) {
 
 // The grid of the surfaces: x = Ke e and y = Kec ec over +-1.2 c_max (beyond c_max the shoulders
 // hold the outer rules), written in e and ec; ratios K/K0 before the gain bounds clamp them.
-std::string surface_csv(const control::RuleTable<double>& table,
+std::string surface_csv(const supervisor::RuleTable<double>& table,
                         const controller::ControllerSpec& spec, unsigned n) {
   const double x_max = 1.2 * table.e_centers.back();
   const double y_max = 1.2 * table.ec_centers.back();
@@ -147,7 +147,7 @@ int run_export_rules(const ExportRulesOptions& o) {
                  kTool, o.in.c_str(), controller::to_string(spec.family));
     return kExitFailure;
   }
-  const control::RuleTable<double> table = controller::rule_table(spec);
+  const supervisor::RuleTable<double> table = controller::rule_table(spec);
 
   std::string rules, controller_text;
   if (o.out_given) {

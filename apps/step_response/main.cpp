@@ -14,7 +14,7 @@ int main() {
   constexpr double kStep = 0.1;      // rad
   constexpr int kTicks = 400;        // 20 s
 
-  control::FuzzyPidConfig<double> config = paper::paper_config<double>();
+  supervisor::FuzzyPidConfig<double> config = paper::paper_config<double>();
   config.pid.derivative_source = pid::DerivativeSource::Rates;
   pid::Pid<double> fixed(config.pid);
   paper::FuzzyPid<double> fuzzy(&paper::kSystem<double>, config);

@@ -9,16 +9,16 @@
 #include <cstdio>
 #include <cstring>
 
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/status.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 
 namespace cortex_m4_example {
 
 constexpr std::size_t kJoints = 6;
 constexpr float kDt = 0.05f;  // s, the paper's tick
 
-using Input = fuzzypid::control::JointInput<float, kJoints>;
-using Output = fuzzypid::control::JointOutput<float, kJoints>;
+using Input = fuzzypid::supervisor::JointInput<float, kJoints>;
+using Output = fuzzypid::supervisor::JointOutput<float, kJoints>;
 
 // A fully specified generator (no libm, no implementation-defined distribution), so both builds
 // see the same references.

@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   config.pid.output_max = 50.0f;
   fuzzypid::paper::JointController<float, kJoints> fuzzy(
       fuzzypid::paper::FuzzyPid<float>(&fuzzypid::paper::kSystem<float>, config));
-  fuzzypid::control::JointController<float, kJoints, fuzzypid::pid::Pid<float>> fixed(
+  fuzzypid::supervisor::JointController<float, kJoints, fuzzypid::pid::Pid<float>> fixed(
       fuzzypid::pid::Pid<float>(config.pid));
 
   fuzzypid::Status worst_fuzzy = fuzzypid::Status::Ok;

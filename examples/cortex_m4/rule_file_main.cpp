@@ -13,7 +13,7 @@
 #include <cstring>
 
 #include "engine_fuzzy.hpp"  // generated: namespace engine_fuzzy
-#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 #include "harness.hpp"
 
 using namespace cortex_m4_example;
@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   }
   start_systick();
 
-  fuzzypid::control::JointController<float, kJoints, engine_fuzzy::Controller<float>> fuzzy(
+  fuzzypid::supervisor::JointController<float, kJoints, engine_fuzzy::Controller<float>> fuzzy(
       engine_fuzzy::make_controller<float>(50.0f));
   fuzzypid::Status worst = fuzzypid::Status::Ok;
   const std::uint64_t counts = run(fuzzy, ticks, print, worst);

@@ -2,19 +2,19 @@
 // as ready-made constexpr data: its input partition (section 5.1, Fig. 4), its three rule tables
 // exactly as printed (Tables 2-4), corrected variants of the two cells that look misprinted, the
 // nominal PID gains (section 5.2), the paper's FuzzyPid configuration, and aliases for
-// controllers supervised by the paper's system. Nothing in control/, pid/ or fuzzy/ includes this
+// controllers supervised by the paper's system. Nothing in supervisor/, pid/ or fuzzy/ includes this
 // header: the generic parts do not know the paper.
 #pragma once
 
 #include <cstddef>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
+#include "fuzzypid/fuzzy/consequent_table.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/fuzzy/rule_table.hpp"
 #include "fuzzypid/fuzzy/tsk_system.hpp"
 #include "fuzzypid/pid/gains.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 
 namespace fuzzypid::paper {
 
@@ -31,7 +31,7 @@ inline constexpr double kUniformMax = 0.3;
 template <class Scalar>
 inline constexpr pid::Gains<Scalar> kNominalGains{Scalar(4), Scalar(0.001), Scalar(100)};
 
-using Table = fuzzy::RuleTable<double, kNumTerms, kNumTerms>;
+using Table = fuzzy::ConsequentTable<double, kNumTerms, kNumTerms>;
 
 // Table 2: Delta Kp, rows e = NL..PL, columns ec = NL..PL, exactly as printed.
 inline constexpr Table kDeltaKpPrinted{{
@@ -106,8 +106,8 @@ using System = fuzzy::TskSystem<Scalar, kNumTerms, kNumTerms, 3>;
 
 namespace detail {
 template <class Scalar>
-constexpr fuzzy::RuleTable<Scalar, kNumTerms, kNumTerms> cast(const Table& t) noexcept {
-  fuzzy::RuleTable<Scalar, kNumTerms, kNumTerms> out{};
+constexpr fuzzy::ConsequentTable<Scalar, kNumTerms, kNumTerms> cast(const Table& t) noexcept {
+  fuzzy::ConsequentTable<Scalar, kNumTerms, kNumTerms> out{};
   for (std::size_t i = 0; i < kNumTerms; ++i)
     for (std::size_t j = 0; j < kNumTerms; ++j)
       out[i][j] = static_cast<Scalar>(t[i][j]);
@@ -141,24 +141,24 @@ inline constexpr System<Scalar> kSystem = make_system<Scalar>();
 
 // The paper's configuration: K0 = (4, 0.001, 100), unit scales, absolute update (Eq. 6).
 template <class Scalar>
-constexpr control::FuzzyPidConfig<Scalar> paper_config() noexcept {
-  control::FuzzyPidConfig<Scalar> c;
+constexpr supervisor::FuzzyPidConfig<Scalar> paper_config() noexcept {
+  supervisor::FuzzyPidConfig<Scalar> c;
   c.pid.gains = kNominalGains<Scalar>;
   return c;
 }
 
 // A PID retuned by the paper's supervisor (or any System<Scalar> the caller owns).
 template <class Scalar>
-using FuzzyPid = control::FuzzyPid<Scalar, System<Scalar>>;
+using FuzzyPid = supervisor::FuzzyPid<Scalar, System<Scalar>>;
 
 // N joints, each a paper::FuzzyPid; 6 for the ER50-C20.
 template <class Scalar, std::size_t N = 6>
-using JointController = control::JointController<Scalar, N, FuzzyPid<Scalar>>;
+using JointController = supervisor::JointController<Scalar, N, FuzzyPid<Scalar>>;
 
 // A controller on kSystem with `config` (the paper's by default).
 template <class Scalar>
 FuzzyPid<Scalar> make_fuzzy_pid(
-    const control::FuzzyPidConfig<Scalar>& config = paper_config<Scalar>()) noexcept {
+    const supervisor::FuzzyPidConfig<Scalar>& config = paper_config<Scalar>()) noexcept {
   return FuzzyPid<Scalar>(&kSystem<Scalar>, config);
 }
 

@@ -149,7 +149,7 @@ std::string check_float_range(const ControllerSpec& spec) {
       {"derivative_filter_s", pc.derivative_filter_s}};
   const FamilyTraits& traits = family_traits(spec.family);
   if (traits.supervised()) {
-    const control::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
+    const supervisor::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
     values.insert(values.end(), {{"error_scale", fc.error_scale},
                                  {"error_rate_scale", fc.error_rate_scale},
                                  {"output_scale (kp)", fc.output_scale[0]},
@@ -333,22 +333,22 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
          "output_limit) noexcept {\n  return Controller<Scalar>(pid_config<Scalar>(output_limit));"
          "\n}\n\n";
   } else {
-    const control::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
-    h += "template <class Scalar>\nconstexpr fuzzypid::control::FuzzyPidConfig<Scalar> "
+    const supervisor::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
+    h += "template <class Scalar>\nconstexpr fuzzypid::supervisor::FuzzyPidConfig<Scalar> "
          "config(Scalar output_limit) noexcept {\n";
-    h += "  fuzzypid::control::FuzzyPidConfig<Scalar> c;\n";
+    h += "  fuzzypid::supervisor::FuzzyPidConfig<Scalar> c;\n";
     h += "  c.pid = pid_config<Scalar>(output_limit);\n";
     h += "  c.error_scale = " + lit(fc.error_scale) + ";\n";
     h += "  c.error_rate_scale = " + lit(fc.error_rate_scale) + ";\n";
     h += "  c.output_scale = {" + lit(fc.output_scale[0]) + ", " + lit(fc.output_scale[1]) + ", " +
          lit(fc.output_scale[2]) + "};\n";
-    h += std::string("  c.gain_update = fuzzypid::control::GainUpdate::") +
-         (fc.gain_update == control::GainUpdate::Absolute ? "Absolute" : "Incremental") + ";\n";
+    h += std::string("  c.gain_update = fuzzypid::supervisor::GainUpdate::") +
+         (fc.gain_update == supervisor::GainUpdate::Absolute ? "Absolute" : "Incremental") + ";\n";
     h += "  c.gain_min = " + gains(fc.gain_min) + ";\n";
     h += "  c.gain_max = " + gains(fc.gain_max) + ";\n";
     h += "  return c;\n}\n\n";
     h += supervisor.definitions;
-    h += "template <class Scalar>\nusing Controller = fuzzypid::control::FuzzyPid<Scalar, "
+    h += "template <class Scalar>\nusing Controller = fuzzypid::supervisor::FuzzyPid<Scalar, "
          "Supervisor<Scalar>>;\n\n";
     h += "template <class Scalar>\nController<Scalar> make_controller(Scalar output_limit) "
          "noexcept {\n  return Controller<Scalar>(&kSupervisor<Scalar>, "

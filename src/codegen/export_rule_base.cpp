@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
 #include "straight_line_supervisor.hpp"
 
 namespace fuzzypid::codegen {
@@ -228,17 +228,17 @@ std::string export_rule_base(const Model& m, const std::string& rule_file) {
   // `m` is a valid supervisor (export-header checked it), so every name is found once.
   SupervisorBinding binding;
   for (std::size_t k = 0; k < 2; ++k)
-    binding.input_of[k] = static_cast<std::size_t>(control::supervisor_detail::index_named(
-        m.inputs, m.num_inputs, control::kSupervisorInputNames[k]));
+    binding.input_of[k] = static_cast<std::size_t>(supervisor::supervisor_detail::index_named(
+        m.inputs, m.num_inputs, supervisor::kSupervisorInputNames[k]));
   for (std::size_t g = 0; g < 3; ++g)
-    binding.output_of[g] = static_cast<std::size_t>(control::supervisor_detail::index_named(
-        m.outputs, m.num_outputs, control::kSupervisorOutputNames[g]));
+    binding.output_of[g] = static_cast<std::size_t>(supervisor::supervisor_detail::index_named(
+        m.outputs, m.num_outputs, supervisor::kSupervisorOutputNames[g]));
   const std::string refusal = straight_line_refusal(m);
   if (refusal.empty()) return h + straight_line_supervisor(m, binding);
 
-  h += "// The supervisor FuzzyPid calls (the concept of fuzzypid/control/supervisor.hpp): the "
+  h += "// The supervisor FuzzyPid calls (the concept of fuzzypid/supervisor/supervisor.hpp): the "
        "rule\n"
-       "// base at (e, ec) gives (dKp, dKi, dKd), as control::EngineSupervisor with a fixed\n"
+       "// base at (e, ec) gives (dKp, dKi, dKd), as supervisor::EngineSupervisor with a fixed\n"
        "// workspace per joint. Interpreted, not straight-line code: " +
        comment_safe(refusal) + ".\n";
   std::string supervisor = R"(template <class Scalar>

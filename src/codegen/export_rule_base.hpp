@@ -20,7 +20,7 @@ namespace fuzzypid::codegen {
 // Defines, inside the generated namespace: RuleBaseCapacity (the file's exact counts),
 // make_rule_base<Scalar>() and kRuleBase<Scalar> (the model, constexpr, every number an exact
 // hexadecimal literal of the loaded double converted to Scalar), and Supervisor<Scalar> with
-// kSupervisor<Scalar>: e, ec in, dKp, dKi, dKd out, as control::EngineSupervisor computes them.
+// kSupervisor<Scalar>: e, ec in, dKp, dKi, dKd out, as supervisor::EngineSupervisor computes them.
 // The supervisor is straight-line code (straight_line_supervisor.hpp) where the generator covers
 // the model, else fuzzy::evaluate on a fixed EngineWorkspace, with the reason in a comment.
 // `model` must be valid with 2 inputs and 3 outputs named as a supervisor's; `rule_file` is named

@@ -483,7 +483,7 @@ std::string straight_line_supervisor(const Model& m, const SupervisorBinding& bi
     lock_previous = lock_previous || m.outputs[o].lock_previous;
 
   std::string h;
-  h += "// The supervisor FuzzyPid calls (the concept of fuzzypid/control/supervisor.hpp), as\n"
+  h += "// The supervisor FuzzyPid calls (the concept of fuzzypid/supervisor/supervisor.hpp), as\n"
        "// straight-line code generated from the rule base: what fuzzy::evaluate computes on\n"
        "// kRuleBase, bit for bit, with no loop over the model. A run of rules opened by a\n"
        "// conjunct of degree 0 is skipped (none of its rules can fire).\n";

@@ -27,7 +27,7 @@ struct SupervisorBinding {
 // Octave's aggregation of equal singletons, and Function terms (formulas).
 [[nodiscard]] std::string straight_line_refusal(const fuzzy::EngineModel<double>& model);
 
-// The class template Supervisor<Scalar> (the concept of fuzzypid/control/supervisor.hpp) whose
+// The class template Supervisor<Scalar> (the concept of fuzzypid/supervisor/supervisor.hpp) whose
 // infer() computes what fuzzy::evaluate computes on `model`, bit for bit: the same operations in
 // the same order, every number the exact literal of the model's converted to Scalar. Rules whose
 // strength is 0 are skipped (a run of consecutive rules opened by the same conjunct is skipped as

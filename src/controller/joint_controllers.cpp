@@ -16,10 +16,11 @@ pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit) 
   return c;
 }
 
-control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec, double output_limit) {
+supervisor::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
+                                                    double output_limit) {
   const PidForm form = spec.units.form;
   const double dt = spec.units.tick_s;
-  control::FuzzyPidConfig<double> fc;
+  supervisor::FuzzyPidConfig<double> fc;
   fc.pid = pid_config(spec, output_limit);
   fc.error_scale = spec.supervisor.error_scale;
   fc.error_rate_scale = spec.supervisor.error_rate_scale;

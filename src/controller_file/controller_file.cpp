@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
 #include "fuzzypid_support/toml_reader.hpp"
 
 namespace fuzzypid::controller_file {
@@ -66,14 +66,14 @@ std::shared_ptr<const fuzzy::EngineModel<double>> load_rule_model(const TableRea
   rulefile::LoadError error;
   if (!rulefile::load_rule_file(resolved.string(), *model, error))
     where.fail(node, "cannot load the rule file: " + error.to_string());
-  // Bound by name (control/engine_supervisor.hpp), so the order of the blocks does not matter;
+  // Bound by name (supervisor/engine_supervisor.hpp), so the order of the blocks does not matter;
   // a term name used twice in a variable would make a rule's meaning depend on the reader's
   // resolution rule, so a rule file that drives gains may not have one.
-  if (const std::string bad = control::supervisor_binding_error(*model); !bad.empty())
+  if (const std::string bad = supervisor::supervisor_binding_error(*model); !bad.empty())
     where.fail(node, "the rule file cannot supervise the gains: " + resolved.string() + ": " + bad);
   if (!error.warnings.empty())
     where.fail(node, "the rule file cannot supervise the gains: " + error.warnings.front());
-  if (!control::EngineSupervisor<double>(model.get()).valid())
+  if (!supervisor::EngineSupervisor<double>(model.get()).valid())
     where.fail(node, "the rule file cannot supervise the gains: " + resolved.string());
   return model;
 }
@@ -148,7 +148,7 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     s.supervisor.output_scale = sup->triple("output_scale", std::nullopt);
     if (traits.rule_base) {
       s.supervisor.gain_update =
-          sup->choice("gain_update", kGainUpdateNames, control::GainUpdate::Absolute);
+          sup->choice("gain_update", kGainUpdateNames, supervisor::GainUpdate::Absolute);
       if (sup->has("rule_file")) {
         const toml::node& node = *sup->raw().get("rule_file");
         if (sup->has("rule_base") || sup->has("conjunction"))

@@ -1,4 +1,4 @@
-// control::RuleTable as .fll, .fcl and .fis text (see rule_table_export.hpp for the construction).
+// supervisor::RuleTable as .fll, .fcl and .fis text (see rule_table_export.hpp for the construction).
 #include "fuzzypid/rulefile/rule_table_export.hpp"
 
 #include <algorithm>
@@ -13,7 +13,7 @@
 namespace fuzzypid::rulefile {
 namespace {
 
-using Table = control::RuleTable<double>;
+using Table = supervisor::RuleTable<double>;
 constexpr std::size_t kSets = 7;
 constexpr const char* kSetNames[kSets] = {"NB", "NM", "NS", "ZO", "PS", "PM", "PB"};
 constexpr const char* kOutputNames[3] = {"dKp", "dKi", "dKd"};
@@ -63,7 +63,7 @@ std::string ramp_term_name(double scale) {
 std::string header(const Table& t, const std::array<OutputTerms, 3>& terms, const char* c) {
   std::string s;
   const auto line = [&](const std::string& text) { s += std::string(c) + text + "\n"; };
-  line("fuzzypid fuzzy-rules supervisor (control::RuleTable): a rule table refining the gain");
+  line("fuzzypid fuzzy-rules supervisor (supervisor::RuleTable): a rule table refining the gain");
   line("schedule K = K0 (1 + (R - 1) min(1, |x| + |y|)) of the `scheduled` family.");
   line(
       "Inputs (dimensionless universe units): e = Ke * error, ec = Kec * error rate, where Ke and");

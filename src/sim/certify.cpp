@@ -87,7 +87,7 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
 // accumulates its steps: it can reach anything inside the file's gain bounds.
 GainBox gain_box(const ControllerSpec& spec, const std::vector<GainPoint>& points) {
   GainBox box;
-  if (controller::fuzzy_pid_config(spec, kInf).gain_update == control::GainUpdate::Incremental) {
+  if (controller::fuzzy_pid_config(spec, kInf).gain_update == supervisor::GainUpdate::Incremental) {
     box.low = controller::to_continuous(spec.gain_min, spec.units.form, spec.units.tick_s);
     box.high = controller::to_continuous(spec.gain_max, spec.units.form, spec.units.tick_s);
     return box;

@@ -297,7 +297,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   if (limits.record) result.rows.reserve(ticks * kJoints);
   // The bounds and K0 exactly as the joints hold them (continuous SI form).
   const bool supervised = controller::family_traits(controller.family).supervised();
-  const control::FuzzyPidConfig<double> bounds =
+  const supervisor::FuzzyPidConfig<double> bounds =
       controller::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);

@@ -184,7 +184,7 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
     s.supervisor.output_scale = {p(5), p(6), p(7)};
   }
   if (traits.output_scale == OutputScale::Ratios)
-    s.supervisor.gain_update = control::GainUpdate::Absolute;
+    s.supervisor.gain_update = supervisor::GainUpdate::Absolute;
   if (!traits.rule_base) {  // a rule file only means something to a family with a rule base
     s.supervisor.rule_file.clear();
     s.supervisor.rule_model.reset();

@@ -15,7 +15,7 @@ namespace detail {
 
 VisitMap visits_in(tbb::task_arena* arena, const ExperimentOf& ex,
                    const std::vector<sim::Condition>& conditions, const ControllerSpec& spec) {
-  const control::RuleTable<double> table = controller::rule_table(spec);
+  const supervisor::RuleTable<double> table = controller::rule_table(spec);
   const std::size_t n = conditions.size();
   std::vector<VisitMap> per(n, VisitMap{});
   const auto one = [&](std::size_t k) {

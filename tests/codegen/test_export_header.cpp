@@ -17,12 +17,12 @@
 #include "engine_lock_fuzzy.hpp"
 #include "engine_tip_fuzzy.hpp"
 #include "fuzzypid/codegen/export_header.hpp"
-#include "fuzzypid/control/engine_supervisor.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 #include "paper_fuzzy.hpp"
 #include "rule_table_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
@@ -60,7 +60,7 @@ int expect_equal_to_file(const char* file, const Controller& prototype,
       controller::JointControllers::create(spec, controller::Vector{3, 3, 3, 3, 3, 3}, error);
   EXPECT_TRUE(from_file) << error;
   if (!from_file) return 0;
-  control::JointController<double, kJ, Controller> from_header(prototype);
+  supervisor::JointController<double, kJ, Controller> from_header(prototype);
   sim::Random rng(2024);
   for (int k = 0; k < 400; ++k) {
     controller::Input in;
@@ -181,14 +181,14 @@ std::vector<std::array<Scalar, 2>> probe_inputs(const std::vector<double>& point
   return in;
 }
 
-// The generated straight-line Supervisor against control::EngineSupervisor on the same constexpr
+// The generated straight-line Supervisor against supervisor::EngineSupervisor on the same constexpr
 // rule base (the interpreter), one workspace each carried across the whole sequence (so
 // lock-previous is exercised): every status and every output bit must agree. Returns how many
 // inferences fired some rule.
 template <class Scalar, class Straight, class Model>
 int expect_straight_line_equals_engine(const Straight& straight, const Model& model,
                                        const std::vector<double>& points, std::uint64_t seed) {
-  const control::EngineSupervisor<Scalar, typename Model::Capacity> engine(&model);
+  const supervisor::EngineSupervisor<Scalar, typename Model::Capacity> engine(&model);
   EXPECT_TRUE(engine.valid());
   auto engine_ws = engine.make_workspace();
   auto straight_ws = straight.make_workspace();
@@ -221,8 +221,8 @@ TEST(ExportHeader, ASugenoRuleBaseIsExportedAsStraightLineCode) {
   static_assert(
       std::is_same_v<engine_disabled_fuzzy::Supervisor<float>::Workspace,
                      fuzzy::EngineWorkspace<float, engine_disabled_fuzzy::RuleBaseCapacity>>);
-  static_assert(control::is_supervisor_v<engine_fuzzy::Supervisor<float>, float>);
-  static_assert(control::is_supervisor_v<engine_constructs_fuzzy::Supervisor<double>, double>);
+  static_assert(supervisor::is_supervisor_v<engine_fuzzy::Supervisor<float>, float>);
+  static_assert(supervisor::is_supervisor_v<engine_constructs_fuzzy::Supervisor<double>, double>);
 }
 
 // The paper's rules (rulebases/paper.fll): the straight-line code computes the engine's result bit
@@ -298,7 +298,7 @@ TEST(ExportHeader, TheFuzzyRulesTableIsTheFilesBitForBit) {
   fuzzypid::FileError err;
   ASSERT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/tests/sim/data/rule_table_fuzzy.toml", spec, err))
       << err.to_string();
-  const control::RuleTable<double> file = controller::rule_table(spec);
+  const supervisor::RuleTable<double> file = controller::rule_table(spec);
   const auto& header = rule_table_fuzzy::kSupervisor<double>;
   bool some_cell_is_not_one = false;
   for (std::size_t g = 0; g < 3; ++g) {

@@ -553,15 +553,15 @@ TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
 // gain_update = "incremental" reaches the runtime fuzzy controller's configuration.
 TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
   controller::ControllerSpec spec = controller::paper_fuzzy();
-  spec.supervisor.gain_update = fuzzypid::control::GainUpdate::Incremental;
+  spec.supervisor.gain_update = fuzzypid::supervisor::GainUpdate::Incremental;
   controller::ControllerSpec back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(cf::to_toml(spec), "inc.toml", back, error)) << error.to_string();
-  EXPECT_EQ(back.supervisor.gain_update, fuzzypid::control::GainUpdate::Incremental);
+  EXPECT_EQ(back.supervisor.gain_update, fuzzypid::supervisor::GainUpdate::Incremental);
   EXPECT_EQ(controller::fuzzy_pid_config(back, 1.0).gain_update,
-            fuzzypid::control::GainUpdate::Incremental);
+            fuzzypid::supervisor::GainUpdate::Incremental);
   EXPECT_EQ(controller::fuzzy_pid_config(controller::paper_fuzzy(), 1.0).gain_update,
-            fuzzypid::control::GainUpdate::Absolute);
+            fuzzypid::supervisor::GainUpdate::Absolute);
 }
 
 // A fuzzy-rules controller with an uneven table, non-uniform centers, R != 1, bounds that clamp
@@ -621,7 +621,7 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     EXPECT_EQ(fuzzy.supervisor.error_rate_scale, rules.supervisor.error_rate_scale);
     EXPECT_EQ(fuzzy.supervisor.output_scale,
               (std::array<double, 3>{rules.gains.kp, rules.gains.ki, rules.gains.kd}));
-    EXPECT_EQ(fuzzy.supervisor.gain_update, fuzzypid::control::GainUpdate::Absolute);
+    EXPECT_EQ(fuzzy.supervisor.gain_update, fuzzypid::supervisor::GainUpdate::Absolute);
     EXPECT_EQ(fuzzy.supervisor.rule_file, "../rules/t.fll");
     EXPECT_EQ(fuzzy.gain_min, rules.gain_min);
     EXPECT_EQ(fuzzy.gain_max, rules.gain_max);

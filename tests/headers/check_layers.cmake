@@ -1,11 +1,11 @@
-# Fails if a header of the generic layers (control/, pid/, fuzzy/) includes fuzzypid/paper.hpp,
+# Fails if a header of the generic layers (supervisor/, pid/, fuzzy/) includes fuzzypid/paper.hpp,
 # directly or transitively, or if a header under include/fuzzypid/ declares a friend.
 # Usage: cmake -DCXX=<c++ compiler> -DINCLUDE_DIR=<repo>/include -P check_layers.cmake
-file(GLOB generic ${INCLUDE_DIR}/fuzzypid/control/*.hpp ${INCLUDE_DIR}/fuzzypid/pid/*.hpp
+file(GLOB generic ${INCLUDE_DIR}/fuzzypid/supervisor/*.hpp ${INCLUDE_DIR}/fuzzypid/pid/*.hpp
      ${INCLUDE_DIR}/fuzzypid/fuzzy/*.hpp)
 list(LENGTH generic count)
 if(count LESS 5)
-  message(FATAL_ERROR "found only ${count} headers in control/, pid/, fuzzy/: ${generic}")
+  message(FATAL_ERROR "found only ${count} headers in supervisor/, pid/, fuzzy/: ${generic}")
 endif()
 foreach(header IN LISTS generic)
   execute_process(COMMAND ${CXX} -std=c++17 -I${INCLUDE_DIR} -MM -x c++ ${header}
@@ -25,4 +25,4 @@ foreach(header IN LISTS all)
     message(FATAL_ERROR "${header} declares a friend: ${friends}")
   endif()
 endforeach()
-message(STATUS "${count} headers of control/, pid/, fuzzy/ without paper.hpp; no friend in include/fuzzypid/")
+message(STATUS "${count} headers of supervisor/, pid/, fuzzy/ without paper.hpp; no friend in include/fuzzypid/")

@@ -11,17 +11,17 @@
 #include <limits>
 #include <random>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/status.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 
 namespace {
 
 using fuzzypid::Status;
 using Fuzzy = fuzzypid::paper::FuzzyPid<double>;
-using Controller = fuzzypid::control::JointController<double, 6, Fuzzy>;
+using Controller = fuzzypid::supervisor::JointController<double, 6, Fuzzy>;
 using Vector = Controller::Vector;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -34,7 +34,7 @@ double uniform(std::mt19937_64& rng) {
   return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
-fuzzypid::control::FuzzyPidConfig<double> config(std::size_t joint) {
+fuzzypid::supervisor::FuzzyPidConfig<double> config(std::size_t joint) {
   auto c = fuzzypid::paper::paper_config<double>();
   c.pid.gains = {4.0, 0.02, 5.0};  // the paper's per-tick gains at 50 ms, continuous form
   c.pid.output_min = -kOutputLimit;
@@ -42,8 +42,8 @@ fuzzypid::control::FuzzyPidConfig<double> config(std::size_t joint) {
   c.pid.integral_min = -kIntegralLimit;
   c.pid.integral_max = kIntegralLimit;
   c.output_scale = {1.0, 20.0, 0.05};
-  c.gain_update = joint % 2 == 0 ? fuzzypid::control::GainUpdate::Absolute
-                                 : fuzzypid::control::GainUpdate::Incremental;
+  c.gain_update = joint % 2 == 0 ? fuzzypid::supervisor::GainUpdate::Absolute
+                                 : fuzzypid::supervisor::GainUpdate::Incremental;
   c.gain_max = {12.0, 0.06, 15.0};
   return c;
 }

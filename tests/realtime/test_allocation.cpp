@@ -15,17 +15,17 @@
 #include <random>
 #include <string>
 
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::JointController;
-using fuzzypid::control::JointInput;
+using fuzzypid::supervisor::JointController;
+using fuzzypid::supervisor::JointInput;
 
 using fuzzypid::support::allocation_count;
 

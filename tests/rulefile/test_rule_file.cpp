@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 
 namespace {
 
@@ -716,20 +716,19 @@ TEST(RuleFile, LoadReadsAtMostABoundedSize) {
 // FuzzyPid driven by a loaded rule base.
 
 TEST(RuleFile, FuzzyPidWithALoadedPaperSystemTracksTheBuiltInOne) {
-  namespace control = fuzzypid::control;
   auto model = std::make_unique<Model>();
   LoadError error;
   ASSERT_TRUE(fuzzypid::rulefile::load_fis(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error))
       << error.to_string();
-  const fuzzypid::control::EngineSupervisor<double> supervisor(model.get());
+  const fuzzypid::supervisor::EngineSupervisor<double> supervisor(model.get());
   ASSERT_TRUE(supervisor.valid());
 
   auto config = fuzzypid::paper::paper_config<double>();
   config.error_scale = 0.3;
   config.error_rate_scale = 0.1;
-  auto loaded =
-      std::make_unique<control::FuzzyPid<double, fuzzypid::control::EngineSupervisor<double>>>(
-          &supervisor, config);
+  auto loaded = std::make_unique<
+      fuzzypid::supervisor::FuzzyPid<double, fuzzypid::supervisor::EngineSupervisor<double>>>(
+      &supervisor, config);
   fuzzypid::paper::FuzzyPid<double> builtin(&fuzzypid::paper::kSystem<double>, config);
 
   // A unit-inertia joint driven to 0.5 rad at 100 Hz.
@@ -753,13 +752,13 @@ TEST(RuleFile, FuzzyPidWithALoadedPaperSystemTracksTheBuiltInOne) {
 TEST(RuleFile, SupervisorRejectsModelsOfTheWrongShape) {
   const auto model = parse(Format::Fis, fixture("mamdani_mix.fis"));
   ASSERT_TRUE(model);
-  const fuzzypid::control::EngineSupervisor<double> wrong(model.get());
+  const fuzzypid::supervisor::EngineSupervisor<double> wrong(model.get());
   EXPECT_FALSE(wrong.valid());
   auto ws = wrong.make_workspace();
   std::array<double, 3> delta{1.0, 1.0, 1.0};
   EXPECT_EQ(wrong.infer(0.0, 0.0, ws, delta), Status::InvalidConfig);
   EXPECT_EQ(delta, (std::array<double, 3>{}));
-  EXPECT_FALSE(fuzzypid::control::EngineSupervisor<double>(nullptr).valid());
+  EXPECT_FALSE(fuzzypid::supervisor::EngineSupervisor<double>(nullptr).valid());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1085,11 +1084,12 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
 
 TEST(RuleFileCapacity, SupervisorWorkspaceIsSizedToTheLoadedModel) {
   static_assert(
-      fuzzypid::control::is_supervisor_v<fuzzypid::control::EngineSupervisor<double>, double>);
+      fuzzypid::supervisor::is_supervisor_v<fuzzypid::supervisor::EngineSupervisor<double>,
+                                            double>);
   auto model = std::make_unique<Model>();
   LoadError error;
   ASSERT_TRUE(fuzzypid::rulefile::load_fis(FUZZYPID_RULEBASES_DIR "/paper.fis", *model, error));
-  const fuzzypid::control::EngineSupervisor<double> supervisor(model.get());
+  const fuzzypid::supervisor::EngineSupervisor<double> supervisor(model.get());
   auto ws = supervisor.make_workspace();
   EXPECT_EQ(ws.strength.size(), 49u);
   EXPECT_EQ(ws.membership.size(), 2u * 7u);

@@ -14,9 +14,9 @@
 #include <sstream>
 #include <string>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {

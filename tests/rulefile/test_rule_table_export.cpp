@@ -1,4 +1,4 @@
-// rulefile::rule_table_to_fll/fcl/fis: a control::RuleTable written as a rule file evaluates, in
+// rulefile::rule_table_to_fll/fcl/fis: a supervisor::RuleTable written as a rule file evaluates, in
 // fuzzypid's own reader and engine and in fuzzylite 6 (oracle, tests only), to RuleTable::infer's
 // delta on seeded random tables, partitions, ratios and inputs inside and outside the universe.
 #include <fl/Headers.h>
@@ -14,20 +14,20 @@
 #include <string>
 #include <tuple>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/rulefile/rule_table_export.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::RuleTable;
 using fuzzypid::fuzzy::Engine;
 using fuzzypid::rulefile::LoadError;
 using fuzzypid::rulefile::Model;
+using fuzzypid::supervisor::RuleTable;
 
 enum class Format { Fll, Fcl, Fis };
 const char* name(Format f) {
@@ -226,8 +226,8 @@ TEST(RuleTableExport, MirroredRulesOfEvenTablesMergeAndStayExact) {
 TEST(RuleTableExport, TheLoadedFileDrivesFuzzyPidLikeTheTable) {
   // The family's use: S = K0. FuzzyPid on EngineSupervisor(loaded .fll) against FuzzyPid on the
   // RuleTable itself, over seeded ticks: gains within 1e-12 relative.
-  using fuzzypid::control::EngineSupervisor;
-  using fuzzypid::control::FuzzyPid;
+  using fuzzypid::supervisor::EngineSupervisor;
+  using fuzzypid::supervisor::FuzzyPid;
   const std::uint64_t seed = 0xd41eULL;
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
@@ -240,7 +240,7 @@ TEST(RuleTableExport, TheLoadedFileDrivesFuzzyPidLikeTheTable) {
     ASSERT_TRUE(model);
     const EngineSupervisor<double> supervisor(model.get());
     ASSERT_TRUE(supervisor.valid());
-    fuzzypid::control::FuzzyPidConfig<double> c;
+    fuzzypid::supervisor::FuzzyPidConfig<double> c;
     c.pid.gains = {uniform(rng, 1, 100), uniform(rng, 0, 10), uniform(rng, 0, 5)};
     c.output_scale = {c.pid.gains.kp, c.pid.gains.ki, c.pid.gains.kd};
     c.error_scale = uniform(rng, 1, 20);

@@ -14,9 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/gain_schedule.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/paper.hpp"
@@ -26,6 +23,9 @@
 #include "fuzzypid/sim/closed_loop.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/gain_schedule.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 
 namespace {
@@ -82,11 +82,11 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
   const double dt = 0.05;
   const auto& J = experiment_->nominal_inertia();
   const robot::JointVector limit = model_->effort_limits_nm();
-  using Joint = control::FuzzyPid<double, control::GainSchedule<double>>;
-  const control::GainSchedule<double> schedule;
+  using Joint = supervisor::FuzzyPid<double, supervisor::GainSchedule<double>>;
+  const supervisor::GainSchedule<double> schedule;
   std::vector<Joint> built;
   for (std::size_t i = 0; i < kJ; ++i) {
-    control::FuzzyPidConfig<double> c;
+    supervisor::FuzzyPidConfig<double> c;
     c.pid.gains = {150.0, 0.004 / dt, 300.0 * dt};
     c.pid.output_min = -limit[i] / J[i];
     c.pid.output_max = limit[i] / J[i];
@@ -96,7 +96,8 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
     built.emplace_back(&schedule, c);
   }
   const std::array<Joint, kJ> joints = {built[0], built[1], built[2], built[3], built[4], built[5]};
-  control::JointController<double, kJ, control::FuzzyPid<double, control::GainSchedule<double>>>
+  supervisor::JointController<double, kJ,
+                              supervisor::FuzzyPid<double, supervisor::GainSchedule<double>>>
       controller(joints);
   robot::PlantConfig pc;
   pc.armature_kgm2 = robot::kEr50ArmatureKgm2;  // as the experiment gives the bundled ER50-C20
@@ -123,7 +124,7 @@ TEST_F(ClosedLoopTest, ControllerFileThroughTheExperimentEqualsAHandBuiltLoopBit
       const auto& row = r.rows[k * kJ + i];
       ASSERT_TRUE(same_bits(row.theta, plant.position()[i])) << "tick " << k << " joint " << i;
     }
-    control::JointInput<double, kJ> in;
+    supervisor::JointInput<double, kJ> in;
     in.desired_position_rad = p.position_rad[k];
     in.desired_velocity_rad_s = p.velocity_rad_s[k];
     in.measured_position_rad = qm;
@@ -578,7 +579,7 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
   const controller::ControllerSpec spec = controller::paper_fuzzy();
   const sim::Condition cond = busy_condition();
   const robot::JointVector limit = experiment_->output_limit(cond, spec.units.gains);
-  std::array<control::FuzzyPidConfig<double>, kJ> configs;
+  std::array<supervisor::FuzzyPidConfig<double>, kJ> configs;
   for (std::size_t i = 0; i < kJ; ++i)
     configs[i] = controller::fuzzy_pid_config(spec, limit[i]);
   std::string error;
@@ -589,7 +590,7 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
   ASSERT_TRUE(same_loop) << error;
 
   for (std::size_t i = 3; i < kJ; ++i) {
-    configs[i].gain_update = control::GainUpdate::Incremental;
+    configs[i].gain_update = supervisor::GainUpdate::Incremental;
     configs[i].pid.integral_min = -0.5;
     configs[i].pid.integral_max = 0.5;
   }
@@ -700,7 +701,7 @@ TEST(Random, IsTheSameSequenceForTheSameSeedAndStandardNormalOnAverage) {
 }
 
 TEST(GainSchedule, IsARampInAbsEPlusAbsEcSaturatingAtOne) {
-  const control::GainSchedule<double> s;
+  const supervisor::GainSchedule<double> s;
   auto ws = s.make_workspace();
   std::array<double, 3> d{};
   EXPECT_EQ(s.infer(0.0, 0.0, ws, d), Status::Ok);

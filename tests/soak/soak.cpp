@@ -53,7 +53,6 @@
 #include <utility>
 
 #include "cli.hpp"
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller/joint_controllers.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/robot/path.hpp"
@@ -64,13 +63,14 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/random.hpp"
 #include "fuzzypid/status.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 #include "fuzzypid_support/counting_new.hpp"  // replaces global operator new: counts allocations
 
 namespace {
 
 namespace controller = fuzzypid::controller;
 namespace cli = fuzzypid::cli;
-namespace control = fuzzypid::control;
+namespace supervisor = fuzzypid::supervisor;
 namespace pid = fuzzypid::pid;
 namespace robot = fuzzypid::robot;
 namespace sim = fuzzypid::sim;
@@ -158,13 +158,13 @@ std::optional<Soak> build(const sim::Experiment& experiment, std::string& error)
   spec.gain_min = {0.0, 0.0, 0.0};
   spec.gain_max = gain_max_of(spec.gains);
   const robot::JointVector u_max = experiment.output_limit(condition, spec.units.gains);
-  std::array<control::FuzzyPidConfig<double>, kJoints> configs;
+  std::array<supervisor::FuzzyPidConfig<double>, kJoints> configs;
   for (std::size_t i = 0; i < kJoints; ++i) {
     configs[i] = controller::fuzzy_pid_config(spec, u_max[i]);
     configs[i].pid.integral_min = -u_max[i];
     configs[i].pid.integral_max = u_max[i];
     configs[i].gain_update =
-        i < 3 ? control::GainUpdate::Absolute : control::GainUpdate::Incremental;
+        i < 3 ? supervisor::GainUpdate::Absolute : supervisor::GainUpdate::Incremental;
   }
   auto controller = controller::JointControllers::create(spec, configs, error);
   if (!controller) return std::nullopt;

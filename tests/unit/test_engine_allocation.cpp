@@ -10,11 +10,11 @@
 #include <new>
 #include <string>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/rulefile/rule_file.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 
 namespace {
@@ -71,9 +71,9 @@ TEST(EngineAllocation, EvaluationAllocatesNothingAfterLoad) {
 
 TEST(EngineAllocation, FuzzyPidWithALoadedSystemAllocatesNothingPerTick) {
   const auto model = load(FUZZYPID_RULEBASES_DIR "/paper.fis");
-  using Supervisor = fuzzypid::control::EngineSupervisor<double>;
+  using Supervisor = fuzzypid::supervisor::EngineSupervisor<double>;
   const Supervisor supervisor(model.get());
-  auto controller = std::make_unique<fuzzypid::control::FuzzyPid<double, Supervisor>>(
+  auto controller = std::make_unique<fuzzypid::supervisor::FuzzyPid<double, Supervisor>>(
       &supervisor, fuzzypid::paper::paper_config<double>());
   const std::size_t before = allocation_count();
   fuzzypid::pid::Input<double> in;

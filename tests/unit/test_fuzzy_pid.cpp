@@ -1,4 +1,4 @@
-// control::FuzzyPid: the paper's fuzzy supervisor retuning a PID every tick (Eqs. 6-8).
+// supervisor::FuzzyPid: the paper's fuzzy supervisor retuning a PID every tick (Eqs. 6-8).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -7,20 +7,20 @@
 #include <random>
 #include <string>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::FuzzyPidConfig;
-using fuzzypid::control::GainUpdate;
 using fuzzypid::fuzzy::Conjunction;
 using fuzzypid::fuzzy::LinguisticVariable;
 using fuzzypid::fuzzy::Term;
 using fuzzypid::paper::FuzzyPid;
 using fuzzypid::pid::DerivativeSource;
+using fuzzypid::supervisor::FuzzyPidConfig;
+using fuzzypid::supervisor::GainUpdate;
 using Gains = fuzzypid::pid::Gains<double>;
 using Input = fuzzypid::pid::Input<double>;
 namespace paper = fuzzypid::paper;
@@ -231,7 +231,7 @@ GappySystem gappy_system() {
 TEST(FuzzyPid, NoRuleFiredKeepsTheNominalGainsAndStillRunsThePid) {
   auto config = paper::paper_config<double>();
   const GappySystem gappy = gappy_system();
-  fuzzypid::control::FuzzyPid<double, GappySystem> fpid(&gappy, config);
+  fuzzypid::supervisor::FuzzyPid<double, GappySystem> fpid(&gappy, config);
   fuzzypid::pid::Pid<double> twin(config.pid);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);  // fires: K0 + 1
   EXPECT_EQ(fpid.gains(), (Gains{5.0, 1.001, 101.0}));
@@ -251,7 +251,7 @@ TEST(FuzzyPid, NoRuleFiredInIncrementalModeKeepsThePreviousGains) {
   auto config = paper::paper_config<double>();
   config.gain_update = GainUpdate::Incremental;
   const GappySystem gappy = gappy_system();
-  fuzzypid::control::FuzzyPid<double, GappySystem> fpid(&gappy, config);
+  fuzzypid::supervisor::FuzzyPid<double, GappySystem> fpid(&gappy, config);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);
   ASSERT_EQ(fpid.update(at(-0.5, 0.0, -0.5, 0.0), 0.05), Status::Ok);
   const Gains previous = fpid.gains();
@@ -260,7 +260,7 @@ TEST(FuzzyPid, NoRuleFiredInIncrementalModeKeepsThePreviousGains) {
   EXPECT_EQ(fpid.gains(), previous);
 }
 
-// The smallest supervisor of the concept (control/supervisor.hpp): constant corrections, and a
+// The smallest supervisor of the concept (supervisor/supervisor.hpp): constant corrections, and a
 // per-joint workspace that counts the inferences and records the last (e, ec).
 struct ConstantSupervisor {
   struct Workspace {
@@ -277,16 +277,16 @@ struct ConstantSupervisor {
     return Status::Ok;
   }
 };
-static_assert(fuzzypid::control::is_supervisor_v<ConstantSupervisor, double>);
-static_assert(fuzzypid::control::is_supervisor_v<paper::System<float>, float>);
-static_assert(!fuzzypid::control::is_supervisor_v<paper::System<float>, double>);
+static_assert(fuzzypid::supervisor::is_supervisor_v<ConstantSupervisor, double>);
+static_assert(fuzzypid::supervisor::is_supervisor_v<paper::System<float>, float>);
+static_assert(!fuzzypid::supervisor::is_supervisor_v<paper::System<float>, double>);
 
 TEST(FuzzyPid, AnySupervisorOfTheConceptSeesTheScaledErrorOncePerTick) {
   const ConstantSupervisor supervisor;
   auto config = paper::paper_config<double>();
   config.error_scale = 2.0;
   config.error_rate_scale = 3.0;
-  fuzzypid::control::FuzzyPid<double, ConstantSupervisor> fpid(&supervisor, config);
+  fuzzypid::supervisor::FuzzyPid<double, ConstantSupervisor> fpid(&supervisor, config);
   ASSERT_EQ(fpid.update(at(0.5, 0.25, 0.1, 0.4), 0.05), Status::Ok);
   EXPECT_EQ(fpid.workspace().calls, 1);
   EXPECT_EQ(fpid.workspace().e, 2.0 * 0.25);

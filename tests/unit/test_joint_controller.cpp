@@ -1,4 +1,4 @@
-// control::JointController: N independent joints stepped together, faults isolated per joint.
+// supervisor::JointController: N independent joints stepped together, faults isolated per joint.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -9,18 +9,18 @@
 #include <string>
 #include <type_traits>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::JointController;
-using fuzzypid::control::JointInput;
 using fuzzypid::paper::FuzzyPid;
+using fuzzypid::supervisor::JointController;
+using fuzzypid::supervisor::JointInput;
 
 // One tick's input from its five vectors.
 template <class Scalar, std::size_t N>
@@ -223,7 +223,7 @@ TEST(JointController, StatusIsTheWorstOfTheJoints) {
       fuzzypid::fuzzy::Term<double>::triangle(0.0, 1.0, 2.0)};
   gappy.e = fuzzypid::fuzzy::LinguisticVariable<double, 2>::custom(-1.0, 2.0, terms);
   gappy.ec = gappy.e;
-  using Joint = fuzzypid::control::FuzzyPid<double, Gappy>;
+  using Joint = fuzzypid::supervisor::FuzzyPid<double, Gappy>;
   const Joint joint(&gappy, fuzzypid::paper::paper_config<double>());
   JointController<double, 2, Joint> controller(joint);
   auto out = controller.step(JointInput<double, 2>{{0.5, 5.0}}, 0.05);

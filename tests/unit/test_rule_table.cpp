@@ -1,4 +1,4 @@
-// control::RuleTable, the supervisor of the fuzzy-rules family: a zero-order Sugeno rule base
+// supervisor::RuleTable, the supervisor of the fuzzy-rules family: a zero-order Sugeno rule base
 // (product AND, weighted average over a strong partition) refining GainSchedule's ramp.
 //
 // The closed forms it is held to:
@@ -12,7 +12,7 @@
 // This executable replaces global operator new (fuzzypid_support/counting_new.hpp) to prove that
 // infer() allocates nothing.
 // First, on purpose: rule_table.hpp must not hide fuzzypid::detail from the headers after it.
-#include "fuzzypid/control/rule_table.hpp"
+#include "fuzzypid/supervisor/rule_table.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,23 +26,23 @@
 #include <string>
 #include <utility>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/gain_schedule.hpp"
-#include "fuzzypid/control/supervisor.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/gain_schedule.hpp"
+#include "fuzzypid/supervisor/supervisor.hpp"
 #include "fuzzypid_support/counting_new.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
 namespace {
 
 using fuzzypid::Status;
-using fuzzypid::control::FuzzyPid;
-using fuzzypid::control::FuzzyPidConfig;
-using fuzzypid::control::GainSchedule;
-using fuzzypid::control::RuleTable;
+using fuzzypid::supervisor::FuzzyPid;
+using fuzzypid::supervisor::FuzzyPidConfig;
+using fuzzypid::supervisor::GainSchedule;
+using fuzzypid::supervisor::RuleTable;
 using fuzzypid::support::allocation_count;
 
-static_assert(fuzzypid::control::is_supervisor_v<RuleTable<double>, double>);
-static_assert(fuzzypid::control::is_supervisor_v<RuleTable<float, 5>, float>);
+static_assert(fuzzypid::supervisor::is_supervisor_v<RuleTable<double>, double>);
+static_assert(fuzzypid::supervisor::is_supervisor_v<RuleTable<float, 5>, float>);
 
 // Constexpr data, as a generated header for a microcontroller would hold it.
 constexpr RuleTable<double> kDefault{};

@@ -4,7 +4,7 @@
 // feed-forward and, when it was tuned, how. No file format here: controller_file/ reads and writes
 // it as TOML, codegen/ writes it as a C++ header, joint_controllers.hpp builds the runtime.
 //
-// A family is one file in families/ plus its supervisor (control/), listed in families.hpp;
+// A family is one file in families/ plus its supervisor (supervisor/), listed in families.hpp;
 // code outside them asks its traits (family.hpp), never its name.
 //
 // Library fuzzypid::controller (set-up code: it allocates and reports errors). The controllers it
@@ -19,7 +19,6 @@
 #include <string>
 #include <vector>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller/family.hpp"
 #include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/fuzzy/engine.hpp"
@@ -27,6 +26,7 @@
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 
 namespace fuzzypid::controller {
 
@@ -57,9 +57,9 @@ inline constexpr std::array<EnumName<pid::AntiWindup>, 3> kAntiWindupNames{
     {{pid::AntiWindup::None, "none"},
      {pid::AntiWindup::Clamping, "clamping"},
      {pid::AntiWindup::BackCalculation, "back-calculation"}}};
-inline constexpr std::array<EnumName<control::GainUpdate>, 2> kGainUpdateNames{
-    {{control::GainUpdate::Absolute, "absolute"},
-     {control::GainUpdate::Incremental, "incremental"}}};
+inline constexpr std::array<EnumName<supervisor::GainUpdate>, 2> kGainUpdateNames{
+    {{supervisor::GainUpdate::Absolute, "absolute"},
+     {supervisor::GainUpdate::Incremental, "incremental"}}};
 inline constexpr std::array<EnumName<fuzzy::Conjunction>, 2> kConjunctionNames{
     {{fuzzy::Conjunction::Minimum, "min"}, {fuzzy::Conjunction::Product, "prod"}}};
 
@@ -96,7 +96,7 @@ struct Units {
   double tick_s = 0.05;  // the tick the per-tick gains refer to (and the controller's tick)
 };
 
-// FamilyTraits::rule_table: the rule table that refines the schedule (control/rule_table.hpp). The
+// FamilyTraits::rule_table: the rule table that refines the schedule (supervisor/rule_table.hpp). The
 // partitions of x = Ke e and y = Kec ec are 7 sets each (NB NM NS ZO PS PM PB): triangles between
 // neighbouring centers, shoulders outside; centers increasing and symmetric about 0. ratio[g][i][j]
 // is the consequent of the rule "x is set i and y is set j" for gain g (kp, ki, kd): the factor on
@@ -129,7 +129,7 @@ struct SupervisorSpec {
   // large-error ratios Rp, Ri, Rd of the schedule.
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};
   // FamilyTraits::rule_base: the gain update, the built-in tables and their AND.
-  control::GainUpdate gain_update = control::GainUpdate::Absolute;
+  supervisor::GainUpdate gain_update = supervisor::GainUpdate::Absolute;
   paper::Tables rule_base = paper::Tables::Printed;
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;
   // FamilyTraits::rule_base: a .fis/.fll/.fcl rule base instead of the built-in tables (2 inputs

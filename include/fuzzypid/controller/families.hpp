@@ -4,7 +4,7 @@
 //
 // Adding a family: its file in families/ (traits, validate, configure, header_code, build; see
 // pid.hpp for the shape; set-up code that is not a template may go beside it in
-// src/controller/families/) and its supervisor in control/, then its entry in FamilyList below.
+// src/controller/families/) and its supervisor in supervisor/, then its entry in FamilyList below.
 // Nothing else names it. A build can add one more family without editing this file: with
 // FUZZYPID_EXTRA_FAMILY_HEADER defined as its file (a quoted header name) and
 // FUZZYPID_EXTRA_FAMILY as its type, it comes last in the list (tests/controller/ does so).

@@ -1,7 +1,7 @@
 // A controller family's identity and what consumers may ask of it without naming it.
 //
 // A family is one file in controller/families/ (its traits, checks, configuration and runtime)
-// plus its supervisor in control/, and one entry in families.hpp's list. Code outside those files
+// plus its supervisor in supervisor/, and one entry in families.hpp's list. Code outside those files
 // asks a family's traits (is it supervised, what does output_scale hold, does it read a rule base
 // or a rule table) instead of comparing it with a name, so a new family that answers the same
 // questions needs no change elsewhere.

@@ -10,11 +10,11 @@
 #include <string>
 #include <variant>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/controller/families.hpp"
 #include "fuzzypid/controller/runtime.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 
 namespace fuzzypid::controller {
 
@@ -23,8 +23,8 @@ namespace fuzzypid::controller {
 [[nodiscard]] pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit);
 // The fuzzy PID configuration of a supervised family (its configure() sets what output_scale
 // means).
-[[nodiscard]] control::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
-                                                               double output_limit);
+[[nodiscard]] supervisor::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
+                                                                  double output_limit);
 
 // Owns the supervisor its fuzzy or scheduled joints point to: movable, not copyable.
 class JointControllers {
@@ -43,7 +43,7 @@ class JointControllers {
                                                               const JointConfigs& configs,
                                                               std::string& error);
 
-  // One tick of all joints (see control::JointController::step); the outputs (`output`) are
+  // One tick of all joints (see supervisor::JointController::step); the outputs (`output`) are
   // in the controller's units (rad/s² with acceleration units).
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
     return visit_joints(joints_, [&](auto& joints) noexcept { return joints.step(in, dt_s); });

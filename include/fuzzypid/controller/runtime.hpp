@@ -11,23 +11,23 @@
 #include <utility>
 #include <variant>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
-#include "fuzzypid/control/joint_controller.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
+#include "fuzzypid/supervisor/joint_controller.hpp"
 
 namespace fuzzypid::controller {
 
 inline constexpr std::size_t kJoints = 6;
 
 using Vector = std::array<double, kJoints>;
-using Input = control::JointInput<double, kJoints>;
-using Command = control::JointOutput<double, kJoints>;
+using Input = supervisor::JointInput<double, kJoints>;
+using Command = supervisor::JointOutput<double, kJoints>;
 // One configuration per joint (the fixed PID uses configs[i].pid only).
-using JointConfigs = std::array<control::FuzzyPidConfig<double>, kJoints>;
+using JointConfigs = std::array<supervisor::FuzzyPidConfig<double>, kJoints>;
 
 // Six fixed PIDs.
 struct FixedJoints {
-  control::JointController<double, kJoints, pid::Pid<double>> joints;
+  supervisor::JointController<double, kJoints, pid::Pid<double>> joints;
 
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
     return joints.step(in, dt_s);
@@ -45,11 +45,11 @@ struct FixedJoints {
 // model), or nothing.
 template <class Supervisor>
 struct SupervisedJoints {
-  using Joint = control::FuzzyPid<double, Supervisor>;
+  using Joint = supervisor::FuzzyPid<double, Supervisor>;
 
   std::shared_ptr<const void> keep;
   std::unique_ptr<const Supervisor> supervisor;
-  control::JointController<double, kJoints, Joint> joints;
+  supervisor::JointController<double, kJoints, Joint> joints;
 
   [[nodiscard]] Command step(const Input& in, double dt_s) noexcept {
     return joints.step(in, dt_s);
@@ -97,13 +97,13 @@ template <class Supervisor>
 [[nodiscard]] bool make_supervised_joints(std::unique_ptr<const Supervisor> supervisor,
                                           const JointConfigs& configs, const char* what,
                                           SupervisedJoints<Supervisor>& out, std::string& error) {
-  std::array<control::FuzzyPid<double, Supervisor>, kJoints> joints;
+  std::array<supervisor::FuzzyPid<double, Supervisor>, kJoints> joints;
   for (std::size_t i = 0; i < kJoints; ++i) {
     if (!configs[i].valid()) {
       error = std::string("invalid ") + what + " configuration";
       return false;
     }
-    joints[i] = control::FuzzyPid<double, Supervisor>(supervisor.get(), configs[i]);
+    joints[i] = supervisor::FuzzyPid<double, Supervisor>(supervisor.get(), configs[i]);
   }
   out.supervisor = std::move(supervisor);
   out.joints = decltype(out.joints)(joints);

@@ -72,7 +72,7 @@ constexpr std::array<Scalar, N> nan_array() noexcept {
 }
 
 // The view of a workspace that holds the buffers by the view's names as contiguous containers
-// (EngineWorkspace, control::DynamicWorkspace); `stride` as in WorkspaceView.
+// (EngineWorkspace, supervisor::DynamicWorkspace); `stride` as in WorkspaceView.
 template <class Workspace>
 auto view_of(Workspace& w, std::size_t stride) noexcept
     -> WorkspaceView<typename decltype(Workspace::stack)::value_type> {

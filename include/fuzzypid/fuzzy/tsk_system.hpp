@@ -10,7 +10,7 @@
 // which add exact zeros) and costs one division, 1 / sum(w). A custom partition fires every rule.
 //
 // The system is an immutable model: infer() is const, thread-safe and keeps no state, so one
-// instance serves every joint (see control/supervisor.hpp for the supervisor concept it fulfils
+// instance serves every joint (see supervisor/supervisor.hpp for the supervisor concept it fulfils
 // when NOut is 3).
 #pragma once
 
@@ -18,9 +18,9 @@
 #include <cstddef>
 #include <utility>
 
+#include "fuzzypid/fuzzy/consequent_table.hpp"
 #include "fuzzypid/fuzzy/linguistic_variable.hpp"
 #include "fuzzypid/fuzzy/operators.hpp"
-#include "fuzzypid/fuzzy/rule_table.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
@@ -65,8 +65,8 @@ struct TskSystem {
 
   LinguisticVariable<Scalar, NE> e;    // first input (the paper's joint error, universe units)
   LinguisticVariable<Scalar, NEC> ec;  // second input (the error rate, universe units)
-  std::array<RuleTable<Scalar, NE, NEC>, NOut> consequents{};  // one table per output
-  Conjunction conjunction = Conjunction::Minimum;              // Minimum or Product
+  std::array<ConsequentTable<Scalar, NE, NEC>, NOut> consequents{};  // one table per output
+  Conjunction conjunction = Conjunction::Minimum;                    // Minimum or Product
   TskDefuzzifier defuzzifier = TskDefuzzifier::WeightedAverage;
 
   // True when both variables are valid, the conjunction is Minimum or Product, the defuzzifier

@@ -5,7 +5,7 @@
 // Loading allocates and parses text; it happens once, outside the control loop. What the engine
 // cannot represent exactly is refused with the file, line and the construct by its name in the
 // file -- never approximated. The loaded fuzzy::EngineModel<double> then runs allocation-free
-// through fuzzy::Engine or, for FuzzyPid, control::EngineSupervisor.
+// through fuzzy::Engine or, for FuzzyPid, supervisor::EngineSupervisor.
 #pragma once
 
 #include <string>

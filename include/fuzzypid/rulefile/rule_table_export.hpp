@@ -1,4 +1,4 @@
-// control::RuleTable (the fuzzy-rules family's supervisor) written as a rule file that fuzzypid's
+// supervisor::RuleTable (the fuzzy-rules family's supervisor) written as a rule file that fuzzypid's
 // own readers and fuzzylite 6 evaluate to RuleTable::infer's delta (library fuzzypid::rulefile).
 //
 // The construction, exact up to rounding (|file - infer| <= 1e-12 measured for .fll and .fcl):
@@ -39,16 +39,16 @@
 
 #include <string>
 
-#include "fuzzypid/control/rule_table.hpp"
+#include "fuzzypid/supervisor/rule_table.hpp"
 
 namespace fuzzypid::rulefile {
 
 // `name` is the engine's name (letters, digits, '_'; written as given).
-[[nodiscard]] bool rule_table_to_fll(const control::RuleTable<double>& table, std::string& out,
+[[nodiscard]] bool rule_table_to_fll(const supervisor::RuleTable<double>& table, std::string& out,
                                      std::string& error, const std::string& name = "fuzzy_rules");
-[[nodiscard]] bool rule_table_to_fcl(const control::RuleTable<double>& table, std::string& out,
+[[nodiscard]] bool rule_table_to_fcl(const supervisor::RuleTable<double>& table, std::string& out,
                                      std::string& error, const std::string& name = "fuzzy_rules");
-[[nodiscard]] bool rule_table_to_fis(const control::RuleTable<double>& table, std::string& out,
+[[nodiscard]] bool rule_table_to_fis(const supervisor::RuleTable<double>& table, std::string& out,
                                      std::string& error, const std::string& name = "fuzzy_rules");
 
 // The constant term name of a cell ratio: "x" and the shortest decimal that reads back as

@@ -13,7 +13,7 @@
 //                   controller::to_continuous (Ki/dt, Kd dt);
 //   - derivative:   de/dt from the measured velocities (Eq. 2) or from successive errors;
 //   - gain_update, error_scale, error_rate_scale, output_scale: how the supervisor's
-//                   dKp, dKi, dKd reach the PID (control/fuzzy_pid.hpp);
+//                   dKp, dKi, dKd reach the PID (supervisor/fuzzy_pid.hpp);
 //   - initial_error_rad: the default condition's start error (the transient of Fig. 10).
 #pragma once
 
@@ -27,7 +27,6 @@
 
 #include <Eigen/Core>
 
-#include "fuzzypid/control/fuzzy_pid.hpp"
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/paper.hpp"
 #include "fuzzypid/pid/gains.hpp"
@@ -39,6 +38,7 @@
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/faults.hpp"
 #include "fuzzypid/sim/metrics.hpp"
+#include "fuzzypid/supervisor/fuzzy_pid.hpp"
 
 namespace fuzzypid::sim {
 
@@ -53,7 +53,7 @@ struct ExperimentOptions {
   GainUnits gain_units = GainUnits::Acceleration;
   PidForm pid_form = PidForm::PerTick;
   pid::DerivativeSource derivative = pid::DerivativeSource::Rates;
-  control::GainUpdate gain_update = control::GainUpdate::Absolute;
+  supervisor::GainUpdate gain_update = supervisor::GainUpdate::Absolute;
   double error_scale = 1.0;       // Ke: universe units per rad
   double error_rate_scale = 1.0;  // Kec: universe units per rad/s
   std::array<double, 3> output_scale = {1.0, 1.0, 1.0};

@@ -28,7 +28,7 @@ ControllerSpec fuzzy_from_rule_table(const ControllerSpec& rules, std::string ru
   // S = K0 in file units: fuzzy_pid_config converts S like the gains, so S = K0 per tick or
   // continuous alike (fuzzy-rules uses the converted K0 as S directly).
   s.supervisor.output_scale = {rules.gains.kp, rules.gains.ki, rules.gains.kd};
-  s.supervisor.gain_update = control::GainUpdate::Absolute;
+  s.supervisor.gain_update = supervisor::GainUpdate::Absolute;
   s.supervisor.rule_file = std::move(rule_file);
   s.supervisor.rule_model = std::move(model);
   s.gain_min = rules.gain_min;

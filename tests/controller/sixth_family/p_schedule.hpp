@@ -30,15 +30,15 @@ struct PSchedule {
   }
 
   static void configure(const fuzzypid::controller::ControllerSpec& spec,
-                        fuzzypid::control::FuzzyPidConfig<double>& config) noexcept {
+                        fuzzypid::supervisor::FuzzyPidConfig<double>& config) noexcept {
     config.output_scale = {config.pid.gains.kp * (spec.supervisor.output_scale[0] - 1.0), 0.0, 0.0};
-    config.gain_update = fuzzypid::control::GainUpdate::Absolute;
+    config.gain_update = fuzzypid::supervisor::GainUpdate::Absolute;
   }
 
   template <class Code>
   [[nodiscard]] static fuzzypid::controller::SupervisorCode header_code(
       const fuzzypid::controller::ControllerSpec& /*spec*/, const Code& /*code*/) {
-    return {"#include \"fuzzypid/control/fuzzy_pid.hpp\"\n#include \"proportional_ramp.hpp\"\n",
+    return {"#include \"fuzzypid/supervisor/fuzzy_pid.hpp\"\n#include \"proportional_ramp.hpp\"\n",
             "template <class Scalar>\nusing Supervisor = fuzzypid_test::ProportionalRamp<Scalar>;"
             "\n\ntemplate <class Scalar>\ninline constexpr Supervisor<Scalar> kSupervisor{};\n\n"};
   }

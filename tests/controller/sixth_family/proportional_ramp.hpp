@@ -1,6 +1,6 @@
 // The supervisor of the sixth family this test build adds (p_schedule.hpp): the gain schedule's
 // ramp w(x, y) = min(1, |x| + |y|) on the proportional gain only; the integral and derivative
-// gains stay at K0. A supervisor as control/supervisor.hpp defines one: immutable, no per-joint
+// gains stay at K0. A supervisor as supervisor/supervisor.hpp defines one: immutable, no per-joint
 // state.
 #pragma once
 

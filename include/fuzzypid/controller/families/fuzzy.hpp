@@ -1,15 +1,15 @@
 // The fuzzy family: K = K0 + S dK(Ke e, Kec ec) (Eq. 6), dK from the paper's Tables 2-4
-// (paper::System) or from a .fis/.fll/.fcl rule file (control::EngineSupervisor).
+// (paper::System) or from a .fis/.fll/.fcl rule file (supervisor::EngineSupervisor).
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "fuzzypid/control/engine_supervisor.hpp"
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/controller/family.hpp"
 #include "fuzzypid/controller/runtime.hpp"
 #include "fuzzypid/paper.hpp"
+#include "fuzzypid/supervisor/engine_supervisor.hpp"
 
 namespace fuzzypid::controller::families {
 
@@ -19,14 +19,14 @@ struct Fuzzy {
       "K = K0 + S dK(Ke e, Kec ec): the paper's Tables 2-4 (Eq. 6) or a .fis/.fll/.fcl rule file",
       OutputScale::Scales, true, false};
   using Tables = SupervisedJoints<paper::System<double>>;
-  using RuleFile = SupervisedJoints<control::EngineSupervisor<double>>;
+  using RuleFile = SupervisedJoints<supervisor::EngineSupervisor<double>>;
   using Runtimes = std::tuple<Tables, RuleFile>;
 
   [[nodiscard]] static std::string validate(const ControllerSpec& /*spec*/) { return {}; }
 
   // dK is in the file's units: S converts like the gains themselves.
   static void configure(const ControllerSpec& spec,
-                        control::FuzzyPidConfig<double>& config) noexcept {
+                        supervisor::FuzzyPidConfig<double>& config) noexcept {
     const pid::Gains<double> unit =
         to_continuous({1.0, 1.0, 1.0}, spec.units.form, spec.units.tick_s);
     const auto& s = spec.supervisor.output_scale;
@@ -42,10 +42,10 @@ struct Fuzzy {
     const SupervisorSpec& sup = spec.supervisor;
     if (sup.rule_model != nullptr)
       return {
-          "#include <array>\n\n#include \"fuzzypid/control/fuzzy_pid.hpp\"\n"
+          "#include <array>\n\n#include \"fuzzypid/supervisor/fuzzy_pid.hpp\"\n"
           "#include \"fuzzypid/fuzzy/engine.hpp\"\n",
           code.rule_base(*sup.rule_model, sup.rule_file)};
-    return {"#include \"fuzzypid/control/fuzzy_pid.hpp\"\n#include \"fuzzypid/paper.hpp\"\n",
+    return {"#include \"fuzzypid/supervisor/fuzzy_pid.hpp\"\n#include \"fuzzypid/paper.hpp\"\n",
             std::string("template <class Scalar>\nusing Supervisor = "
                         "fuzzypid::paper::System<Scalar>;\n\n"
                         "// The shared, immutable supervisor the joints point to.\n"
@@ -68,7 +68,7 @@ struct Fuzzy {
                                     out.template emplace<Tables>(), error);
     }
     // A rule file: the engine supervisor on the loaded model (both shared by the joints).
-    auto engine = std::make_unique<const control::EngineSupervisor<double>>(model.get());
+    auto engine = std::make_unique<const supervisor::EngineSupervisor<double>>(model.get());
     if (!engine->valid()) {
       error = "the rule file's model is not a valid supervisor (2 inputs, 3 outputs)";
       return false;

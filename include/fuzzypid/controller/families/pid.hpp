@@ -18,7 +18,7 @@ struct Pid {
   [[nodiscard]] static std::string validate(const ControllerSpec& /*spec*/) { return {}; }
   // The supervisor's part of a joint's configuration: none.
   static void configure(const ControllerSpec& /*spec*/,
-                        control::FuzzyPidConfig<double>& /*config*/) noexcept {}
+                        supervisor::FuzzyPidConfig<double>& /*config*/) noexcept {}
 
   // The header export of the supervisor (family.hpp, SupervisorCode). `code` writes what this
   // file cannot: code.literal(v), an exact literal of v as Scalar, and code.rule_base(model,

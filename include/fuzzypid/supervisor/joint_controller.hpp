@@ -9,7 +9,7 @@
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 template <class Scalar, std::size_t N>
 using JointVector = std::array<Scalar, N>;
@@ -99,4 +99,4 @@ class JointController {
   std::array<Controller, N> joints_{};
 };
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor

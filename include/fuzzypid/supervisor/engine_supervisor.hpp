@@ -1,5 +1,5 @@
 // A loaded rule base (fuzzy::EngineModel) as a supervisor of FuzzyPid (the concept of
-// control/supervisor.hpp): two inputs and three outputs, bound by name whatever their order in
+// supervisor/supervisor.hpp): two inputs and three outputs, bound by name whatever their order in
 // the file -- the inputs named `e` (the scaled error) and `ec` (the scaled error rate), the
 // outputs `dKp`, `dKi` and `dKd` (the gain corrections), as `fuzzypid export-rules` writes them.
 // A model with other names (or counts) is not a valid supervisor; supervisor_binding_error()
@@ -20,7 +20,7 @@
 #include "fuzzypid/fuzzy/engine_workspace.hpp"
 #include "fuzzypid/status.hpp"
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 // The names a supervisor's rule file must give its inputs and outputs (exact, case-sensitive).
 inline constexpr const char* kSupervisorInputNames[2] = {"e", "ec"};
@@ -129,4 +129,4 @@ class EngineSupervisor {
   std::array<std::uint8_t, 3> output_of_{};  // the model's index of dKp, dKi, dKd
 };
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor

@@ -22,7 +22,7 @@
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 template <class Scalar>
 class GainSchedule {
@@ -47,4 +47,4 @@ class GainSchedule {
   }
 };
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor

@@ -10,6 +10,6 @@ namespace fuzzypid::fuzzy {
 
 // Crisp consequents (zero-order Takagi-Sugeno): table[i][j] is the output value of rule (i, j).
 template <class Scalar, std::size_t NE, std::size_t NEC>
-using RuleTable = std::array<std::array<Scalar, NEC>, NE>;
+using ConsequentTable = std::array<std::array<Scalar, NEC>, NE>;
 
 }  // namespace fuzzypid::fuzzy

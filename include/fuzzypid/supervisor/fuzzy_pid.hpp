@@ -15,7 +15,7 @@
 // The gains live here (gains()); K0 is the PID's configured gains. A fault (NaN/inf input, bad
 // dt, overflow) leaves gains and PID untouched.
 //
-// The supervisor (control/supervisor.hpp) is shared and not owned: the controller keeps a pointer
+// The supervisor (supervisor/supervisor.hpp) is shared and not owned: the controller keeps a pointer
 // to it, so it must outlive the controller and all its copies. Its per-joint Workspace lives here.
 #pragma once
 
@@ -23,12 +23,12 @@
 #include <cstdint>
 #include <utility>
 
-#include "fuzzypid/control/supervisor.hpp"
 #include "fuzzypid/pid/pid.hpp"
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
+#include "fuzzypid/supervisor/supervisor.hpp"
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 enum class GainUpdate : std::uint8_t {
   Absolute,     // K = K0 + dK  (Eq. 6)
@@ -60,12 +60,12 @@ struct FuzzyPidConfig {
   }
 };
 
-// Supervisor: see control/supervisor.hpp (paper.hpp has the paper's, with aliases).
+// Supervisor: see supervisor/supervisor.hpp (paper.hpp has the paper's, with aliases).
 template <class Scalar, class Supervisor>
 class FuzzyPid {
   FUZZYPID_ASSERT_SCALAR(Scalar);
   static_assert(is_supervisor_v<Supervisor, Scalar>,
-                "Supervisor must fulfil the concept of fuzzypid/control/supervisor.hpp");
+                "Supervisor must fulfil the concept of fuzzypid/supervisor/supervisor.hpp");
 
  public:
   using Config = FuzzyPidConfig<Scalar>;
@@ -214,4 +214,4 @@ class FuzzyPid {
   Status configured_ = Status::InvalidConfig;
 };
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor

@@ -1,4 +1,4 @@
-// The supervisor concept: what control::FuzzyPid asks of the model that retunes its gains.
+// The supervisor concept: what supervisor::FuzzyPid asks of the model that retunes its gains.
 //
 // A supervisor maps one joint's scaled error and error rate (e, ec) to the gain corrections
 // (dKp, dKi, dKd). It is an immutable model shared by every joint (pinocchio's Model): a table
@@ -51,10 +51,10 @@ struct is_supervisor<
                                         std::declval<std::array<Scalar, 3>&>()))> {};
 }  // namespace fuzzypid::detail
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 // True when S fulfils the supervisor concept for Scalar (checked by FuzzyPid).
 template <class S, class Scalar>
 inline constexpr bool is_supervisor_v = detail::is_supervisor<S, Scalar>::value;
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor

@@ -32,8 +32,8 @@
 #include "fuzzypid/scalar.hpp"
 #include "fuzzypid/status.hpp"
 
-// In fuzzypid::detail beside scalar.hpp's helpers (a control::detail would hide fuzzypid::detail
-// from the control/ headers included after this one).
+// In fuzzypid::detail beside scalar.hpp's helpers (a supervisor::detail would hide fuzzypid::detail
+// from the supervisor/ headers included after this one).
 namespace fuzzypid::detail {
 
 // Centers 0, +-1/m, ..., +-1 (m = (Sets - 1) / 2): the ramp w saturates at |x| + |y| = 1.
@@ -61,7 +61,7 @@ rule_table_unit_tables() noexcept {
 
 }  // namespace fuzzypid::detail
 
-namespace fuzzypid::control {
+namespace fuzzypid::supervisor {
 
 template <class Scalar, std::size_t Sets = 7>
 struct RuleTable {
@@ -211,4 +211,4 @@ struct RuleTable {
   }
 };
 
-}  // namespace fuzzypid::control
+}  // namespace fuzzypid::supervisor
