@@ -1,6 +1,7 @@
 // File access, format dispatch and the shared model check of the rule-file readers.
 #include "fuzzypid/rulefile/rule_file.hpp"
 #include "fuzzypid/fuzzy/engine_model_copy.hpp"
+#include "fuzzypid/fuzzy/engine_model_validation.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
 #include "fuzzypid_support/printable.hpp"
 
@@ -24,7 +25,7 @@ bool check_model(const Builder& model, const SourceLines& lines, LoadError& erro
     error.message = "no rules";
     return false;
   }
-  const fuzzy::ModelError e = model.validate();
+  const fuzzy::ModelError e = fuzzy::validate(model);
   if (!e) return true;
   using Where = fuzzy::ModelError::Where;
   const auto at = [&](const std::vector<int>& v) { return e.index < v.size() ? v[e.index] : 0; };
@@ -58,7 +59,7 @@ bool size_to_file(const Builder& built, Model& model, LoadError& error) {
 }
 
 bool check_export(const Model& model, std::string& error) {
-  const fuzzy::ModelError e = model.validate();
+  const fuzzy::ModelError e = fuzzy::validate(model);
   if (e) error = std::string("invalid model: ") + e.message;
   return !e;
 }

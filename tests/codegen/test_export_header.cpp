@@ -265,8 +265,8 @@ TEST(ExportHeader, AnExportedRuleBaseIsConstexprDataSizedToTheFile) {
                 engine_fuzzy::RuleBaseCapacity::rules == 49);
   static_assert(engine_tip_fuzzy::kRuleBase<double>.num_outputs == 3);
   static_assert(engine_tip_fuzzy::kRuleBase<double>.num_rules == 6);
-  EXPECT_FALSE(engine_fuzzy::kRuleBase<float>.validate());
-  EXPECT_FALSE(engine_tip_fuzzy::kRuleBase<float>.validate());
+  EXPECT_FALSE(fuzzypid::fuzzy::validate(engine_fuzzy::kRuleBase<float>));
+  EXPECT_FALSE(fuzzypid::fuzzy::validate(engine_tip_fuzzy::kRuleBase<float>));
   // The float controller runs: a positive error gives a positive command.
   auto joint = engine_tip_fuzzy::make_controller<float>(3.0f);
   pid::Input<float> in;

@@ -1059,7 +1059,7 @@ TEST(RuleFileCapacity, SmallCapacityHoldsThePaperShapeAndRefusesMore) {
   const Token one{Token::Kind::Proposition, 0, 0, 0, {}};
   const fuzzypid::fuzzy::Conclusion c{0, 0, 0, {}, 0};
   EXPECT_FALSE(small->add_rule(&one, 1, &c, 1)) << "a 50th rule exceeds SmallCapacity";
-  EXPECT_FALSE(small->validate());
+  EXPECT_FALSE(fuzzypid::fuzzy::validate(*small));
   fuzzypid::fuzzy::Engine<float, fuzzypid::fuzzy::SmallCapacity> engine(*small);
   // Against the definition: w_ij = min(mu_i(e), mu_j(ec)), y = sum w_ij c_(i+j)/2 / sum w_ij.
   const float in[2] = {0.1f, -0.2f};

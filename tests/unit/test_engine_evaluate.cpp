@@ -71,7 +71,7 @@ TEST(EngineEvaluate, AChainedRuleSeesOnlyConclusionsTriggeredBeforeIt) {
     ASSERT_TRUE(chained->add_rule(&a, 1, &c, 1));
   }
   ASSERT_TRUE(chained->add_rule(&on_y, 1, &to_z, 1, 0.5));
-  ASSERT_FALSE(chained->validate());
+  ASSERT_FALSE(fuzzypid::fuzzy::validate(*chained));
   auto engine = std::make_unique<Engine>(*chained);
   const double x = 0.75;
   double out[2] = {};

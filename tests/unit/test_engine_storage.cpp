@@ -144,7 +144,7 @@ TEST(EngineStorage, SizedAndFixedFormsEvaluateToTheSameBitsOnEveryCorpusFile) {
     const auto sized = load(path);
     ASSERT_TRUE(sized) << path;
     ASSERT_TRUE(fuzzypid::fuzzy::copy_model(*sized, *fixed)) << path;
-    ASSERT_FALSE(fixed->validate()) << path;
+    ASSERT_FALSE(fuzzypid::fuzzy::validate(*fixed)) << path;
     const std::vector<double> a = outputs_over(*sized, 300, seed);
     const std::vector<double> b = outputs_over(*fixed, 300, seed);
     ASSERT_EQ(a.size(), b.size());
@@ -159,15 +159,15 @@ TEST(EngineStorage, SizedAndFixedFormsEvaluateToTheSameBitsOnEveryCorpusFile) {
 TEST(EngineStorage, ASizedModelWhoseStorageIsShorterThanItsCountsIsInvalid) {
   auto m = load(FUZZYPID_RULEBASES_DIR "/paper.fis");
   ASSERT_TRUE(m);
-  ASSERT_FALSE(m->validate());
+  ASSERT_FALSE(fuzzypid::fuzzy::validate(*m));
   m->num_rules = 50;  // one rule more than stored
-  const auto e = m->validate();
+  const auto e = fuzzypid::fuzzy::validate(*m);
   ASSERT_TRUE(e);
   EXPECT_STREQ(e.message, "storage smaller than the model's counts");
   Model empty;
   empty.num_inputs = 1;
   empty.num_outputs = 1;
-  EXPECT_TRUE(empty.validate()) << "a default sized model stores nothing";
+  EXPECT_TRUE(fuzzypid::fuzzy::validate(empty)) << "a default sized model stores nothing";
 }
 
 // A fixed-capacity model is a literal type: generated headers define one as constexpr data.
@@ -190,7 +190,7 @@ constexpr fuzzypid::fuzzy::EngineModel<float, fuzzypid::fuzzy::SmallCapacity> on
 TEST(EngineStorage, AFixedCapacityModelIsBuiltAtCompileTime) {
   static constexpr auto m = one_rule();
   static_assert(m.num_rules == 1 && m.outputs[0].terms[0].coefficients[0] == 2.5f);
-  ASSERT_FALSE(m.validate());
+  ASSERT_FALSE(fuzzypid::fuzzy::validate(m));
   fuzzypid::fuzzy::EngineWorkspace<float, fuzzypid::fuzzy::SmallCapacity> ws;
   const float x = 0.5f;
   float y = 0;

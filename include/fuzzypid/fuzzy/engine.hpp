@@ -63,6 +63,7 @@
 
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_model.hpp"
+#include "fuzzypid/fuzzy/engine_model_validation.hpp"
 #include "fuzzypid/fuzzy/engine_workspace.hpp"
 #include "fuzzypid/fuzzy/formula.hpp"
 #include "fuzzypid/fuzzy/membership.hpp"
@@ -582,7 +583,7 @@ class Engine {
 
   // Also forgets the previous outputs (lock_previous).
   ModelError set_model(const Model& model) noexcept(!Cap::sized) {
-    const ModelError error = model.validate();
+    const ModelError error = validate(model);
     if (!error) model_ = model;
     if constexpr (Cap::sized)
       ws_ = error ? Workspace() : Workspace(model_);

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "fuzzypid/fuzzy/engine.hpp"
+#include "fuzzypid/fuzzy/engine_model_validation.hpp"
 #include "fuzzypid/fuzzy/engine_workspace.hpp"
 #include "fuzzypid/status.hpp"
 
@@ -82,7 +83,8 @@ class EngineSupervisor {
   EngineSupervisor() noexcept = default;
   // `model` must outlive the supervisor and its controllers.
   explicit EngineSupervisor(const Model* model) noexcept : model_(model) {
-    if (model == nullptr || model->num_inputs != 2 || model->num_outputs != 3 || model->validate())
+    if (model == nullptr || model->num_inputs != 2 || model->num_outputs != 3 ||
+        fuzzy::validate(*model))
       return;
     // NOLINTNEXTLINE(modernize-loop-convert): k indexes the names and the binding alike
     for (std::size_t k = 0; k < 2; ++k) {
