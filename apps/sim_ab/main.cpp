@@ -28,6 +28,7 @@
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/sim/metrics.hpp"
 #include "fuzzypid/sim/mismatch.hpp"
+#include "fuzzypid/sim/sweep.hpp"
 #include "fuzzypid_support/bounded_read.hpp"
 #include "options.hpp"
 #include "output_files.hpp"
@@ -111,46 +112,15 @@ struct Run {
   sim::Condition condition;
 };
 
-// Summary of one run over the six joints (the worst joint of each figure).
-struct Summary {
-  double itae = 0.0;
-  double max_overshoot_pct = 0.0;
-  double max_settling_s = 0.0;
-  double max_error_after_1s_rad = 0.0;
-  double max_reversals_pct = 0.0;
-  double max_sign_changes_pct = 0.0;
-  double max_saturated_pct = 0.0;
-};
-
-Summary summarize(const std::array<sim::JointMetrics, robot::kNumJoints>& m,
-                  const std::array<sim::DriveMetrics, robot::kNumJoints>& drive = {}) {
-  Summary s;
-  for (const auto& j : m) {
-    s.itae += j.itae;
-    s.max_overshoot_pct = std::max(s.max_overshoot_pct, j.overshoot_pct);
-    s.max_settling_s = std::max(s.max_settling_s, j.settling_time_s);
-    s.max_error_after_1s_rad = std::max(s.max_error_after_1s_rad, j.max_abs_error_after_1s_rad);
-  }
-  for (const auto& d : drive) {
-    s.max_reversals_pct = std::max(s.max_reversals_pct, d.reversals_pct);
-    s.max_sign_changes_pct = std::max(s.max_sign_changes_pct, d.sign_changes_pct);
-    s.max_saturated_pct = std::max(s.max_saturated_pct, d.saturated_pct);
-  }
-  return s;
-}
-
-// Names each tracking fault of a run on stderr ("sim_ab: fault: CONTROLLER on CONDITION: ...");
-// a sweep names only the first line of each run.
+// Names each tracking fault of a run on stderr ("sim_ab: fault: CONTROLLER on CONDITION: ...").
 void report_faults(const sim::RunResult& r, const sim::Experiment& ex, double divergence_rad,
-                   const std::string& controller, const std::string& condition,
-                   bool first_only = false) {
+                   const std::string& controller, const std::string& condition) {
   const std::vector<std::string> lines =
       sim::describe(r.tracking_faults, divergence_rad, ex.model().lower_limits_rad(),
                     ex.model().upper_limits_rad());
   for (const std::string& line : lines) {
     std::fprintf(stderr, "sim_ab: fault: %s on %s: %s\n", controller.c_str(), condition.c_str(),
                  line.c_str());
-    if (first_only) break;
   }
 }
 
@@ -285,88 +255,52 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
               const std::vector<Run>& runs, const std::vector<NamedController>& controllers) {
   const sim::Experiment& ex = experiments.of(0);
   const sim::Condition& base = runs.front().condition;
-  const sim_ab::Sweep& sw = *o.sweep;
+  const sim::Sweep& sw = *o.sweep;
   Outputs outs;
   if (!open_outputs(o.out_dir, {"sweep.csv", "settings.txt"}, outs)) return 1;
   std::FILE* csv = outs[0].file;
   write_settings(outs[1].file, o, experiments, controllers);
   write_condition_settings(outs[1].file, runs, experiments);
   std::fprintf(outs[1].file, "sweep=%s=%s:%s:%d\novershoot_bound_pct=%s\nitae_ratio=%s\n",
-               sw.parameter.c_str(), fmt(sw.lo).c_str(), fmt(sw.hi).c_str(), sw.count,
-               fmt(o.overshoot_bound_pct).c_str(), fmt(o.itae_ratio_bound).c_str());
+               fuzzypid::name_of(sim::kSweepParameterNames, sw.parameter), fmt(sw.lo).c_str(),
+               fmt(sw.hi).c_str(), sw.count, fmt(o.overshoot_bound_pct).c_str(),
+               fmt(o.itae_ratio_bound).c_str());
   std::fprintf(outs[1].file, "divergence_rad=%s\n", fmt(o.divergence_rad).c_str());
   std::size_t faulted_runs = 0;
   std::fputs("controller,parameter,value,itae,max_overshoot_pct,faults,diverged,usable\n", csv);
-  const double tick = ex.options().tick_s;
   if (!o.quiet)
     std::printf("%-22s %-14s %-28s %s\n", "controller", "parameter", "usable range",
                 "nominal ITAE");
+  sim::SweepBounds bounds;
+  bounds.overshoot_pct = o.overshoot_bound_pct;
+  bounds.itae_ratio = o.itae_ratio_bound;
+  bounds.divergence_rad = o.divergence_rad;
+  const std::string parameter = fuzzypid::name_of(sim::kSweepParameterNames, sw.parameter);
   for (const auto& c : controllers) {
-    const sim::RunResult nominal = ex.run(base, c.spec);
-    if (!nominal.ok) {
-      std::fprintf(stderr, "sim_ab: %s on %s: %s\n", c.name.c_str(), base.name.c_str(),
-                   nominal.error.c_str());
+    const sim::SweepResult result = sim::run_sweep(ex, base, c.spec, sw, bounds);
+    if (!result.ok) {
+      std::fprintf(stderr, "sim_ab: %s: %s\n", c.name.c_str(), result.error.c_str());
       discard(outs);
       return 1;
     }
-    const double nominal_itae = sim::total_itae(nominal.rows, tick);
-    std::vector<bool> usable(static_cast<std::size_t>(sw.count));
-    for (int k = 0; k < sw.count; ++k) {
-      sim::Condition cond = base;
-      const double v = sw.value(k);
-      if (sw.parameter == "payload-scale") {
-        cond.payload_scale = v;
-      } else {
-        cond.torque_limit_rad_s2 = v;
-      }
-      sim::RunLimits limits;
-      // A divergence is far outside anything usable: it ends the run early.
-      limits.max_error_rad = o.divergence_rad;
-      limits.divergence_rad = o.divergence_rad;
-      const sim::RunResult r = ex.run(cond, c.spec, limits);
-      if (!r.ok) {
-        std::fprintf(stderr, "sim_ab: %s at %s=%g: %s\n", c.name.c_str(), sw.parameter.c_str(), v,
-                     r.error.c_str());
-        discard(outs);
-        return 1;
-      }
-      const Summary s = summarize(sim::run_metrics(r.rows, tick));
-      if (r.fault_ticks != 0) {
+    for (const sim::SweepPoint& p : result.points) {
+      if (p.fault_ticks != 0) {
         ++faulted_runs;
-        report_faults(r, ex, o.divergence_rad, c.name, sw.parameter + "=" + fmt(v), true);
+        std::fprintf(stderr, "sim_ab: fault: %s on %s=%s: %s\n", c.name.c_str(), parameter.c_str(),
+                     fmt(p.value).c_str(), p.first_fault.c_str());
       }
-      const bool ok = !r.diverged && r.fault_ticks == 0 && std::isfinite(s.itae) &&
-                      s.max_overshoot_pct <= o.overshoot_bound_pct &&
-                      s.itae <= o.itae_ratio_bound * nominal_itae;
-      usable[static_cast<std::size_t>(k)] = ok;
-      std::fprintf(csv, "%s,%s,%s,%s,%s,%zu,%d,%d\n", c.name.c_str(), sw.parameter.c_str(),
-                   fmt(v).c_str(), r.diverged ? "inf" : fmt(s.itae).c_str(),
-                   r.diverged ? "inf" : fmt(s.max_overshoot_pct).c_str(), r.fault_ticks,
-                   r.diverged ? 1 : 0, ok ? 1 : 0);
-    }
-    // The longest run of consecutive usable values.
-    int best_lo = -1, best_len = 0;
-    for (int k = 0; k < sw.count;) {
-      if (!usable[static_cast<std::size_t>(k)]) {
-        ++k;
-        continue;
-      }
-      int j = k;
-      while (j < sw.count && usable[static_cast<std::size_t>(j)])
-        ++j;
-      if (j - k > best_len) {
-        best_lo = k;
-        best_len = j - k;
-      }
-      k = j;
+      std::fprintf(csv, "%s,%s,%s,%s,%s,%zu,%d,%d\n", c.name.c_str(), parameter.c_str(),
+                   fmt(p.value).c_str(), p.diverged ? "inf" : fmt(p.itae).c_str(),
+                   p.diverged ? "inf" : fmt(p.max_overshoot_pct).c_str(), p.fault_ticks,
+                   p.diverged ? 1 : 0, p.usable ? 1 : 0);
     }
     if (!o.quiet) {
       char range[64] = "none";
-      if (best_len > 0)
-        std::snprintf(range, sizeof range, "%.4g .. %.4g", sw.value(best_lo),
-                      sw.value(best_lo + best_len - 1));
-      std::printf("%-22s %-14s %-28s %.4e\n", c.name.c_str(), sw.parameter.c_str(), range,
-                  nominal_itae);
+      if (result.usable_count > 0)
+        std::snprintf(range, sizeof range, "%.4g .. %.4g", result.points[result.usable_first].value,
+                      result.points[result.usable_first + result.usable_count - 1].value);
+      std::printf("%-22s %-14s %-28s %.4e\n", c.name.c_str(), parameter.c_str(), range,
+                  result.nominal_itae);
     }
   }
   std::string error;
@@ -751,7 +685,7 @@ int run_sim_ab(int argc, char** argv) {
             fmt(tcp.max_mm).c_str(), fmt(tcp.rms_mm).c_str(), tf.divergence[i].ticks,
             tf.joint_limit[i].ticks, tf.limit_cycle[i].ticks);
       }
-      const Summary s = summarize(m, d);
+      const sim::RunSummary s = sim::summarize(m, d);
       if (!o.quiet)
         std::printf("%-10s %-26s %-18s %11.4e %10.3g %10.3g %12.3e %7.1f %7.1f %7.1f %9.3g\n",
                     run.set.c_str(), cond.name.c_str(), cname, s.itae, s.max_overshoot_pct,

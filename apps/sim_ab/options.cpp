@@ -78,11 +78,12 @@ CLI::Option* add_enum(CLI::App& app, const std::string& name, Enum& target,
       ->check(CLI::IsMember(names));
 }
 
-bool parse_sweep(const std::string& text, Sweep& sweep) {
+bool parse_sweep(const std::string& text, sim::Sweep& sweep) {
   const auto eq = text.find('=');
   if (eq == std::string::npos) return false;
-  sweep.parameter = text.substr(0, eq);
-  if (sweep.parameter != "payload-scale" && sweep.parameter != "torque-limit") return false;
+  const auto parameter = fuzzypid::parse_enum(sim::kSweepParameterNames, text.substr(0, eq));
+  if (!parameter) return false;
+  sweep.parameter = *parameter;
   std::array<double, 3> v{};
   std::string range = text.substr(eq + 1);
   for (char& c : range)
@@ -126,7 +127,7 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   app.add_option_function<std::string>(
       "--sweep",
       [&o](const std::string& s) {
-        Sweep sw;
+        sim::Sweep sw;
         if (!parse_sweep(s, sw))
           throw CLI::ValidationError("--sweep",
                                      "expected payload-scale=LO:HI:N or "

@@ -11,29 +11,19 @@
 
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/sweep.hpp"
 #include "robot_options.hpp"
 
 namespace fuzzypid::sim_ab {
-
-// A robustness sweep: PARAM = LO:HI:N (N evenly spaced values, LO and HI included).
-struct Sweep {
-  std::string parameter;  // "payload-scale" or "torque-limit"
-  double lo = 0.0;
-  double hi = 0.0;
-  int count = 0;
-  [[nodiscard]] double value(int k) const noexcept {
-    return count == 1 ? lo : lo + (hi - lo) * static_cast<double>(k) / (count - 1);
-  }
-};
 
 struct Options {
   std::string scenario = "paper";        // a named scenario or "all"
   std::string conditions_file;           // --conditions FILE
   std::vector<std::string> sets;         // --set NAME (default: every set of the file)
   std::vector<std::string> controllers;  // --controller FILE (default: the paper's pid, fuzzy)
-  std::optional<Sweep> sweep;
-  double overshoot_bound_pct = 20.0;  // usable range of a sweep
-  double itae_ratio_bound = 3.0;      // usable range: ITAE <= ratio x the nominal ITAE
+  std::optional<sim::Sweep> sweep;       // --sweep PARAMETER=LO:HI:N
+  double overshoot_bound_pct = 20.0;     // usable range of a sweep
+  double itae_ratio_bound = 3.0;         // usable range: ITAE <= ratio x the nominal ITAE
   std::string out_dir = "out";
   cli::RobotOptions robot;  // --urdf, --path, --tick-ms, --payload-kg, --dynamics, ...
   std::optional<Eigen::Vector3d> start_mm, end_mm;

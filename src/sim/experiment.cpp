@@ -427,6 +427,23 @@ TcpTrack tcp_track(const robot::RobotModel& model, const std::vector<TrajectoryR
   return track;
 }
 
+RunSummary summarize(const std::array<JointMetrics, kJoints>& metrics,
+                     const std::array<DriveMetrics, kJoints>& drive) {
+  RunSummary s;
+  for (const auto& j : metrics) {
+    s.itae += j.itae;
+    s.max_overshoot_pct = std::max(s.max_overshoot_pct, j.overshoot_pct);
+    s.max_settling_s = std::max(s.max_settling_s, j.settling_time_s);
+    s.max_error_after_1s_rad = std::max(s.max_error_after_1s_rad, j.max_abs_error_after_1s_rad);
+  }
+  for (const auto& d : drive) {
+    s.max_reversals_pct = std::max(s.max_reversals_pct, d.reversals_pct);
+    s.max_sign_changes_pct = std::max(s.max_sign_changes_pct, d.sign_changes_pct);
+    s.max_saturated_pct = std::max(s.max_saturated_pct, d.saturated_pct);
+  }
+  return s;
+}
+
 TcpErrorMetrics tcp_error_metrics(const TcpTrack& track) {
   TcpErrorMetrics m;
   const std::size_t n = std::min(track.desired_m.size(), track.actual_m.size());

@@ -224,6 +224,19 @@ class ExperimentSet {
 // The drive metrics (metrics.hpp) of each joint of a run.
 [[nodiscard]] std::array<DriveMetrics, robot::kNumJoints> run_drive_metrics(
     const std::vector<TrajectoryRow>& rows);
+// A run over the six joints in one line: ITAE summed, every other figure its worst joint's (the
+// drive figures stay 0 when no drive metrics are given).
+struct RunSummary {
+  double itae = 0.0;
+  double max_overshoot_pct = 0.0;
+  double max_settling_s = 0.0;
+  double max_error_after_1s_rad = 0.0;
+  double max_reversals_pct = 0.0;
+  double max_sign_changes_pct = 0.0;
+  double max_saturated_pct = 0.0;
+};
+[[nodiscard]] RunSummary summarize(const std::array<JointMetrics, robot::kNumJoints>& metrics,
+                                   const std::array<DriveMetrics, robot::kNumJoints>& drive = {});
 
 // The tool's path: at each tick of a run, the forward kinematics of the reference joints
 // (desired) and of the true joints (actual), m, in the chain's root frame.
