@@ -290,9 +290,8 @@ int run_sweep(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
                      fmt(p.value).c_str(), p.first_fault.c_str());
       }
       std::fprintf(csv, "%s,%s,%s,%s,%s,%zu,%d,%d\n", c.name.c_str(), parameter.c_str(),
-                   fmt(p.value).c_str(), p.diverged ? "inf" : fmt(p.itae).c_str(),
-                   p.diverged ? "inf" : fmt(p.max_overshoot_pct).c_str(), p.fault_ticks,
-                   p.diverged ? 1 : 0, p.usable ? 1 : 0);
+                   fmt(p.value).c_str(), fmt(p.itae).c_str(), fmt(p.max_overshoot_pct).c_str(),
+                   p.fault_ticks, p.diverged ? 1 : 0, p.usable ? 1 : 0);
     }
     if (!o.quiet) {
       char range[64] = "none";
