@@ -140,6 +140,24 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
       return false;
     }
   }
+  // .fis quotes every name with ' and has no escape, so a name holding a quote cannot be written.
+  const auto quotable = [&](const fuzzy::Name& name, const char* what) {
+    if (text::name_of(name).find('\'') == std::string_view::npos) return true;
+    error = std::string(what) + " name \"" + std::string(text::name_of(name)) +
+            "\" holds a quote ('), which .fis cannot express";
+    return false;
+  };
+  if (!quotable(m.name, "system")) return false;
+  for (std::size_t i = 0; i < m.num_inputs; ++i) {
+    if (!quotable(m.inputs[i].name, "input")) return false;
+    for (std::size_t t = 0; t < m.inputs[i].num_terms; ++t)
+      if (!quotable(m.inputs[i].term_names[t], "term")) return false;
+  }
+  for (std::size_t o = 0; o < m.num_outputs; ++o) {
+    if (!quotable(m.outputs[o].name, "output")) return false;
+    for (std::size_t t = 0; t < m.outputs[o].num_terms; ++t)
+      if (!quotable(m.outputs[o].term_names[t], "term")) return false;
+  }
   if (m.chained) {
     error = "a rule tests an output variable, which .fis cannot express";
     return false;

@@ -82,6 +82,12 @@ class FllParser {
       if (seen_engine_ || section_ != Section::None) return fail("'Engine:' must come first, once");
       seen_engine_ = true;
       section_ = Section::Engine;
+      // Control characters are no part of a name any writer produces, and no format could write
+      // them back (the .fis reader refuses them too).
+      for (const char c : value)
+        if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f')
+          return fail("engine name holds a control character (byte " +
+                      std::to_string(static_cast<unsigned char>(c)) + ")");
       if (!fuzzy::set_name(model_.name, value.data(), value.size()))
         return fail("engine name longer than 31 bytes");
       return true;

@@ -828,6 +828,39 @@ TEST(RuleFileFis, NamesWithControlCharactersAreRefused) {
   EXPECT_NE(error.message.find("quoted string"), std::string::npos) << error.to_string();
 }
 
+// The .fll reader refuses the same bytes in an engine name (the fuzzer found a .fll engine named
+// with a 0x01 byte that loaded, was written to .fis and could not be read back).
+TEST(RuleFileFll, EngineNamesWithControlCharactersAreRefused) {
+  std::string text = rulebase("paper.fll");
+  const std::size_t at = text.find("Engine: ");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 9, 1, '\x01');
+  auto model = std::make_unique<Model>();
+  LoadError error;
+  EXPECT_FALSE(fuzzypid::rulefile::parse_fll(text, "ctl.fll", *model, error));
+  EXPECT_EQ(error.line, 2) << error.to_string();
+  EXPECT_NE(error.message.find("control character (byte 1)"), std::string::npos)
+      << error.to_string();
+}
+
+// .fis quotes names with ' and has no escape: a .fll engine named with a quote loads and exports
+// to .fll and .fcl, and .fis export says why it cannot write it instead of writing a file its own
+// reader refuses.
+TEST(RuleFileFll, NamesHoldingAQuoteAreNotWrittenToFis) {
+  std::string text = rulebase("paper.fll");
+  const std::size_t at = text.find("Engine: ");
+  const std::size_t end = text.find('\n', at);
+  text.replace(at, end - at, "Engine: it's");
+  const auto model = load_text("quote.fll", text);
+  ASSERT_TRUE(model);
+  EXPECT_STREQ(model->name.data(), "it's");
+  std::string fis, fll, why;
+  EXPECT_FALSE(fuzzypid::rulefile::to_fis(*model, fis, why));
+  EXPECT_NE(why.find("system name \"it's\" holds a quote"), std::string::npos) << why;
+  ASSERT_TRUE(fuzzypid::rulefile::to_fll(*model, fll, why)) << why;
+  EXPECT_TRUE(load_text("again.fll", fll));
+}
+
 // MATLAB evaluates a range's bounds (MATLAB's own sltbu.fis writes Range=[-pi/4 pi/4]): constant
 // expressions with MATLAB's precedence (^ above unary minus) and row splitting (a blank between
 // two operands separates elements, a blank around a binary operator does not).
