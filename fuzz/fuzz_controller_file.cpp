@@ -40,17 +40,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   namespace controller = fuzzypid::controller;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   check_conditions(text);
-  controller::ControllerSpec spec;
+  cf::ControllerFile file;
   fuzzypid::FileError error;
-  if (!cf::parse(text, "fuzz.toml", spec, error)) {
+  if (!cf::parse(text, "fuzz.toml", file, error)) {
     if (error.file != "fuzz.toml" || error.line < 1 || error.column < 1 || error.message.empty())
       std::abort();
     return 0;
   }
-  const std::string written = cf::to_toml(spec);
-  controller::ControllerSpec back;
+  const std::string written = cf::to_toml(file);
+  cf::ControllerFile back;
   if (!cf::parse(written, "written.toml", back, error)) std::abort();
   if (cf::to_toml(back) != written) std::abort();
+  const controller::ControllerSpec& spec = file.controller;
   std::string build_error;
   if (!controller::JointControllers::create(spec, controller::Vector{1, 1, 1, 1, 1, 1},
                                             build_error))

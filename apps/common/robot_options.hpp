@@ -324,9 +324,9 @@ inline void warn_about_payload(const char* tool, const sim::Experiment& ex,
 // A controller file run on another robot or path than its tuning record names (tuning.trained_on):
 // the gains were fitted to other inertias, so its quality is not the recorded one.
 inline void warn_about_training(const char* tool, const std::string& controller_path,
-                                const controller::ControllerSpec& spec, const sim::Experiment& ex) {
+                                const tune::Tuning* tuning, const sim::Experiment& ex) {
   for (const std::string& d : controller_file::trained_on_differences(
-           spec, controller_path, ex.urdf_file(), ex.setup().path, robot::default_urdf_path()))
+           tuning, controller_path, ex.urdf_file(), ex.setup().path, robot::default_urdf_path()))
     say_once(tool, "warning",
              "controller " + controller_path + " runs on another robot or path than it was " +
                  "tuned on: " + d);

@@ -49,7 +49,7 @@ namespace cf = controller_file;
 
 constexpr double kMaxLog10 = 300.0;
 
-bool parse_box(const std::string& text, controller::SearchBox& box) {
+bool parse_box(const std::string& text, tune::SearchBox& box) {
   const auto eq = text.find('=');
   const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
   if (eq == std::string::npos || colon == std::string::npos) return false;
@@ -96,7 +96,7 @@ struct TuneOptions {
   std::string symmetry = "even", unvisited = "seed", partition = "tuned";
   tune::TableOptions table;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  controller::Objective objective;
+  tune::Objective objective;
   std::vector<std::string> boxes;
   bool quiet = false;
   bool search_filter = true;
@@ -167,14 +167,15 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
                                           controller::Family family, const tune::Options& opt,
                                           const sim::ConditionSet& training,
                                           const sim::ExperimentSet& experiments,
-                                          controller::ControllerSpec& spec, std::string& error) {
+                                          cf::ControllerFile& file, std::string& error) {
+  controller::ControllerSpec& spec = file.controller;
   if (!spec.supervisor.rule_file.empty()) {
     const std::filesystem::path from =
         std::filesystem::path(t.base_file.empty() ? t.init_file : t.base_file).parent_path();
     spec.supervisor.rule_file =
         path_from_folder_of(out, (from / spec.supervisor.rule_file).string());
   }
-  controller::Tuning& record = *spec.tuning;
+  tune::Tuning& record = *file.tuning;
   record.conditions = path_from_folder_of(out, t.conditions);
   for (std::size_t k = 0; k < training.conditions.size(); ++k) {
     const sim::RobotSetup& setup = experiments.of(k).setup();
@@ -201,9 +202,9 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
   co.delay_s = sim::largest_delay_s(training.conditions);
   const auto cert = sim::certify(spec, training.conditions, experiments, co, error);
   if (!cert) return std::nullopt;
-  spec.margins = sim::margin_record(*cert);
-  spec.margins->conditions = record.conditions;
-  spec.margins->set = t.set;
+  file.margins = sim::margin_record(*cert);
+  file.margins->conditions = record.conditions;
+  file.margins->set = t.set;
   Completion done;
   done.margins = sim::summarize(*cert);
   if (!t.quiet)
@@ -276,7 +277,7 @@ std::string exact(double d) {
 // inputs (not the threads, the ranks or the outputs, which change nothing of it).
 Fingerprint fingerprint_of(const TuneOptions& t, const tune::FrontOptions& fo,
                            const sim::ConditionSet& training) {
-  const controller::Objective& o = fo.tune.objective;
+  const tune::Objective& o = fo.tune.objective;
   std::string objectives, boxes;
   for (const tune::Metric m : fo.objectives)
     objectives +=
@@ -394,12 +395,13 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
   TuneOptions per_point = t;
   per_point.quiet = true;  // no margin line per point
   std::vector<tune::FrontPoint> kept;
+  std::vector<cf::ControllerFile> kept_files;
   for (tune::FrontPoint& point : front->points) {
     char name[32];
     std::snprintf(name, sizeof name, "point_%03zu.toml", kept.size());
     const std::string out = (std::filesystem::path(t.front_out) / name).string();
-    const auto done =
-        complete_record(t, out, family, opt, training, experiments, point.controller, error);
+    cf::ControllerFile file{point.controller, point.tuning, std::nullopt};
+    const auto done = complete_record(t, out, family, opt, training, experiments, file, error);
     if (!done) {
       std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
       return kExitFailure;
@@ -413,11 +415,12 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
     }
     if (!t.report_set.empty()) {
       // The validation values came from another set, not from conditions held back.
-      point.controller.tuning->validation_conditions = 0;
-      point.controller.tuning->validation_cost = std::numeric_limits<double>::quiet_NaN();
-      point.controller.description += "; front validation on [" + t.report_set + "]";
+      file.tuning->validation_conditions = 0;
+      file.tuning->validation_cost = std::numeric_limits<double>::quiet_NaN();
+      file.controller.description += "; front validation on [" + t.report_set + "]";
     }
     kept.push_back(std::move(point));
+    kept_files.push_back(std::move(file));
   }
   if (kept.empty()) {
     std::fprintf(stderr,
@@ -446,7 +449,7 @@ int run_front(const TuneOptions& t, controller::Family family, const tune::Optio
       }
     csv += '\n';
     std::FILE* f = out_set->add(name, error);
-    const std::string text = cf::to_toml(kept[k].controller);
+    const std::string text = cf::to_toml(kept_files[k]);
     if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size()) {
       std::fprintf(stderr, "fuzzypid tune: %s: %s\n", t.front_out.c_str(),
                    f == nullptr ? error.c_str() : std::strerror(errno != 0 ? errno : EIO));
@@ -627,11 +630,12 @@ int run_tune(const TuneOptions& t) {
   opt.base.description.clear();
   if (!t.base_file.empty()) {
     fuzzypid::FileError err;
-    if (!cf::load(t.base_file, opt.base, err)) {
+    cf::ControllerFile base;
+    if (!cf::load(t.base_file, base, err)) {
       std::fprintf(stderr, "fuzzypid tune: %s\n", err.to_string().c_str());
       return 1;
     }
-    opt.base.tuning.reset();
+    opt.base = base.controller;
     // The base's rule file is an input too (read relative to the base's folder).
     if (!opt.base.supervisor.rule_file.empty()) {
       const std::string rules =
@@ -645,11 +649,12 @@ int run_tune(const TuneOptions& t) {
   }
   if (!t.init_file.empty()) {
     fuzzypid::FileError err;
-    controller::ControllerSpec init;
-    if (!cf::load(t.init_file, init, err)) {
+    cf::ControllerFile init_file;
+    if (!cf::load(t.init_file, init_file, err)) {
       std::fprintf(stderr, "fuzzypid tune: --init: %s\n", err.to_string().c_str());
       return 1;
     }
+    const controller::ControllerSpec& init = init_file.controller;
     // The search starts here; the result keeps its units, PID options, bounds and rule base.
     const controller::Family first = stages.empty() ? family : stages.front().family;
     controller::ControllerSpec converted;
@@ -658,15 +663,12 @@ int run_tune(const TuneOptions& t) {
       std::fprintf(stderr, "fuzzypid tune: --init %s: %s\n", t.init_file.c_str(), why.c_str());
       return 1;
     }
-    if (t.base_file.empty()) {
-      opt.base = init;
-      opt.base.tuning.reset();
-    }
+    if (t.base_file.empty()) opt.base = init;
     opt.init = init;
   }
-  const std::vector<controller::SearchBox> defaults = tune::default_box(family);
+  const std::vector<tune::SearchBox> defaults = tune::default_box(family);
   for (const std::string& text : t.boxes) {
-    controller::SearchBox b;
+    tune::SearchBox b;
     if (!parse_box(text, b)) {
       std::fprintf(
           stderr,
@@ -778,8 +780,9 @@ int run_tune(const TuneOptions& t) {
     return 2;
   }
   if (result->served) return kExitOk;
+  cf::ControllerFile tuned{result->controller, result->tuning, std::nullopt};
   std::optional<Completion> done =
-      complete_record(t, t.out, family, opt, *training, *experiments, result->controller, error);
+      complete_record(t, t.out, family, opt, *training, *experiments, tuned, error);
   if (!done) {
     std::fprintf(stderr, "fuzzypid tune: certify: %s\n", error.c_str());
     return 1;
@@ -794,7 +797,7 @@ int run_tune(const TuneOptions& t) {
                  t.out.c_str());
     return 1;
   }
-  const std::string text = cf::to_toml(result->controller);
+  const std::string text = cf::to_toml(tuned);
   if (std::fwrite(text.data(), 1, text.size(), out_file->file()) != text.size()) {
     std::fprintf(stderr, "fuzzypid tune: cannot write %s: %s\n", t.out.c_str(),
                  std::strerror(errno != 0 ? errno : EIO));
@@ -804,10 +807,10 @@ int run_tune(const TuneOptions& t) {
     std::fprintf(stderr, "fuzzypid tune: %s\n", error.c_str());
     return 1;
   }
-  for (const controller::BoundHit& h : result->controller.tuning->on_bound) {
-    const auto& box = result->controller.tuning->box;
+  for (const tune::BoundHit& h : tuned.tuning->on_bound) {
+    const auto& box = tuned.tuning->box;
     const auto b = std::find_if(box.begin(), box.end(),
-                                [&](const controller::SearchBox& s) { return s.name == h.name; });
+                                [&](const tune::SearchBox& s) { return s.name == h.name; });
     std::fprintf(stderr,
                  "fuzzypid tune: warning: %s ended on the %s of its box (log10 %.4g in [%.4g, "
                  "%.4g]): the optimum may lie outside; widen it with --box %s=MIN:MAX and "
@@ -817,7 +820,7 @@ int run_tune(const TuneOptions& t) {
                  h.name.c_str(), t.out.c_str());
   }
   const double rate = static_cast<double>(result->evaluations) / result->wall_s;
-  const auto& stage_records = result->controller.tuning->stages;
+  const auto& stage_records = tuned.tuning->stages;
   for (std::size_t k = 0; k < stage_records.size(); ++k) {
     const auto& st = stage_records[k];
     const double wall = k < result->stage_wall_s.size() ? result->stage_wall_s[k] : 0.0;
@@ -855,8 +858,9 @@ struct ExportOptions {
 // The certificate of `spec` over --conditions [--set] or, without them, over the nominal plant of
 // the robot options, as `fuzzypid certify` computes it (the conditions' largest delay).
 std::optional<controller::MarginRecord> margins_for_header(const ExportOptions& o,
-                                                           const controller::ControllerSpec& spec,
+                                                           const cf::ControllerFile& file,
                                                            std::string& error) {
+  const controller::ControllerSpec& spec = file.controller;
   std::vector<sim::Condition> conditions;
   if (!o.conditions.empty()) {
     sim::ConditionFile file;
@@ -875,8 +879,8 @@ std::optional<controller::MarginRecord> margins_for_header(const ExportOptions& 
   } else {
     sim::Condition c;
     o.robot.apply(c);
-    if (!o.robot.tick_given && spec.tuning && spec.tuning->tick_s > 0.0)
-      c.robot.tick_s = spec.tuning->tick_s;
+    if (!o.robot.tick_given && file.tuning && file.tuning->tick_s > 0.0)
+      c.robot.tick_s = file.tuning->tick_s;
     if (const std::string bad = c.validate(); !bad.empty()) {
       error = bad;
       return std::nullopt;
@@ -898,12 +902,12 @@ std::optional<controller::MarginRecord> margins_for_header(const ExportOptions& 
 // J^ and the torque limits of the plant `o.robot` names (the bundled ER50-C20 on the section 6
 // line by default), as sim_ab simulates it.
 std::optional<fuzzypid::codegen::PlantRecord> plant_record(const ExportOptions& o,
-                                                           const controller::ControllerSpec& spec,
+                                                           const cf::ControllerFile& file,
                                                            std::string& error) {
   sim::Condition c;
   o.robot.apply(c);
-  if (!o.robot.tick_given && spec.tuning && spec.tuning->tick_s > 0.0)
-    c.robot.tick_s = spec.tuning->tick_s;
+  if (!o.robot.tick_given && file.tuning && file.tuning->tick_s > 0.0)
+    c.robot.tick_s = file.tuning->tick_s;
   if (const std::string bad = c.validate(); !bad.empty()) {
     error = bad;
     return std::nullopt;
@@ -931,30 +935,31 @@ int run_export_header(const ExportOptions& o) {
       return kExitUsage;
     }
   }
-  controller::ControllerSpec spec;
+  cf::ControllerFile file;
   fuzzypid::FileError err;
-  if (!cf::load(in, spec, err)) {
+  if (!cf::load(in, file, err)) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", err.to_string().c_str());
     return 1;
   }
+  const controller::ControllerSpec& spec = file.controller;
   if (const std::string bad = fuzzypid::codegen::check_float_range(spec); !bad.empty()) {
     std::fprintf(stderr, "fuzzypid export-header: %s: %s\n", in.c_str(), bad.c_str());
     return 1;
   }
-  if (spec.tuning && o.robot.setup.urdf.empty())
-    for (const auto& f : spec.tuning->trained_on)
+  if (file.tuning && o.robot.setup.urdf.empty())
+    for (const auto& f : file.tuning->trained_on)
       if (f.kind == "urdf")
         std::fprintf(stderr,
                      "fuzzypid export-header: warning: %s was tuned on %s; the header's J^ and "
                      "torque limits are the bundled ER50-C20's (give --urdf and --path)\n",
                      in.c_str(), f.file.c_str());
   std::string plant_error;
-  const auto plant = plant_record(o, spec, plant_error);
+  const auto plant = plant_record(o, file, plant_error);
   if (!plant) {
     std::fprintf(stderr, "fuzzypid export-header: %s\n", plant_error.c_str());
     return 1;
   }
-  const auto margins = margins_for_header(o, spec, plant_error);
+  const auto margins = margins_for_header(o, file, plant_error);
   if (!margins) {
     std::fprintf(stderr, "fuzzypid export-header: certify: %s\n", plant_error.c_str());
     return 1;

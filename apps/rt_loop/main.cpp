@@ -315,13 +315,18 @@ int run(int argc, char** argv) {
   controller::ControllerSpec spec = sim::default_controller(
       options, o.controller == "fuzzy" ? controller::paper_fuzzy() : controller::paper_pid());
   spec.units.tick_s = paper_tick_s;
+  double tuned_tick_s = 0.0;  // the tick the file's [tuning] records (0: none)
   if (o.controller != "pid" && o.controller != "fuzzy") {
     fuzzypid::FileError file_error;
-    if (!cf::load(o.controller, spec, file_error)) {
+    cf::ControllerFile file;
+    if (!cf::load(o.controller, file, file_error)) {
       std::fprintf(stderr, "%s: %s\n", kTool, file_error.to_string().c_str());
       return cli::kExitFailure;
     }
-    cli::warn_about_training(kTool, o.controller, spec, *experiment);
+    spec = std::move(file.controller);
+    if (file.tuning) tuned_tick_s = file.tuning->tick_s;
+    cli::warn_about_training(kTool, o.controller, file.tuning ? &*file.tuning : nullptr,
+                             *experiment);
     if (const std::string bad = o.given.refuse_unused(
             {"--strict-rules"}, controller::family_traits(spec.family).supervised(),
             "a controller with a supervisor",
@@ -333,7 +338,7 @@ int run(int argc, char** argv) {
     }
   }
   for (const std::string& why :
-       {sim::tick_mismatch(spec, dt_s), sim::feedforward_mismatch(spec, condition)})
+       {sim::tick_mismatch(tuned_tick_s, dt_s), sim::feedforward_mismatch(spec, condition)})
     if (!why.empty())
       std::fprintf(stderr, "%s: warning: %s: %s\n", kTool, o.controller.c_str(), why.c_str());
   auto loop = sim::ClosedLoop::create(*experiment, condition, spec, error);

@@ -105,6 +105,8 @@ struct NamedController {
   std::string name;
   std::string source;  // the file, or "built-in"
   controller::ControllerSpec spec;
+  std::optional<tune::Tuning> tuning;  // the file's records (none when built in)
+  std::optional<controller::MarginRecord> margins;
 };
 
 struct Run {
@@ -411,10 +413,14 @@ int run_sim_ab(int argc, char** argv) {
     const std::string& path = o.controllers[k];
     NamedController c;
     fuzzypid::FileError err;
-    if (!cf::load(path, c.spec, err)) {
+    cf::ControllerFile file;
+    if (!cf::load(path, file, err)) {
       std::fprintf(stderr, "sim_ab: %s\n", err.to_string().c_str());
       return 1;
     }
+    c.spec = std::move(file.controller);
+    c.tuning = std::move(file.tuning);
+    c.margins = std::move(file.margins);
     c.name = prefixes[k] + fs::path(path).stem().string();
     c.source = path;
     for (const auto& other : controllers) {
@@ -426,10 +432,12 @@ int run_sim_ab(int argc, char** argv) {
     controllers.push_back(std::move(c));
   }
   if (controllers.empty()) {
-    controllers.push_back(
-        {"pid", "built-in", sim::default_controller(o.experiment, controller::paper_pid())});
-    controllers.push_back(
-        {"fuzzy", "built-in", sim::default_controller(o.experiment, controller::paper_fuzzy())});
+    controllers.push_back({"pid", "built-in",
+                           sim::default_controller(o.experiment, controller::paper_pid()),
+                           std::nullopt, std::nullopt});
+    controllers.push_back({"fuzzy", "built-in",
+                           sim::default_controller(o.experiment, controller::paper_fuzzy()),
+                           std::nullopt, std::nullopt});
   }
 
   // Conditions: a file's sets, or the scenario(s) with the overrides.
@@ -525,7 +533,8 @@ int run_sim_ab(int argc, char** argv) {
     }
     cli::print_model_notes("sim_ab", ex);
     for (const auto& c : controllers)
-      if (c.source != "built-in") cli::warn_about_training("sim_ab", c.source, c.spec, ex);
+      if (c.source != "built-in")
+        cli::warn_about_training("sim_ab", c.source, c.tuning ? &*c.tuning : nullptr, ex);
     for (const auto& c : controllers)
       if (c.spec.units.form == controller::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)
@@ -537,8 +546,8 @@ int run_sim_ab(int argc, char** argv) {
   // What the controller files say they were made for, against what they now run on.
   for (const auto& c : controllers) {
     for (std::size_t k = 0; k < experiments->size(); ++k)
-      if (const std::string why =
-              sim::tick_mismatch(c.spec, experiments->experiment(k).options().tick_s);
+      if (const std::string why = sim::tick_mismatch(c.tuning ? c.tuning->tick_s : 0.0,
+                                                     experiments->experiment(k).options().tick_s);
           !why.empty()) {
         std::fprintf(stderr, "sim_ab: warning: %s: %s\n", c.name.c_str(), why.c_str());
         break;
@@ -557,8 +566,8 @@ int run_sim_ab(int argc, char** argv) {
   // The margins a controller file records ([margins], written by `fuzzypid tune`): the worst
   // joint of each, and whether it was certified. `fuzzypid certify` recomputes them for any plant.
   for (const auto& c : controllers) {
-    if (!c.spec.margins || o.quiet) continue;
-    const controller::MarginRecord& m = *c.spec.margins;
+    if (!c.margins || o.quiet) continue;
+    const controller::MarginRecord& m = *c.margins;
     const auto worst = [](const controller::MarginRecord::PerJoint& v) {
       return *std::min_element(v.begin(), v.end());
     };

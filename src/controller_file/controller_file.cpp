@@ -20,6 +20,13 @@ using support::parse_toml;
 using support::read_text;
 using support::ReadError;
 using support::TableReader;
+using tune::BoundHit;
+using tune::FrontObjective;
+using tune::SearchBox;
+using tune::StageRecord;
+using tune::TableRegulariser;
+using tune::TrainedOn;
+using tune::Tuning;
 
 namespace {
 
@@ -115,9 +122,10 @@ RuleTableSpec::Table read_ratio_table(TableReader& r, const char* key) {
   return t;
 }
 
-ControllerSpec read_spec(const toml::table& root, const std::string& file) {
+ControllerFile read_file(const toml::table& root, const std::string& file) {
   TableReader r(root, file);
-  ControllerSpec s;
+  ControllerFile out;
+  ControllerSpec& s = out.controller;
   s.family = r.choice("family", kFamilyNames);
   s.description = r.text("description", std::string());
 
@@ -365,7 +373,7 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
       tu.regulariser = reg;
     }
     t->finish();
-    s.tuning = tu;
+    out.tuning = tu;
   }
 
   if (auto m = r.table("margins", false)) {
@@ -389,10 +397,10 @@ ControllerSpec read_spec(const toml::table& root, const std::string& file) {
     rec.verdict = m->text("verdict");
     rec.assumptions = m->text("assumptions");
     m->finish();
-    s.margins = rec;
+    out.margins = rec;
   }
   r.finish();
-  return s;
+  return out;
 }
 
 }  // namespace
@@ -423,16 +431,16 @@ std::string file_hash(const std::string& path) {
   return out;
 }
 
-bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
+bool parse(std::string_view text, const std::string& source, ControllerFile& file,
            FileError& error) {
   try {
     const toml::table root = parse_toml(text, source);
-    ControllerSpec s = read_spec(root, source);
-    if (const std::string bad = validate(s); !bad.empty()) {
+    ControllerFile f = read_file(root, source);
+    if (const std::string bad = validate(f.controller); !bad.empty()) {
       error = FileError{source, 1, 1, bad};
       return false;
     }
-    spec = std::move(s);
+    file = std::move(f);
     return true;
   } catch (const ReadError& e) {
     error = e.error;
@@ -440,17 +448,37 @@ bool parse(std::string_view text, const std::string& source, ControllerSpec& spe
   }
 }
 
-bool load(const std::string& path, ControllerSpec& spec, FileError& error) {
+bool load(const std::string& path, ControllerFile& file, FileError& error) {
   try {
     const std::string text = read_text(path);
-    return parse(text, path, spec, error);
+    return parse(text, path, file, error);
   } catch (const ReadError& e) {
     error = e.error;
     return false;
   }
 }
 
-std::string to_toml(const ControllerSpec& s) {
+bool parse(std::string_view text, const std::string& source, ControllerSpec& spec,
+           FileError& error) {
+  ControllerFile file;
+  if (!parse(text, source, file, error)) return false;
+  spec = std::move(file.controller);
+  return true;
+}
+
+bool load(const std::string& path, ControllerSpec& spec, FileError& error) {
+  ControllerFile file;
+  if (!load(path, file, error)) return false;
+  spec = std::move(file.controller);
+  return true;
+}
+
+std::string to_toml(const ControllerSpec& spec) {
+  return to_toml(ControllerFile{spec, std::nullopt, std::nullopt});
+}
+
+std::string to_toml(const ControllerFile& file) {
+  const ControllerSpec& s = file.controller;
   std::string o;
   o += "# fuzzypid controller file (docs/tuning.md). Gains in the units of [units].\n";
   o += "family = " + quoted(to_string(s.family)) + "\n";
@@ -519,8 +547,8 @@ std::string to_toml(const ControllerSpec& s) {
     o += "\n[feedforward]\n";
     o += "gravity = true  # tau += g^(q_desired) of the nominal model\n";
   }
-  if (s.tuning) {
-    const Tuning& t = *s.tuning;
+  if (file.tuning) {
+    const Tuning& t = *file.tuning;
     o += "\n[tuning]  # file names relative to this file's folder\n";
     o += "conditions = " + quoted(t.conditions) + "\n";
     o += "set = " + quoted(t.set) + "\n";
@@ -613,8 +641,8 @@ std::string to_toml(const ControllerSpec& s) {
     for (const auto& [key, value] : minima)
       if (value != 0.0) o += std::string(key) + " = " + format_double(value) + "\n";
   }
-  if (s.margins) {
-    const MarginRecord& m = *s.margins;
+  if (file.margins) {
+    const MarginRecord& m = *file.margins;
     const auto joints = [](const MarginRecord::PerJoint& v) {
       std::string line = "[";
       for (std::size_t i = 0; i < v.size(); ++i)
@@ -642,19 +670,19 @@ std::string to_toml(const ControllerSpec& s) {
   return o;
 }
 
-std::vector<std::string> trained_on_differences(const ControllerSpec& spec,
+std::vector<std::string> trained_on_differences(const Tuning* tuning,
                                                 const std::string& controller_path,
                                                 const std::string& urdf, const std::string& path,
                                                 const std::string& bundled_urdf) {
   std::vector<std::string> out;
-  if (!spec.tuning) return out;
+  if (tuning == nullptr) return out;
   namespace fs = std::filesystem;
   const fs::path folder = fs::path(controller_path).parent_path();
   // One kind: the run's file (empty: the built-in line) against the recorded ones of that kind.
   const auto compare = [&](const char* kind, const std::string& used, const std::string& absent,
                            const std::string& absent_file) {
-    std::vector<const controller::TrainedOn*> recorded;
-    for (const controller::TrainedOn& f : spec.tuning->trained_on)
+    std::vector<const TrainedOn*> recorded;
+    for (const TrainedOn& f : tuning->trained_on)
       if (f.kind == kind) recorded.push_back(&f);
     const std::string used_hash = used.empty() ? std::string() : file_hash(used);
     if (recorded.empty()) {
@@ -665,12 +693,12 @@ std::vector<std::string> trained_on_differences(const ControllerSpec& spec,
                     " (fnv1a64 " + used_hash + ")");
       return;
     }
-    for (const controller::TrainedOn* f : recorded)
+    for (const TrainedOn* f : recorded)
       if (!used.empty() && f->fnv1a64 == used_hash) return;
     std::string line = std::string(kind) + ": trained on ";
     bool changed = false;
     for (std::size_t k = 0; k < recorded.size(); ++k) {
-      const controller::TrainedOn& f = *recorded[k];
+      const TrainedOn& f = *recorded[k];
       const fs::path file = fs::path(f.file).is_absolute() ? fs::path(f.file) : folder / f.file;
       std::error_code ec;
       if (!used.empty() && fs::equivalent(file, used, ec) && !ec) changed = true;

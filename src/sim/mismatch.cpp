@@ -5,9 +5,9 @@
 
 namespace fuzzypid::sim {
 
-std::string tick_mismatch(const controller::ControllerSpec& controller, double tick_s) {
-  if (!controller.tuning || !(controller.tuning->tick_s > 0.0)) return {};
-  const double tuned = controller.tuning->tick_s;
+std::string tick_mismatch(double tuned_tick_s, double tick_s) {
+  if (!(tuned_tick_s > 0.0)) return {};
+  const double tuned = tuned_tick_s;
   if (std::fabs(tuned - tick_s) <= 1e-9 * tuned) return {};
   char buf[200];
   std::snprintf(buf, sizeof buf,

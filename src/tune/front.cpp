@@ -328,7 +328,7 @@ std::optional<Front> tune_front(const sim::ExperimentSet& experiments,
     point.training = training[k];
     if (!validation.empty()) point.validation = validation[k];
     const double penalty = space.penalty(point.controller);
-    controller::Tuning t;
+    Tuning t;
     t.algorithm = "pagmo::nsga2 (cr 0.95, eta_c 10, m 1/dimension, eta_m 50)";
     t.budget = to.budget;
     t.evaluations = state.evaluations;
@@ -346,7 +346,7 @@ std::optional<Front> tune_front(const sim::ExperimentSet& experiments,
       t.front.push_back(
           {fuzzypid::name_of(kMetricNames, options.objectives[m]), point.training[m],
            validation.empty() ? std::numeric_limits<double>::quiet_NaN() : point.validation[m]});
-    point.controller.tuning = t;
+    point.tuning = t;
     front.points.push_back(std::move(point));
   }
   return front;

@@ -140,9 +140,9 @@ std::optional<Minimum> minimize(const std::function<double(const std::vector<dou
   return m;
 }
 
-std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
-                                           const std::vector<SearchBox>& box, double fraction) {
-  std::vector<controller::BoundHit> hits;
+std::vector<BoundHit> on_bound(const std::vector<double>& x, const std::vector<SearchBox>& box,
+                               double fraction) {
+  std::vector<BoundHit> hits;
   for (std::size_t k = 0; k < box.size() && k < x.size(); ++k) {
     const SearchBox& b = box[k];
     const double width = b.log10_max - b.log10_min;

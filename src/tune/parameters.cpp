@@ -93,7 +93,6 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
   p.family_ = family;
   p.start_ = start;
   p.start_.family = family;
-  p.start_.tuning.reset();
   p.options_ = options;
   p.box_ = fixed_box(family);
   const auto with_filter = [&p]() -> std::optional<ParameterSpace> {
@@ -275,8 +274,8 @@ double ParameterSpace::penalty(const ControllerSpec& s) const {
   return cost;
 }
 
-controller::TableRegulariser ParameterSpace::record() const {
-  controller::TableRegulariser r;
+TableRegulariser ParameterSpace::record() const {
+  TableRegulariser r;
   r.symmetry = name_of(kSymmetryNames, options_.symmetry);
   r.partition = options_.partition;
   r.smoothness = options_.smoothness;
@@ -303,7 +302,6 @@ bool convert(const ControllerSpec& from, Family to, ControllerSpec& out, std::st
     return false;
   }
   out = from;
-  out.tuning.reset();
   if (from.family == to) return true;
   out.family = to;
   // pid -> scheduled: R = 1 moves nothing, whatever Ke and Kec. pid or scheduled -> fuzzy-rules:

@@ -68,7 +68,6 @@ bool prepare(const ExperimentOf& experiment, const std::vector<sim::Condition>& 
   } else if (std::string ignored; !convert(options.base, options.family, start_spec, ignored)) {
     start_spec = options.base;
     start_spec.family = options.family;
-    start_spec.tuning.reset();
     if (controller::family_traits(options.family).rule_table) {
       start_spec.supervisor.rule_table = controller::RuleTableSpec{};
       start_spec.supervisor.rule_file.clear();

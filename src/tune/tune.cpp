@@ -97,7 +97,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   runner.finish(chosen);
   result.penalty = space->penalty(result.controller);
   result.validation = chosen_validation;
-  controller::Tuning t;
+  Tuning t;
   t.algorithm = "pagmo::sade (variant 2, jDE)";
   t.budget = options.budget;
   t.evaluations = m->evaluations;
@@ -111,7 +111,7 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   t.validation_conditions = data.validation.size();
   if (chosen_validation) t.validation_cost = chosen_validation->total;
   if (controller::family_traits(options.family).rule_table) t.regulariser = space->record();
-  result.controller.tuning = t;
+  result.tuning = t;
   return result;
 }
 
@@ -126,7 +126,7 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
   const Family last = stages.back().family;
   std::uint64_t total = 0;
   std::vector<Result> results;
-  std::vector<controller::StageRecord> records;
+  std::vector<StageRecord> records;
   std::optional<ControllerSpec> init = options.init;
   for (const Stage& stage : stages) {
     Options o = options;
@@ -162,10 +162,10 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
   Result out = results[pick];
   if (pick + 1 != results.size()) {
     (void)convert(results[pick].controller, last, out.controller, error);
-    out.controller.tuning = results.back().controller.tuning;
-    out.controller.tuning->training_cost = results[pick].controller.tuning->training_cost;
-    out.controller.tuning->validation_cost = results[pick].controller.tuning->validation_cost;
-    out.controller.tuning->on_bound = results[pick].controller.tuning->on_bound;
+    out.tuning = results.back().tuning;
+    out.tuning.training_cost = results[pick].tuning.training_cost;
+    out.tuning.validation_cost = results[pick].tuning.validation_cost;
+    out.tuning.on_bound = results[pick].tuning.on_bound;
     out.penalty = 0.0;  // a converted table of ones is as smooth and monotone as its schedule
   }
   std::uint64_t evaluations = 0;
@@ -179,7 +179,7 @@ std::optional<Result> staged_on(const ExperimentOf& experiment,
   out.stage_wall_s.clear();
   for (const Result& r : results)
     out.stage_wall_s.push_back(r.wall_s);
-  controller::Tuning& t = *out.controller.tuning;
+  Tuning& t = out.tuning;
   t.budget = total;
   t.evaluations = evaluations;
   t.stages = records;

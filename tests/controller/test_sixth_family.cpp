@@ -114,7 +114,7 @@ TEST(SixthFamily, TheHeaderExportWritesItsSupervisor) {
 
 TEST(SixthFamily, TheTunerSearchesItsEightParameters) {
   const controller::Family f = *controller::parse_family("p-schedule");
-  const std::vector<controller::SearchBox> box = fuzzypid::tune::default_box(f);
+  const std::vector<fuzzypid::tune::SearchBox> box = fuzzypid::tune::default_box(f);
   ASSERT_EQ(box.size(), 8u);
   EXPECT_EQ(box[5].name, "rp");
   // A fixed PID becomes the family exactly (Rp = 1 moves nothing).

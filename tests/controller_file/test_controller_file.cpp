@@ -29,6 +29,7 @@ namespace {
 
 namespace cf = fuzzypid::controller_file;
 namespace controller = fuzzypid::controller;
+namespace tune = fuzzypid::tune;
 
 // The family a controller file calls `name` (the test fails for a name no family has).
 controller::Family named_family(std::string_view name) {
@@ -44,8 +45,9 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-controller::ControllerSpec tuned_example() {
-  controller::ControllerSpec s = controller::paper_fuzzy();
+cf::ControllerFile tuned_example() {
+  cf::ControllerFile f{controller::paper_fuzzy(), std::nullopt, std::nullopt};
+  controller::ControllerSpec& s = f.controller;
   s.description = "a \"quoted\" description\twith a tab";
   s.gains = {207.02946541923043, 0.0086027041784963332, 421.61049466377909};
   s.supervisor.error_scale = 961.29293435760724;
@@ -56,7 +58,7 @@ controller::ControllerSpec tuned_example() {
   s.gain_max = {1e4, 2.5, std::numeric_limits<double>::infinity()};
   s.pid.derivative = fuzzypid::pid::DerivativeSource::Difference;
   s.pid.anti_windup = fuzzypid::pid::AntiWindup::BackCalculation;
-  controller::Tuning t;
+  tune::Tuning t;
   t.conditions = "tuning/robust.toml";
   t.set = "training";
   t.algorithm = "pagmo::sade";
@@ -74,9 +76,9 @@ controller::ControllerSpec tuned_example() {
   t.objective.effort_weight = 1.0 / 3.0;
   t.trained_on = {{"urdf", "../urdf/ur5_class.urdf", "0123456789abcdef"},
                   {"path", "../paths/contour.csv", "fedcba9876543210"}};
-  s.tuning = t;
+  f.tuning = t;
   s.feedforward.gravity = true;
-  return s;
+  return f;
 }
 
 void expect_same(const controller::ControllerSpec& a, const controller::ControllerSpec& b) {
@@ -93,6 +95,10 @@ void expect_same(const controller::ControllerSpec& a, const controller::Controll
   EXPECT_EQ(a.pid.derivative, b.pid.derivative);
   EXPECT_EQ(a.pid.anti_windup, b.pid.anti_windup);
   EXPECT_EQ(a.feedforward.gravity, b.feedforward.gravity);
+}
+
+void expect_same(const cf::ControllerFile& a, const cf::ControllerFile& b) {
+  expect_same(a.controller, b.controller);
   ASSERT_EQ(a.tuning.has_value(), b.tuning.has_value());
   if (a.tuning) {
     ASSERT_EQ(a.tuning->trained_on.size(), b.tuning->trained_on.size());
@@ -119,10 +125,12 @@ void expect_same(const controller::ControllerSpec& a, const controller::Controll
 }
 
 TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
-  for (const controller::ControllerSpec& spec :
-       {controller::paper_pid(), controller::paper_fuzzy(), tuned_example()}) {
+  for (const cf::ControllerFile& spec :
+       {cf::ControllerFile{controller::paper_pid(), std::nullopt, std::nullopt},
+        cf::ControllerFile{controller::paper_fuzzy(), std::nullopt, std::nullopt},
+        tuned_example()}) {
     const std::string text = cf::to_toml(spec);
-    controller::ControllerSpec back;
+    cf::ControllerFile back;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
     expect_same(spec, back);
@@ -133,11 +141,11 @@ TEST(ControllerFile, WritingThenReadingGivesTheSameControllerAndTheSameText) {
 // The record of a staged tuning with a validation split and a rule-table regulariser: every
 // value written reads back (a stage without a validation set has none).
 TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
-  controller::ControllerSpec spec = tuned_example();
-  controller::Tuning& t = *spec.tuning;
+  cf::ControllerFile spec = tuned_example();
+  tune::Tuning& t = *spec.tuning;
   t.validation_conditions = 2;
   t.validation_cost = 0.0125;
-  controller::StageRecord first, second;
+  tune::StageRecord first, second;
   first.family = named_family("pid");
   first.budget = 100;
   first.evaluations = 100;
@@ -148,7 +156,7 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
   second.evaluations = 280;
   second.training_cost = 0.125;
   t.stages = {first, second};
-  controller::TableRegulariser g;
+  tune::TableRegulariser g;
   g.symmetry = "odd";
   g.partition = true;
   g.smoothness = 0.25;
@@ -159,11 +167,11 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
   g.cell_log10 = 1.5;
   t.regulariser = g;
   const std::string text = cf::to_toml(spec);
-  controller::ControllerSpec back;
+  cf::ControllerFile back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
   ASSERT_TRUE(back.tuning);
-  const controller::Tuning& b = *back.tuning;
+  const tune::Tuning& b = *back.tuning;
   EXPECT_EQ(b.validation_conditions, 2u);
   EXPECT_EQ(b.validation_cost, 0.0125);
   ASSERT_EQ(b.stages.size(), 2u);
@@ -190,7 +198,7 @@ TEST(ControllerFile, StagesAndTheRegulariserOfATuningRecordReadBack) {
 // The margins record and the margin requirements of the objective read back value for value
 // (an infinite gain margin, no phase crossover, included); a record with five joints is refused.
 TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
-  controller::ControllerSpec spec = tuned_example();
+  cf::ControllerFile spec = tuned_example();
   spec.tuning->objective.min_disk_margin = 0.5;
   spec.tuning->objective.min_delay_margin_ms = 20.0;
   controller::MarginRecord m;
@@ -208,7 +216,7 @@ TEST(ControllerFile, TheMarginsRecordAndTheMarginRequirementsReadBack) {
   m.assumptions = "linear joint";
   spec.margins = m;
   const std::string text = cf::to_toml(spec);
-  controller::ControllerSpec back;
+  cf::ControllerFile back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "mem.toml", back, error)) << error.to_string() << "\n" << text;
   ASSERT_TRUE(back.margins);
@@ -297,13 +305,14 @@ TEST(ControllerFile, TrainedOnIsComparedWithTheRobotAndPathOfARun) {
   std::ofstream(dir + "copy/robot.urdf") << "<robot name=\"r\"/>\n";
   std::ofstream(dir + "other.urdf") << "<robot name=\"other\"/>\n";
   std::ofstream(dir + "path.csv") << "t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad\n";
-  controller::ControllerSpec spec = tuned_example();
+  cf::ControllerFile spec = tuned_example();
   spec.tuning->trained_on = {{"urdf", "robot.urdf", cf::file_hash(dir + "robot.urdf")},
                              {"path", "path.csv", cf::file_hash(dir + "path.csv")}};
   const std::string controller = dir + "c.toml";
   const std::string bundled = dir + "other.urdf";
   const auto diff = [&](const std::string& urdf, const std::string& path) {
-    return cf::trained_on_differences(spec, controller, urdf, path, bundled);
+    return cf::trained_on_differences(spec.tuning ? &*spec.tuning : nullptr, controller, urdf, path,
+                                      bundled);
   };
   EXPECT_TRUE(diff(dir + "robot.urdf", dir + "path.csv").empty());
   EXPECT_TRUE(diff(dir + "copy/robot.urdf", dir + "path.csv").empty());
@@ -356,7 +365,7 @@ TEST(ControllerFile, ShippedTunedFilesReadBackToTheirOwnText) {
        {"tuned_pid.toml", "tuned_scheduled.toml", "tuned_fuzzy.toml", "tuned_fuzzy_rules.toml",
         "tuned_scheduled_staged.toml", "ur5_class_tuned_pid.toml", "ur5_class_tuned_scheduled.toml",
         "ur5_class_tuned_fuzzy.toml"}) {
-    controller::ControllerSpec loaded;
+    cf::ControllerFile loaded;
     fuzzypid::FileError error;
     ASSERT_TRUE(cf::load(dir + file, loaded, error)) << error.to_string();
     ASSERT_TRUE(loaded.tuning.has_value()) << file;
@@ -472,7 +481,7 @@ TEST(ControllerFile, ARuleFileIsResolvedFromTheFilesFolderAndWrittenBackAsGiven)
   EXPECT_EQ(spec.supervisor.rule_model->num_inputs, 2u);
   // Written back and read again from the same folder: the same text.
   const std::string text = cf::to_toml(spec);
-  controller::ControllerSpec back;
+  cf::ControllerFile back;
   ASSERT_TRUE(cf::parse(text, path, back, error)) << error.to_string();
   EXPECT_EQ(cf::to_toml(back), text);
 }
@@ -601,7 +610,6 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     SCOPED_TRACE(controller::to_string(form));
     controller::ControllerSpec rules = fuzzy_rules_example(form);
     rules.description = "tuned";
-    rules.tuning = controller::Tuning{};
     ASSERT_EQ(controller::validate(rules), "");
     std::string text, error;
     ASSERT_TRUE(fuzzypid::rulefile::rule_table_to_fll(controller::rule_table(rules), text, error))
@@ -629,7 +637,6 @@ TEST(FuzzyFromRuleTable, RunsTheExportedRuleFileLikeTheFuzzyRulesController) {
     EXPECT_EQ(fuzzy.pid.anti_windup, rules.pid.anti_windup);
     EXPECT_EQ(fuzzy.pid.derivative_filter_s, rules.pid.derivative_filter_s);
     EXPECT_TRUE(fuzzy.feedforward.gravity);
-    EXPECT_FALSE(fuzzy.tuning.has_value());
 
     controller::Vector limit;
     limit.fill(5.0);  // saturates now and then: the anti-windup paths run too

@@ -101,13 +101,11 @@ class FrontOnTheRobot : public ::testing::Test {
     return f;
   }
 
-  // Every point's file with the thread count left out (recorded, not compared).
+  // Every point's file (the tuner records no thread count).
   static std::string files(const tune::Front& f) {
     std::string all;
-    for (tune::FrontPoint p : f.points) {
-      p.controller.tuning->threads = 0;
-      all += cf::to_toml(p.controller);
-    }
+    for (const tune::FrontPoint& p : f.points)
+      all += cf::to_toml(cf::ControllerFile{p.controller, p.tuning, std::nullopt});
     return all;
   }
 
@@ -126,7 +124,7 @@ TEST_F(FrontOnTheRobot, PointsAreMutuallyNonDominatedAndRecordTheirObjectives) {
     ASSERT_EQ(p.training.size(), 3u);
     ASSERT_EQ(p.validation.size(), 3u);
     training.push_back(p.training);
-    const auto& rec = p.controller.tuning->front;
+    const auto& rec = p.tuning.front;
     ASSERT_EQ(rec.size(), 3u);
     EXPECT_EQ(rec[0].name, "itae");
     EXPECT_EQ(rec[1].name, "effort");
@@ -147,15 +145,15 @@ TEST_F(FrontOnTheRobot, PointsAreMutuallyNonDominatedAndRecordTheirObjectives) {
 TEST_F(FrontOnTheRobot, APointsFileReadsBackWithItsObjectivesAndABadEntryIsRefused) {
   const auto f = front(options(1));
   ASSERT_TRUE(f && !f->points.empty());
-  controller::ControllerSpec point = f->points.front().controller;
+  cf::ControllerFile point{f->points.front().controller, f->points.front().tuning, std::nullopt};
   point.tuning->conditions = "conditions.toml";  // the caller names them, as for tune()
   point.tuning->set = "training";
   const std::string text = cf::to_toml(point);
-  controller::ControllerSpec back;
+  cf::ControllerFile back;
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(text, "point.toml", back, error)) << error.to_string() << "\n" << text;
   ASSERT_TRUE(back.tuning);
-  const auto& want = f->points.front().controller.tuning->front;
+  const auto& want = f->points.front().tuning.front;
   ASSERT_EQ(back.tuning->front.size(), want.size());
   for (std::size_t m = 0; m < want.size(); ++m) {
     EXPECT_EQ(back.tuning->front[m].name, want[m].name);
@@ -257,7 +255,8 @@ TEST_F(FrontOnTheRobot, TwoRanksGiveTheOneObjectiveResultOfOne) {
   worker.join();
   ASSERT_TRUE(shared && served) << error;
   EXPECT_TRUE(served->served);
-  EXPECT_EQ(cf::to_toml(shared->controller), cf::to_toml(alone->controller));
+  EXPECT_EQ(cf::to_toml(cf::ControllerFile{shared->controller, shared->tuning, std::nullopt}),
+            cf::to_toml(cf::ControllerFile{alone->controller, alone->tuning, std::nullopt}));
 }
 
 }  // namespace

@@ -58,11 +58,11 @@ double double_integrator_itae(const std::vector<double>& x) {
   return itae;
 }
 
-const std::vector<controller::SearchBox> kToyBox = {
+const std::vector<tune::SearchBox> kToyBox = {
     {"kp", -1.0, 2.0}, {"ki", -3.0, 1.0}, {"kd", -1.0, 2.0}};
 
 TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
-  const std::vector<controller::SearchBox> box = {
+  const std::vector<tune::SearchBox> box = {
       {"kp", 0.0, 4.0}, {"ki", -3.0, 1.0}, {"kd", 0.0, 4.0}, {"held", 2.0, 2.0}};
   // kp 0.96 % of the width below the top, ki 0.9 % above the bottom, kd 1.1 % below the top; a
   // parameter held fixed (zero width) is never on a bound.
@@ -79,7 +79,7 @@ TEST(OnBound, NamesEveryParameterWithinOnePercentOfASideOfItsBoxAndNoOther) {
 // The derivative filter's bottom is its "off" end: a filter there is not a box too small. Its top
 // is reported like any other parameter's.
 TEST(OnBound, TheDerivativeFilterIsReportedOnlyAtTheTopOfItsBox) {
-  const std::vector<controller::SearchBox> box = {{"kp", 0.0, 4.0}, {"tf", -3.0, 0.0}};
+  const std::vector<tune::SearchBox> box = {{"kp", 0.0, 4.0}, {"tf", -3.0, 0.0}};
   EXPECT_TRUE(tune::on_bound({2.0, -3.0}, box).empty());
   const auto hits = tune::on_bound({2.0, 0.0}, box);
   ASSERT_EQ(hits.size(), 1u);
@@ -254,8 +254,7 @@ class TuneOnTheRobot : public ::testing::Test {
     EXPECT_TRUE(r) << error;
     if (!r) return {};
     EXPECT_LE(r->evaluations, 60u);
-    r->controller.tuning->threads = 0;  // recorded, not part of the comparison
-    return cf::to_toml(r->controller);
+    return cf::to_toml(cf::ControllerFile{r->controller, r->tuning, std::nullopt});
   }
 
   std::optional<fuzzypid::robot::RobotModel> model_;
@@ -282,7 +281,7 @@ TEST_F(TuneOnTheRobot, TheRecordedCostIsTheObjectiveOfTheResult) {
   const auto r = tune::tune(*experiment_, training_, o, error);
   ASSERT_TRUE(r) << error;
   const tune::Cost c = tune::evaluate(*experiment_, training_, r->controller, o.objective, 1);
-  EXPECT_EQ(c.total, r->controller.tuning->training_cost);
+  EXPECT_EQ(c.total, r->tuning.training_cost);
   EXPECT_EQ(c.total, r->cost.total);
 }
 
@@ -355,21 +354,21 @@ TEST_F(StagedTuning, StagesAddUpAndTheResultIsTheLastFamilysAtAnyThreadCount) {
   auto b = staged(2);
   ASSERT_TRUE(a && b);
   EXPECT_EQ(a->controller.family, named_family("fuzzy-rules"));
-  const controller::Tuning& t = *a->controller.tuning;
+  const tune::Tuning& t = a->tuning;
   ASSERT_EQ(t.stages.size(), 3u);
   EXPECT_EQ(t.budget, 320u);
   EXPECT_EQ(t.evaluations,
             t.stages[0].evaluations + t.stages[1].evaluations + t.stages[2].evaluations);
   EXPECT_LE(t.evaluations, 320u);
   EXPECT_EQ(t.validation_conditions, 1u);
-  a->controller.tuning->threads = b->controller.tuning->threads = 0;
-  EXPECT_EQ(cf::to_toml(a->controller), cf::to_toml(b->controller));
+  EXPECT_EQ(cf::to_toml(cf::ControllerFile{a->controller, a->tuning, std::nullopt}),
+            cf::to_toml(cf::ControllerFile{b->controller, b->tuning, std::nullopt}));
 }
 
 TEST_F(StagedTuning, EveryStageStartsWhereTheLastEndedAndNeverEndsAbove) {
   auto r = staged(2);
   ASSERT_TRUE(r);
-  const auto& st = r->controller.tuning->stages;
+  const auto& st = r->tuning.stages;
   // The start is a member of each stage's first generation and conversions are exact: the
   // training cost of a stage's champion never rises above the last stage's (to rounding).
   EXPECT_LE(st[1].training_cost, st[0].training_cost * (1 + 1e-9));
@@ -383,9 +382,9 @@ TEST_F(StagedTuning, TheHeldBackConditionsAreScoredNotTrainedOn) {
   const std::vector<fuzzypid::sim::Condition> held = {conditions_.back()};
   const auto& setup = *set_;
   const double validation = tune::evaluate(setup.of(2), held, r->controller, o, 1).total;
-  EXPECT_EQ(validation, r->controller.tuning->validation_cost);
+  EXPECT_EQ(validation, r->tuning.validation_cost);
   const double training = tune::evaluate(*experiment_, training_, r->controller, o, 1).total;
-  EXPECT_EQ(training + r->penalty, r->controller.tuning->training_cost);
+  EXPECT_EQ(training + r->penalty, r->tuning.training_cost);
   EXPECT_NE(validation, training);
 }
 
@@ -426,7 +425,7 @@ TEST(TuneOnTwoRobots, EachConditionRunsOnItsOwnExperiment) {
   ASSERT_TRUE(set) << error;
   ASSERT_EQ(set->size(), 2u);
   const controller::ControllerSpec pid = controller::paper_pid();
-  const controller::Objective objective;
+  const tune::Objective objective;
   const double sum = tune::evaluate(*set, both, pid, objective, 2).total;
   const double a = tune::evaluate(set->of(0), {er50}, pid, objective, 1).total;
   const double b = tune::evaluate(set->of(1), {ur5}, pid, objective, 1).total;
@@ -451,12 +450,12 @@ TEST(TuneOnTwoRobots, ValidationConditionsRunOnTheirOwnExperiment) {
   o.validation = 1;
   const auto r = tune::tune(*set, both, o, error);
   ASSERT_TRUE(r) << error;
-  ASSERT_TRUE(r->controller.tuning && r->validation);
+  ASSERT_TRUE(r->validation);
   const double on_ur5 = tune::evaluate(set->of(1), {ur5}, r->controller, o.objective, 1).total;
-  EXPECT_EQ(r->controller.tuning->validation_cost, on_ur5);
-  EXPECT_EQ(r->controller.tuning->validation_conditions, 1u);
+  EXPECT_EQ(r->tuning.validation_cost, on_ur5);
+  EXPECT_EQ(r->tuning.validation_conditions, 1u);
   const double on_er50 = tune::evaluate(set->of(0), {er50}, r->controller, o.objective, 1).total;
-  EXPECT_EQ(r->controller.tuning->training_cost, on_er50 + r->penalty);
+  EXPECT_EQ(r->tuning.training_cost, on_er50 + r->penalty);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/controller/margin_record.hpp"
 
 namespace fuzzypid::codegen {
 

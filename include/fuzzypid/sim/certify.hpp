@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "fuzzypid/controller/controller_spec.hpp"
+#include "fuzzypid/controller/margin_record.hpp"
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"

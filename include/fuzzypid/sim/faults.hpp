@@ -28,7 +28,7 @@
 
 namespace fuzzypid::sim {
 
-// |e| above this is a divergence, rad: the tuner's default (controller::Objective::divergence_rad).
+// |e| above this is a divergence, rad: the tuner's default (tune::Objective::divergence_rad).
 inline constexpr double kDefaultDivergenceRad = 1.0;
 
 // One kind of fault of one joint over a run.

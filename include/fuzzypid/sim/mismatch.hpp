@@ -10,12 +10,11 @@
 
 namespace fuzzypid::sim {
 
-// Empty, or why running `controller` at a `tick_s` controller tick departs from its tuning: it
-// was tuned at another tick (Tuning::tick_s), so its gains, its ringing and its margins there say
-// nothing about this tick (a controller tuned at 4 ms can diverge at 50 ms). A relative
-// difference below 1e-9 counts as the same tick; a controller with no recorded tick passes.
-[[nodiscard]] std::string tick_mismatch(const controller::ControllerSpec& controller,
-                                        double tick_s);
+// Empty, or why running a controller tuned at a `tuned_tick_s` controller tick (the tick_s its
+// controller file records in [tuning]) at a `tick_s` tick departs from its tuning: its gains, its ringing and its
+// margins there say nothing about this tick (a controller tuned at 4 ms can diverge at 50 ms). A
+// relative difference below 1e-9 counts as the same tick; no recorded tick (0) passes.
+[[nodiscard]] std::string tick_mismatch(double tuned_tick_s, double tick_s);
 
 // Empty, or why `controller`'s gravity feed-forward does not fit `condition`: it adds g^(q_d)
 // to the torque of a plant without gravity, so that torque pushes the arm off its path instead

@@ -64,7 +64,8 @@ struct FrontOptions {
 };
 
 struct FrontPoint {
-  ControllerSpec controller;       // with its tuning record
+  ControllerSpec controller;
+  Tuning tuning;                   // how it was found, its objectives in `front`
   std::vector<double> training;    // its objectives on the training conditions
   std::vector<double> validation;  // on the validation conditions (empty without them)
 };

@@ -28,12 +28,12 @@
 
 #include "fuzzypid/controller/controller_spec.hpp"
 #include "fuzzypid/enum_names.hpp"
+#include "fuzzypid/tune/record.hpp"
 
 namespace fuzzypid::tune {
 
 using controller::ControllerSpec;
 using controller::Family;
-using controller::SearchBox;
 
 // The searched derivative filter's name in a box (the last parameter with --search-filter).
 inline constexpr const char* kFilterParameter = "tf";
@@ -90,7 +90,7 @@ class ParameterSpace {
   // Cells (of 3 x 49) whose class is held at the start's values.
   std::size_t held_cells() const noexcept { return held_cells_; }
   // What the file's [tuning.regulariser] records (fuzzy-rules only).
-  [[nodiscard]] controller::TableRegulariser record() const;
+  [[nodiscard]] TableRegulariser record() const;
 
  private:
   // One searched table class: the cells it sets and the sign of each (odd symmetry: -1 on the

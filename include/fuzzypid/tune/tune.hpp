@@ -41,11 +41,10 @@
 #include "fuzzypid/sim/condition.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid/tune/parameters.hpp"
+#include "fuzzypid/tune/record.hpp"
 #include "fuzzypid/tune/transport.hpp"
 
 namespace fuzzypid::tune {
-
-using controller::Objective;
 
 struct Cost {
   double total = 0.0;
@@ -111,9 +110,9 @@ struct Minimum {
 // The parameters of x (in the box's units) that lie within `fraction` of their box's width of a
 // side, in box order. A box of zero width (a parameter held fixed) is never reported, nor the
 // derivative filter "tf" at its bottom (a filter shorter than that is inert: the "off" end).
-[[nodiscard]] std::vector<controller::BoundHit> on_bound(const std::vector<double>& x,
-                                                         const std::vector<SearchBox>& box,
-                                                         double fraction = 0.01);
+[[nodiscard]] std::vector<BoundHit> on_bound(const std::vector<double>& x,
+                                             const std::vector<SearchBox>& box,
+                                             double fraction = 0.01);
 
 struct Options {
   Family family{};               // the list's first (controller/families.hpp): the fixed PID
@@ -146,7 +145,8 @@ struct Options {
 };
 
 struct Result {
-  ControllerSpec controller;         // with its tuning record filled in (except conditions and set)
+  ControllerSpec controller;
+  Tuning tuning;                     // how it was found (all but conditions and set)
   Cost cost;                         // on the training conditions, without the regulariser
   double penalty = 0.0;              // the regulariser's cost of the result
   std::optional<Cost> validation;    // on the held-back conditions
