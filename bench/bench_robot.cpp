@@ -49,6 +49,7 @@ std::array<IkCase, kPoses> make_ik_cases(const robot::RobotModel& m) {
   SplitMix64 rng(2024);
   const auto& lo = m.lower_limits_rad();
   const auto& hi = m.upper_limits_rad();
+  robot::RobotData data(m);
   for (auto& c : cases) {
     robot::JointVector q{};
     do {
@@ -58,7 +59,7 @@ std::array<IkCase, kPoses> make_ik_cases(const robot::RobotModel& m) {
         q[j] = rng.uniform(l + 0.2, h - 0.2);
       }
     } while (q[4] > -0.2 && q[4] < 0.2);
-    c.target = m.forward_kinematics(q);
+    c.target = m.forward_kinematics(q, data);
     for (std::size_t j = 0; j < robot::kNumJoints; ++j)
       c.seed[j] = q[j] + (rng.next() & 1 ? kSeedOffsetRad : -kSeedOffsetRad);
   }

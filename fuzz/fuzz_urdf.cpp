@@ -49,10 +49,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const fuzzypid::robot::RobotModel& model = *result.model;
   const fuzzypid::robot::JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
   const fuzzypid::robot::JointVector qd = {0.5, 0.4, 0.3, 0.2, 0.1, 0.0};
-  (void)model.forward_kinematics(q);
-  (void)model.jacobian(q);
-  (void)model.mass_matrix(q);
-  (void)model.coriolis_torque(q, qd);
+  fuzzypid::robot::RobotData work(model);
+  (void)model.forward_kinematics(q, work);
+  (void)model.jacobian(q, work);
+  (void)model.mass_matrix(q, work);
+  (void)model.coriolis_torque(q, qd, work);
   (void)model.gravity_torque(q);
   (void)model.within_limits(q);
   return 0;

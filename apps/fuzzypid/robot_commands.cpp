@@ -57,6 +57,7 @@ int run_fk(const RobotOptions& options) {
   const std::optional<robot::RobotModel> model = load_model("fk", options);
   if (!model) return kExitFailure;
 
+  robot::RobotData data(*model);
   CsvReader reader(std::cin);
   reader.expect_columns(kNumJoints, kNumJoints);
   CsvRow row;
@@ -64,7 +65,7 @@ int run_fk(const RobotOptions& options) {
     JointVector q{};
     for (std::size_t j = 0; j < kNumJoints; ++j)
       q[j] = row.values[j];
-    const Pose p = model->forward_kinematics(q);
+    const Pose p = model->forward_kinematics(q, data);
     double out[12] = {p.position_m.x(), p.position_m.y(), p.position_m.z()};
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)

@@ -180,8 +180,9 @@ std::optional<AnalyticIk> AnalyticIk::from_model(const RobotModel& model, const 
                                 {0.3, -0.4, 0.5, -0.6, 0.7, -0.8},
                                 {-1.1, 0.9, -0.7, 1.3, -1.5, 2.0},
                                 {2.5, -1.9, 1.6, -2.2, 0.4, 3.0}};
+  RobotData data(model);
   for (const JointVector& q : probes) {
-    const Pose a = model.forward_kinematics(q);
+    const Pose a = model.forward_kinematics(q, data);
     const Pose b = dh_forward_kinematics(dh, q);
     const double dp = (a.position_m - b.position_m).norm();
     const double dr = (a.rotation - b.rotation).cwiseAbs().maxCoeff();

@@ -313,6 +313,7 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
   r.position_rad.reserve(ticks);
   r.velocity_rad_s.reserve(ticks);
   std::size_t seg = 0;
+  RobotData data(model);
   for (std::size_t k = 0; k < ticks; ++k) {
     const double t = std::fmin(t0 + static_cast<double>(k) * tick_s, table.time_s.back());
     while (seg + 2 < n && t >= table.time_s[seg + 1])
@@ -336,7 +337,7 @@ JointPathResult joint_path_from_table(const InverseKinematics& ik, const RobotMo
     r.time_s.push_back(t);
     r.position_rad.push_back(pos);
     r.velocity_rad_s.push_back(vel);
-    r.poses.push_back(model.forward_kinematics(pos));
+    r.poses.push_back(model.forward_kinematics(pos, data));
   }
   r.within_velocity_limits = true;
   for (std::size_t j = 0; j < kNumJoints; ++j)

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -54,11 +55,27 @@ bool all_non_negative(const JointVector& v) noexcept {
   return true;
 }
 
+// The plant's RobotData, made for its own copy of the model. A copied slot starts empty: the copy
+// of a plant makes its own for its own model (JointPlant's copy constructor and assignment).
+struct DataSlot {
+  std::optional<RobotData> data;
+  DataSlot() = default;
+  DataSlot(const DataSlot& /*other*/) noexcept {}
+  DataSlot& operator=(const DataSlot& /*other*/) noexcept {
+    data.reset();
+    return *this;
+  }
+  DataSlot(DataSlot&&) noexcept = default;
+  DataSlot& operator=(DataSlot&&) noexcept = default;
+  ~DataSlot() = default;
+};
+
 }  // namespace
 
 class JointPlant::Impl {
  public:
   Impl(const RobotModel& m, const PlantConfig& c) : model(m), config(c) {
+    slot.data.emplace(model);
     limit = config.torque_limit_nm.value_or(model.effort_limits_nm());
     valid = std::isfinite(config.substep_s) && config.substep_s > 0.0 &&
             std::isfinite(config.coupled_substep_s) && config.coupled_substep_s > 0.0 &&
@@ -211,8 +228,8 @@ class JointPlant::Impl {
   }
 
   // S^½ M(q) S^½ + diag(armature).
-  Mat6 effective_mass(const JointVector& at) const noexcept {
-    Mat6 m = sqrt_scale.asDiagonal() * model.mass_matrix(at) * sqrt_scale.asDiagonal();
+  Mat6 effective_mass(const JointVector& at) noexcept {
+    Mat6 m = sqrt_scale.asDiagonal() * model.mass_matrix(at, *slot.data) * sqrt_scale.asDiagonal();
     m.diagonal() += to_vec(config.armature_kgm2);
     return m;
   }
@@ -420,7 +437,7 @@ class JointPlant::Impl {
           if (config.inertia_update == InertiaUpdate::Fixed) {
             j_tick = to_array(fixed_mass.diagonal());
           } else {
-            const JointVector diag = model.inertia_diagonal(q);
+            const JointVector diag = model.inertia_diagonal(q, *slot.data);
             for (std::size_t i = 0; i < kNumJoints; ++i)
               j_tick[i] = config.inertia_scale[i] * diag[i] + config.armature_kgm2[i];
           }
@@ -564,6 +581,7 @@ class JointPlant::Impl {
   }
 
   RobotModel model;
+  DataSlot slot;  // the solvers' workspace for `model`
   PlantConfig config;
   bool valid = false;
   JointVector limit{};
@@ -607,10 +625,15 @@ class JointPlant::Impl {
 
 JointPlant::JointPlant(const RobotModel& model, const PlantConfig& config)
     : impl_(std::make_unique<Impl>(model, config)) {}
-JointPlant::JointPlant(const JointPlant& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+JointPlant::JointPlant(const JointPlant& other) : impl_(std::make_unique<Impl>(*other.impl_)) {
+  impl_->slot.data.emplace(impl_->model);
+}
 JointPlant::JointPlant(JointPlant&& other) noexcept = default;
 JointPlant& JointPlant::operator=(const JointPlant& other) {
-  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  if (this != &other) {
+    impl_ = std::make_unique<Impl>(*other.impl_);
+    impl_->slot.data.emplace(impl_->model);
+  }
   return *this;
 }
 JointPlant& JointPlant::operator=(JointPlant&& other) noexcept = default;

@@ -73,8 +73,8 @@ class RigidBodyDynamics {
 [[nodiscard]] const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept;
 
 // KDL's ChainDynParam::JntToGravity on the model's chain: the independent reference the tests
-// check RobotModel::gravity_torque (this RNEA) against. Not thread-safe (the model's KDL scratch).
+// check RobotModel::gravity_torque (this RNEA) against. NaN with a RobotData of another model.
 [[nodiscard]] JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q,
-                                             double gravity_m_s2) noexcept;
+                                             double gravity_m_s2, RobotData& data) noexcept;
 
 }  // namespace fuzzypid::robot::detail

@@ -2,23 +2,40 @@
 // urdf_loader.cpp built, its copies and its payload variant.
 #include "robot_model_impl.hpp"
 
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 
 namespace fuzzypid::robot {
 
+namespace {
+// Ids of the models made so far: a RobotData names its model by id, not by address (a model
+// assigned to gets a new Impl, which may reuse a freed address).
+std::atomic<std::uint64_t> g_next_model_id{1};
+}  // namespace
+
 RobotModel::Impl::Impl(ChainDescription description)
     : desc(std::move(description)),
-      fk_solver(desc.chain),
-      jac_solver(desc.chain),
-      dyn_solver(desc.chain, KDL::Vector(0.0, 0.0, -1.0)),
       dynamics(desc.chain),
+      id(g_next_model_id.fetch_add(1, std::memory_order_relaxed)) {}
+
+RobotData::Impl::Impl(const RobotModel::Impl& model)
+    : model_id(model.id),
+      fk_solver(model.desc.chain),
+      jac_solver(model.desc.chain),
+      dyn_solver(model.desc.chain, KDL::Vector(0.0, 0.0, -1.0)),
       q(kNumJoints),
       qd(kNumJoints),
       tau(kNumJoints),
       jac(kNumJoints),
       mass(kNumJoints) {}
+
+RobotData::RobotData(const RobotModel& model) : impl_(std::make_unique<Impl>(model.impl())) {}
+RobotData::RobotData(RobotData&& other) noexcept = default;
+RobotData& RobotData::operator=(RobotData&& other) noexcept = default;
+RobotData::~RobotData() = default;
 
 RobotModel::RobotModel(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 RobotModel::RobotModel(const RobotModel& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
@@ -84,42 +101,70 @@ bool RobotModel::within_limits(const JointVector& q, double tolerance_rad) const
   return true;
 }
 
-Pose RobotModel::forward_kinematics(const JointVector& q) const noexcept {
-  to_kdl(q, impl_->q);
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+Pose RobotModel::forward_kinematics(const JointVector& q, RobotData& data) const noexcept {
+  RobotData::Impl& d = data.impl();
+  if (d.model_id != impl_->id) {
+    Pose p;
+    p.position_m.setConstant(kNaN);
+    p.rotation.setConstant(kNaN);
+    return p;
+  }
+  to_kdl(q, d.q);
   KDL::Frame f;
-  impl_->fk_solver.JntToCart(impl_->q, f);
+  d.fk_solver.JntToCart(d.q, f);
   return from_kdl(f);
 }
 
-Eigen::Matrix<double, 6, 6> RobotModel::jacobian(const JointVector& q) const noexcept {
-  to_kdl(q, impl_->q);
-  impl_->jac_solver.JntToJac(impl_->q, impl_->jac);
-  return impl_->jac.data;
+Eigen::Matrix<double, 6, 6> RobotModel::jacobian(const JointVector& q,
+                                                 RobotData& data) const noexcept {
+  RobotData::Impl& d = data.impl();
+  if (d.model_id != impl_->id) return Eigen::Matrix<double, 6, 6>::Constant(kNaN);
+  to_kdl(q, d.q);
+  d.jac_solver.JntToJac(d.q, d.jac);
+  return d.jac.data;
 }
 
-Eigen::Matrix<double, 6, 6> RobotModel::mass_matrix(const JointVector& q) const noexcept {
-  to_kdl(q, impl_->q);
-  impl_->dyn_solver.JntToMass(impl_->q, impl_->mass);
-  return impl_->mass.data;
+Eigen::Matrix<double, 6, 6> RobotModel::mass_matrix(const JointVector& q,
+                                                    RobotData& data) const noexcept {
+  RobotData::Impl& d = data.impl();
+  if (d.model_id != impl_->id) return Eigen::Matrix<double, 6, 6>::Constant(kNaN);
+  to_kdl(q, d.q);
+  d.dyn_solver.JntToMass(d.q, d.mass);
+  return d.mass.data;
 }
 
-JointVector RobotModel::inertia_diagonal(const JointVector& q) const noexcept {
-  to_kdl(q, impl_->q);
-  impl_->dyn_solver.JntToMass(impl_->q, impl_->mass);
-  JointVector d{};
+JointVector RobotModel::inertia_diagonal(const JointVector& q, RobotData& data) const noexcept {
+  RobotData::Impl& d = data.impl();
+  JointVector out{};
+  if (d.model_id != impl_->id) {
+    out.fill(kNaN);
+    return out;
+  }
+  to_kdl(q, d.q);
+  d.dyn_solver.JntToMass(d.q, d.mass);
   for (std::size_t i = 0; i < kNumJoints; ++i) {
     const auto k = static_cast<unsigned int>(i);
-    d[i] = impl_->mass(k, k);
+    out[i] = d.mass(k, k);
   }
-  return d;
+  return out;
 }
 
-JointVector RobotModel::coriolis_torque(const JointVector& q,
-                                        const JointVector& qd) const noexcept {
-  to_kdl(q, impl_->q);
-  to_kdl(qd, impl_->qd);
-  impl_->dyn_solver.JntToCoriolis(impl_->q, impl_->qd, impl_->tau);
-  return from_kdl(impl_->tau);
+JointVector RobotModel::coriolis_torque(const JointVector& q, const JointVector& qd,
+                                        RobotData& data) const noexcept {
+  RobotData::Impl& d = data.impl();
+  if (d.model_id != impl_->id) {
+    JointVector out{};
+    out.fill(kNaN);
+    return out;
+  }
+  to_kdl(q, d.q);
+  to_kdl(qd, d.qd);
+  d.dyn_solver.JntToCoriolis(d.q, d.qd, d.tau);
+  return from_kdl(d.tau);
 }
 
 // The fixed-size RNEA with q̇ = 0 (about a third of KDL's JntToGravity here, docs/performance.md):
@@ -138,12 +183,17 @@ const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept {
   return model.impl().dynamics;
 }
 
-JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q,
-                               double gravity_m_s2) noexcept {
-  const RobotModel::Impl& impl = model.impl();
-  to_kdl(q, impl.q);
-  impl.dyn_solver.JntToGravity(impl.q, impl.tau);
-  JointVector g = from_kdl(impl.tau);
+JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q, double gravity_m_s2,
+                               RobotData& data) noexcept {
+  RobotData::Impl& d = data.impl();
+  if (d.model_id != model.impl().id) {
+    JointVector out{};
+    out.fill(std::numeric_limits<double>::quiet_NaN());
+    return out;
+  }
+  to_kdl(q, d.q);
+  d.dyn_solver.JntToGravity(d.q, d.tau);
+  JointVector g = from_kdl(d.tau);
   for (double& v : g)
     v *= gravity_m_s2;
   return g;

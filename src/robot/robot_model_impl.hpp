@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <kdl/jntarray.hpp>
 #include <kdl/jntspaceinertiamatrix.hpp>
 
+#include "fuzzypid/robot/robot_data.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "rigid_body_dynamics.hpp"
 
@@ -34,8 +36,9 @@ struct ChainDescription {
   std::vector<std::string> notes;             // RobotModel::notes()
 };
 
-// Owns the chain and solvers bound to it. KDL solvers keep a reference to the chain, so an Impl is
-// never moved (RobotModel holds it by unique_ptr) and a copy rebuilds its solvers on its own chain.
+// Owns the chain (immutable once built). KDL solvers keep a reference to a chain, so an Impl is
+// never moved (RobotModel holds it by unique_ptr): the RobotData made for it stay bound to it.
+// Every Impl has its own id (a copy too), so a RobotData can tell the model it was made for.
 class RobotModel::Impl {
  public:
   explicit Impl(ChainDescription description);
@@ -43,20 +46,26 @@ class RobotModel::Impl {
   Impl& operator=(const Impl&) = delete;
 
   ChainDescription desc;
-  KDL::ChainFkSolverPos_recursive fk_solver;
-  KDL::ChainJntToJacSolver jac_solver;
-  // Built with unit gravity along -z (results scale linearly); mutable like the scratch below,
-  // because its queries are non-const.
-  mutable KDL::ChainDynParam dyn_solver;
   // The same chain's parameters for the fixed-size dynamics (coupled plant, gravity_torque).
   detail::RigidBodyDynamics dynamics;
+  std::uint64_t id;
+};
 
-  // Scratch reused by the const queries (sized at construction, never reallocated).
-  mutable KDL::JntArray q;
-  mutable KDL::JntArray qd;
-  mutable KDL::JntArray tau;
-  mutable KDL::Jacobian jac;
-  mutable KDL::JntSpaceInertiaMatrix mass;
+// The solvers bound to one model's chain and their scratch (sized at construction, never
+// reallocated): KDL's solvers change their own state when they solve.
+class RobotData::Impl {
+ public:
+  explicit Impl(const RobotModel::Impl& model);
+
+  std::uint64_t model_id;
+  KDL::ChainFkSolverPos_recursive fk_solver;
+  KDL::ChainJntToJacSolver jac_solver;
+  KDL::ChainDynParam dyn_solver;  // built with unit gravity along -z (results scale linearly)
+  KDL::JntArray q;
+  KDL::JntArray qd;
+  KDL::JntArray tau;
+  KDL::Jacobian jac;
+  KDL::JntSpaceInertiaMatrix mass;
 };
 
 // Copies a joint vector into a preallocated KDL array of the same size.

@@ -219,6 +219,7 @@ std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions
     if (path == nullptr) return std::nullopt;
     const double h = ex.options().tick_s;
     const robot::RobotModel model = ex.plant_model(c);
+    robot::RobotData data(model);
     const robot::PlantConfig plant = ex.plant_config(c);
     const double bandwidth = plant.torque_bandwidth_hz;
     for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
@@ -233,7 +234,7 @@ std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions
       }
       for (const robot::JointVector& q : path->position_rad) {
         const double j =
-            plant.inertia_scale[i] * model.inertia_diagonal(q)[i] + plant.armature_kgm2[i];
+            plant.inertia_scale[i] * model.inertia_diagonal(q, data)[i] + plant.armature_kgm2[i];
         it->inertia_min = std::min(it->inertia_min, j);
         it->inertia_max = std::max(it->inertia_max, j);
       }

@@ -189,7 +189,8 @@ Experiment::Experiment(const robot::RobotModel& model, robot::JointPathResult pa
       reverse_path_(std::move(reverse_path)),
       options_(options),
       supervisor_(paper::make_system<double>(options.conjunction, options.tables)) {
-  const robot::JointVector links = model_.inertia_diagonal(path_.position_rad.front());
+  robot::RobotData data(model_);
+  const robot::JointVector links = model_.inertia_diagonal(path_.position_rad.front(), data);
   for (std::size_t i = 0; i < kJoints; ++i)
     nominal_inertia_[i] = links[i] + options_.plant.armature_kgm2[i];
 }
@@ -414,6 +415,7 @@ TcpTrack tcp_track(const robot::RobotModel& model, const std::vector<TrajectoryR
   track.t_s.reserve(ticks);
   track.desired_m.reserve(ticks);
   track.actual_m.reserve(ticks);
+  robot::RobotData data(model);
   for (std::size_t k = 0; k < ticks; ++k) {
     robot::JointVector qd{}, q{};
     for (std::size_t i = 0; i < kJoints; ++i) {
@@ -421,8 +423,8 @@ TcpTrack tcp_track(const robot::RobotModel& model, const std::vector<TrajectoryR
       q[i] = rows[k * kJoints + i].theta;
     }
     track.t_s.push_back(rows[k * kJoints].t_s);
-    track.desired_m.push_back(model.forward_kinematics(qd).position_m);
-    track.actual_m.push_back(model.forward_kinematics(q).position_m);
+    track.desired_m.push_back(model.forward_kinematics(qd, data).position_m);
+    track.actual_m.push_back(model.forward_kinematics(q, data).position_m);
   }
   return track;
 }

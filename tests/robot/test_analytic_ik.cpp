@@ -14,6 +14,7 @@ namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using test::fk;
 using test::position_error;
 using test::rotation_error;
 
@@ -41,13 +42,13 @@ TEST(AnalyticIk, RoundTripsTenThousandRandomConfigurations) {
   for (int n = 0; n < kSamples; ++n) {
     const JointVector q = test::random_within(m, rng);
     const JointVector seed = test::random_within(m, rng);  // an unrelated seed: any branch will do
-    const Pose target = m.forward_kinematics(q);
+    const Pose target = fk(m, q);
     JointVector out{};
     const IkStatus s = solver().solve(target, seed, out);
     if (s != IkStatus::Ok) continue;
     ++solved;
     ASSERT_TRUE(m.within_limits(out)) << "n=" << n;
-    const Pose reached = m.forward_kinematics(out);
+    const Pose reached = fk(m, out);
     worst_position = std::fmax(worst_position, position_error(reached, target));
     worst_rotation = std::fmax(worst_rotation, rotation_error(reached, target));
     ASSERT_LT(position_error(reached, target), 1e-9) << "n=" << n;
@@ -75,14 +76,14 @@ TEST(AnalyticIk, EveryBranchReachesTheTarget) {
   const RobotModel& m = bundled_model();
   auto rng = test::seeded_rng(99, "AnalyticIk.EveryBranchReachesTheTarget");
   for (int n = 0; n < 1000; ++n) {
-    const Pose target = m.forward_kinematics(test::random_within(m, rng));
+    const Pose target = fk(m, test::random_within(m, rng));
     const IkBranches b = solver().solve_all(target);
     ASSERT_EQ(b.status, IkStatus::Ok);
     ASSERT_GE(b.count, 2u);
     ASSERT_LE(b.count, 8u);
     bool any_within = false;
     for (std::size_t k = 0; k < b.count; ++k) {
-      const Pose reached = m.forward_kinematics(b.solutions[k]);
+      const Pose reached = fk(m, b.solutions[k]);
       EXPECT_LT(position_error(reached, target), 1e-9);
       EXPECT_LT(rotation_error(reached, target), 1e-9);
       any_within = any_within || b.within_limits[k];
@@ -105,7 +106,7 @@ TEST(AnalyticIk, PointOutOfReachIsUnreachable) {
 TEST(AnalyticIk, PoseNeedingJ5BeyondItsRangeIsJointLimits) {
   // q5 = 2.5 rad > 120°: every one of the 8 branches of this pose breaks some limit.
   const JointVector q = {0.0, -0.3, 0.3, 0.0, 2.5, 0.0};
-  const Pose target = bundled_model().forward_kinematics(q);
+  const Pose target = fk(bundled_model(), q);
   const IkBranches b = solver().solve_all(target);
   ASSERT_EQ(b.count, 8u);
   for (std::size_t k = 0; k < b.count; ++k)
@@ -117,13 +118,13 @@ TEST(AnalyticIk, PoseNeedingJ5BeyondItsRangeIsJointLimits) {
 
 TEST(AnalyticIk, WristSingularityKeepsTheSeedsJ4) {
   const JointVector q = {0.2, -0.5, 0.4, 0.0, 0.0, 0.3};  // q5 = 0: only q4 + q6 is determined
-  const Pose target = bundled_model().forward_kinematics(q);
+  const Pose target = fk(bundled_model(), q);
   const JointVector seed = {0.2, -0.5, 0.4, 0.7, 0.1, -0.2};
   JointVector out{};
   ASSERT_EQ(solver().solve(target, seed, out), IkStatus::Singular);
   EXPECT_NEAR(out[3], 0.7, 1e-12);
   EXPECT_NEAR(out[3] + out[5], 0.3, 1e-12);
-  const Pose reached = bundled_model().forward_kinematics(out);
+  const Pose reached = fk(bundled_model(), out);
   EXPECT_LT(position_error(reached, target), 1e-12);
   EXPECT_LT(rotation_error(reached, target), 1e-9);
 }
@@ -135,13 +136,13 @@ TEST(AnalyticIk, WristCenterOnTheFirstAxisKeepsTheSeedsJ1) {
   const JointVector seed = {0.4, -1.0, 0.0, 0.0, 0.5, 0.0};
   ASSERT_EQ(solver().solve(target, seed, out), IkStatus::Singular);
   EXPECT_NEAR(out[0], 0.4, 1e-12);
-  const Pose reached = bundled_model().forward_kinematics(out);
+  const Pose reached = fk(bundled_model(), out);
   EXPECT_LT(position_error(reached, target), 1e-12);
   EXPECT_LT(rotation_error(reached, target), 1e-9);
 }
 
 TEST(AnalyticIk, RejectsNonFiniteAndImproperInput) {
-  const Pose good = bundled_model().forward_kinematics({0.1, -0.2, 0.3, 0.4, 0.5, 0.6});
+  const Pose good = fk(bundled_model(), {0.1, -0.2, 0.3, 0.4, 0.5, 0.6});
   JointVector out{};
   Pose bad = good;
   bad.position_m.x() = std::numeric_limits<double>::quiet_NaN();
@@ -171,7 +172,7 @@ TEST(AnalyticIk, SolveTakesMicroseconds) {
   std::vector<Pose> targets;
   targets.reserve(2000);
   for (int n = 0; n < 2000; ++n)
-    targets.push_back(m.forward_kinematics(test::random_within(m, rng)));
+    targets.push_back(fk(m, test::random_within(m, rng)));
   JointVector out{};
   int ok = 0;
   const auto t0 = std::chrono::steady_clock::now();

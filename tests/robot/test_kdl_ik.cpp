@@ -13,6 +13,7 @@ namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using test::fk;
 using test::position_error;
 using test::rotation_error;
 
@@ -40,7 +41,7 @@ Rates measure(const InverseKinematics& ik, IkSolver solver, double spread, int s
                             m.upper_limits_rad()[j]);
       }
     }
-    const Pose target = m.forward_kinematics(q);
+    const Pose target = fk(m, q);
     JointVector out{};
     const auto t0 = std::chrono::steady_clock::now();
     const IkStatus s = ik.solve(solver, target, init, out);
@@ -48,13 +49,13 @@ Rates measure(const InverseKinematics& ik, IkSolver solver, double spread, int s
     if (s != IkStatus::Ok) continue;
     ++r.ok;
     EXPECT_TRUE(m.within_limits(out));
-    const Pose reached = m.forward_kinematics(out);
+    const Pose reached = fk(m, out);
     EXPECT_LT(position_error(reached, target), 1e-6);
     EXPECT_LT(rotation_error(reached, target), 1e-6);
     JointVector closed{};
     if (ik.solve(IkSolver::Analytic, target, init, closed) == IkStatus::Ok) {
       ++r.both;
-      const Pose c = m.forward_kinematics(closed);
+      const Pose c = fk(m, closed);
       // Agreement is FK-wise: both reach the same pose (possibly on different branches).
       if (position_error(c, reached) < 1e-6 && rotation_error(c, reached) < 1e-6) ++r.agree;
     }
@@ -113,7 +114,7 @@ TEST(KdlIk, SolutionOutsideTheLimitsIsJointLimits) {
   // q5 = 2.5 rad (> 120°) seeded exactly: both solvers stop at once on the out-of-range solution
   // (NR_JL clamps only the iterates it computes), and the limit check catches it.
   const JointVector q = {0.0, -0.3, 0.3, 0.0, 2.5, 0.0};
-  const Pose target = bundled_model().forward_kinematics(q);
+  const Pose target = fk(bundled_model(), q);
   JointVector out{};
   EXPECT_EQ(ik().solve(IkSolver::KdlLma, target, q, out), IkStatus::JointLimits);
   EXPECT_EQ(ik().solve(IkSolver::KdlNr, target, q, out), IkStatus::JointLimits);

@@ -12,6 +12,7 @@ namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using test::fk;
 
 // Distance from p to the segment a-b.
 double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
@@ -24,8 +25,8 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
 TEST(Path, PaperJointVectorsDoNotReachAAndBUnderTable1) {
   // Documented discrepancy (docs/robot.md): FK of the section 6 joint vectors misses A and B.
   const CartesianPathSpec spec = paper_path_spec();
-  const Pose start = bundled_model().forward_kinematics(kPaperStartJoints);
-  const Pose end = bundled_model().forward_kinematics(kPaperEndJoints);
+  const Pose start = fk(bundled_model(), kPaperStartJoints);
+  const Pose end = fk(bundled_model(), kPaperEndJoints);
   const double to_a = (start.position_m - spec.start_m).norm();
   const double to_b = (end.position_m - spec.end_m).norm();
   std::printf(
@@ -45,7 +46,7 @@ TEST(Path, PaperSpecIsSection6InMetres) {
   EXPECT_EQ(spec.duration_s, 5.0);
   EXPECT_EQ(spec.orientation, OrientationMode::Fixed);
   // The orientation is that of FK(theta), the paper's start joint vector.
-  const Pose start = bundled_model().forward_kinematics(kPaperStartJoints);
+  const Pose start = fk(bundled_model(), kPaperStartJoints);
   EXPECT_LT((spec.start_rotation - start.rotation).cwiseAbs().maxCoeff(), 1e-12);
 }
 
@@ -55,7 +56,7 @@ void expect_on_line(const JointPathResult& r, const CartesianPathSpec& spec, dou
   ASSERT_EQ(r.velocity_rad_s.size(), spec.samples);
   ASSERT_EQ(r.time_s.size(), spec.samples);
   for (std::size_t k = 0; k < spec.samples; ++k) {
-    const Pose reached = m.forward_kinematics(r.position_rad[k]);
+    const Pose reached = fk(m, r.position_rad[k]);
     const double s = static_cast<double>(k) / static_cast<double>(spec.samples - 1);
     const Eigen::Vector3d expected = (1.0 - s) * spec.start_m + s * spec.end_m;
     EXPECT_LT((reached.position_m - expected).norm(), tolerance) << "sample " << k;
@@ -118,11 +119,11 @@ TEST(Path, KdlSolversFollowTheSameLine) {
 TEST(Path, SlerpEndsAtTheEndOrientation) {
   CartesianPathSpec spec = paper_path_spec();
   spec.orientation = OrientationMode::Slerp;
-  spec.end_rotation = bundled_model().forward_kinematics(kPaperEndJoints).rotation;
+  spec.end_rotation = fk(bundled_model(), kPaperEndJoints).rotation;
   const JointPathResult r =
       plan_joint_path(bundled_model(), spec, IkSolver::Analytic, kPaperStartJoints);
   ASSERT_TRUE(r.ok()) << r.message;
-  const Pose last = bundled_model().forward_kinematics(r.position_rad.back());
+  const Pose last = fk(bundled_model(), r.position_rad.back());
   EXPECT_LT((last.rotation - spec.end_rotation).cwiseAbs().maxCoeff(), 1e-9);
   expect_on_line(r, spec, 1e-9);
 }

@@ -14,6 +14,8 @@
 namespace fuzzypid::robot {
 namespace {
 
+using test::fk;
+
 constexpr double kPi = 3.14159265358979323846;
 const std::string kJoint = "t_s,q1_rad,q2_rad,q3_rad,q4_rad,q5_rad,q6_rad\n";
 const std::string kPose = "t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
@@ -191,7 +193,7 @@ TEST(PathFile, CartesianRowsReproduceTheJointRowsTheyCameFrom) {
     const double t = 0.04 * k;
     const JointVector q = {0.1 * std::sin(t), -1.3 + 0.1 * t, 1.6 - 0.05 * t, -0.9, -1.2,
                            0.3 + 0.2 * t};
-    const Pose p = m.forward_kinematics(q);
+    const Pose p = fk(m, q);
     const Eigen::Vector3d rpy = p.rotation.eulerAngles(2, 1, 0);  // yaw, pitch, roll
     char row[512];
     std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, q[0], q[1],
@@ -229,7 +231,7 @@ TEST(PathFile, EachCartesianRowIsSolvedFromThePreviousRowsJoints) {
   for (int k = 0; k <= 5; ++k) {
     const double t = k;
     const JointVector q = {0.1, -1.3, 1.6, -0.9, -1.2, 0.3 + t};
-    const Pose p = m.forward_kinematics(q);
+    const Pose p = fk(m, q);
     const Eigen::Vector3d rpy = p.rotation.eulerAngles(2, 1, 0);  // yaw, pitch, roll
     char row[512];
     std::snprintf(row, sizeof row, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, q[0], q[1],

@@ -23,6 +23,10 @@ namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using test::coriolis_of;
+using test::inertia_diagonal_of;
+using test::jacobian_of;
+using test::mass_matrix_of;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
@@ -110,13 +114,13 @@ TEST(JointPlant, InertiaIsTheModelDiagonalPlusArmatureAtTheStartOfEachTick) {
   plant.reset(q0, JointVector{});
   const JointVector tau = {500.0, 500.0, 200.0, 10.0, 10.0, 5.0};
   ASSERT_EQ(plant.step(tau, 0.05), PlantStatus::Ok);
-  const JointVector d0 = bundled_model().inertia_diagonal(q0);
+  const JointVector d0 = inertia_diagonal_of(bundled_model(), q0);
   for (std::size_t i = 0; i < kNumJoints; ++i) {
     EXPECT_DOUBLE_EQ(plant.inertia()[i], c.inertia_scale[i] * d0[i] + c.armature_kgm2[i]);
   }
   const JointVector q1 = plant.position();
   ASSERT_EQ(plant.step(tau, 0.05), PlantStatus::Ok);
-  const JointVector d1 = bundled_model().inertia_diagonal(q1);
+  const JointVector d1 = inertia_diagonal_of(bundled_model(), q1);
   EXPECT_DOUBLE_EQ(plant.inertia()[0], d1[0] + c.armature_kgm2[0]);
   EXPECT_NE(plant.inertia()[0], d0[0] + c.armature_kgm2[0]);  // J1 depends on the arm's reach
 }
@@ -194,7 +198,7 @@ TEST(JointPlant, CoupledModelConservesKineticEnergyWithoutTorqueOrGravity) {
   const JointVector w0 = {0.5, -0.4, 0.6, 1.0, -0.8, 1.2};
   plant.reset(q0, w0);
   const auto energy = [&](const JointVector& q, const JointVector& w) {
-    Eigen::Matrix<double, 6, 6> m = bundled_model().mass_matrix(q);
+    Eigen::Matrix<double, 6, 6> m = mass_matrix_of(bundled_model(), q);
     m.diagonal() += Eigen::Map<const Eigen::Matrix<double, 6, 1>>(c.armature_kgm2.data());
     const Eigen::Map<const Eigen::Matrix<double, 6, 1>> v(w.data());
     return 0.5 * v.dot(m * v);
@@ -312,6 +316,7 @@ double relative_error(const A& a, const B& b) {
 // bundled arm, on it with a payload, and on random arms.
 void expect_dynamics_match_kdl(const RobotModel& model, std::mt19937_64& rng, int states) {
   const detail::RigidBodyDynamics& fast = detail::dynamics_of(model);
+  RobotData data(model);
   double worst_m = 0.0;
   double worst_c = 0.0;
   double worst_g = 0.0;
@@ -326,11 +331,12 @@ void expect_dynamics_match_kdl(const RobotModel& model, std::mt19937_64& rng, in
     Mat6 m;
     Vec6 bias;
     fast.mass_and_bias(to_vec(q), to_vec(qd), g, m, bias);
-    const Vec6 coriolis = to_vec(model.coriolis_torque(q, qd));
-    const Vec6 gravity = to_vec(detail::kdl_gravity_torque(model, q, g));
+    const Vec6 coriolis = to_vec(coriolis_of(model, q, qd));
+    const Vec6 gravity = to_vec(detail::kdl_gravity_torque(model, q, g, data));
     worst_g = std::max(worst_g, relative_error(to_vec(model.gravity_torque(q, g)), gravity));
-    worst_m = std::max(worst_m, relative_error(m, model.mass_matrix(q)));
-    worst_m = std::max(worst_m, relative_error(fast.mass_matrix(to_vec(q)), model.mass_matrix(q)));
+    worst_m = std::max(worst_m, relative_error(m, mass_matrix_of(model, q)));
+    worst_m =
+        std::max(worst_m, relative_error(fast.mass_matrix(to_vec(q)), mass_matrix_of(model, q)));
     worst_c = std::max(worst_c, relative_error(fast.bias(to_vec(q), to_vec(qd), 0.0), coriolis));
     worst_g = std::max(worst_g, relative_error(fast.bias(to_vec(q), Vec6::Zero(), g), gravity));
     worst_g = std::max(worst_g, relative_error(bias, Vec6(coriolis + gravity)));
@@ -366,22 +372,23 @@ TEST(RobotModel, PayloadAddsAPointMassAtTheTipOrigin) {
     for (std::size_t i = 0; i < kNumJoints; ++i)
       q[i] = uniform(rng, bare.lower_limits_rad()[i], bare.upper_limits_rad()[i]);
     // A point mass at the tip origin: kinetic energy ½ m |J_v q̇|², potential m g z_tip.
-    const Eigen::Matrix<double, 3, 6> jv = bare.jacobian(q).topRows<3>();
+    const Eigen::Matrix<double, 3, 6> jv = jacobian_of(bare, q).topRows<3>();
     const Mat6 added = mass * jv.transpose() * jv;
-    EXPECT_LT(relative_error(Mat6(loaded.mass_matrix(q) - bare.mass_matrix(q)), added), 1e-12);
+    EXPECT_LT(relative_error(Mat6(mass_matrix_of(loaded, q) - mass_matrix_of(bare, q)), added),
+              1e-12);
     const Vec6 added_g = mass * 9.81 * jv.transpose() * Eigen::Vector3d::UnitZ();
     EXPECT_LT(relative_error(
                   Vec6(to_vec(loaded.gravity_torque(q)) - to_vec(bare.gravity_torque(q))), added_g),
               1e-12);
-    const JointVector diagonal = loaded.inertia_diagonal(q);
+    const JointVector diagonal = inertia_diagonal_of(loaded, q);
     for (std::size_t i = 0; i < kNumJoints; ++i)
       EXPECT_NEAR(diagonal[i],
-                  bare.inertia_diagonal(q)[i] + added(static_cast<int>(i), static_cast<int>(i)),
+                  inertia_diagonal_of(bare, q)[i] + added(static_cast<int>(i), static_cast<int>(i)),
                   1e-9);
     // The fast dynamics of the plant carry the payload too.
-    EXPECT_LT(
-        relative_error(detail::dynamics_of(loaded).mass_matrix(to_vec(q)), loaded.mass_matrix(q)),
-        1e-9);
+    EXPECT_LT(relative_error(detail::dynamics_of(loaded).mass_matrix(to_vec(q)),
+                             mass_matrix_of(loaded, q)),
+              1e-9);
   }
 }
 
@@ -389,9 +396,9 @@ TEST(RobotModel, ZeroPayloadIsAnEqualCopy) {
   const RobotModel copy = bundled_model().with_payload(0.0);
   const JointVector q = {0.3, -1.2, 0.1, 0.5, -0.4, -1.5};
   const JointVector qd = {0.5, -0.4, 0.6, 1.0, -0.8, 1.2};
-  EXPECT_EQ(copy.mass_matrix(q), bundled_model().mass_matrix(q));
+  EXPECT_EQ(mass_matrix_of(copy, q), mass_matrix_of(bundled_model(), q));
   EXPECT_EQ(copy.gravity_torque(q), bundled_model().gravity_torque(q));
-  EXPECT_EQ(copy.coriolis_torque(q, qd), bundled_model().coriolis_torque(q, qd));
+  EXPECT_EQ(coriolis_of(copy, q, qd), coriolis_of(bundled_model(), q, qd));
   EXPECT_EQ(copy.robot_name(), bundled_model().robot_name());
 }
 
@@ -486,7 +493,7 @@ double bare_arm_run_error(double tick_s, double substep_s, double step_rad) {
   target(0.0, q0, qd0);
   plant.reset(q0, qd0);
   reference.reset(q0, qd0);
-  const Mat6 m = model.mass_matrix(q0);
+  const Mat6 m = mass_matrix_of(model, q0);
   const double w = 0.25 / tick_s;  // closed-loop bandwidth, rad/s
   const auto law = [&](const JointPlant& p, double t) {
     JointVector tau = model.gravity_torque(p.position());
@@ -564,7 +571,7 @@ double finer_step_error(const RobotModel& model, const PlantConfig& c, double ti
 // the coupled 50 ms or the decoupled 1 ms step alone would be beyond its stable range
 // (h·λ = 2.785).
 TEST(JointPlant, HighFrictionDefaultStepStaysWithinAMicroradianOfATenTimesFinerStep) {
-  const JointVector j = bundled_model().inertia_diagonal(kPaperStartJoints);
+  const JointVector j = inertia_diagonal_of(bundled_model(), kPaperStartJoints);
   for (const auto& [coupling, friction] :
        {std::pair{PlantCoupling::Decoupled, 100.0}, std::pair{PlantCoupling::Decoupled, 5000.0},
         std::pair{PlantCoupling::Coupled, 100.0}}) {
@@ -910,11 +917,11 @@ TEST(JointPlant, CoupledAccelerationIsTheDynamicsAtTheEndOfTheTick) {
   const JointVector& q = plant.position();
   const JointVector& qd = plant.velocity();
   const Vec6 s = to_vec(c.inertia_scale).cwiseSqrt();
-  Mat6 m = s.asDiagonal() * bundled_model().mass_matrix(q) * s.asDiagonal();
+  Mat6 m = s.asDiagonal() * mass_matrix_of(bundled_model(), q) * s.asDiagonal();
   m.diagonal() += to_vec(c.armature_kgm2);
-  const Vec6 rhs =
-      to_vec(tau) + to_vec(disturbance) - to_vec(bundled_model().coriolis_torque(q, qd)) -
-      to_vec(bundled_model().gravity_torque(q)) - to_vec(c.damping_nms).cwiseProduct(to_vec(qd));
+  const Vec6 rhs = to_vec(tau) + to_vec(disturbance) - to_vec(coriolis_of(bundled_model(), q, qd)) -
+                   to_vec(bundled_model().gravity_torque(q)) -
+                   to_vec(c.damping_nms).cwiseProduct(to_vec(qd));
   const Vec6 expected = m.llt().solve(rhs);
   EXPECT_LT(relative_error(to_vec(plant.acceleration()), expected), 1e-9);
   const JointPlant copy = plant;

@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
@@ -20,6 +23,11 @@ namespace fuzzypid::robot {
 namespace {
 
 using test::bundled_model;
+using test::coriolis_of;
+using test::fk;
+using test::inertia_diagonal_of;
+using test::jacobian_of;
+using test::mass_matrix_of;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
@@ -86,7 +94,7 @@ TEST(RobotModel, ForwardKinematicsIsTheProductOfTable1Transforms) {
   auto rng = test::seeded_rng(20240601, "ForwardKinematicsIsTheProductOfTable1Transforms");
   for (int n = 0; n < 2000; ++n) {
     const JointVector q = test::random_within(m, rng);
-    const Pose p = m.forward_kinematics(q);
+    const Pose p = fk(m, q);
     const Eigen::Matrix4d t = table1_product(q);
     EXPECT_LT((p.position_m - t.block<3, 1>(0, 3)).cwiseAbs().maxCoeff(), 1e-12);
     EXPECT_LT((p.rotation - t.block<3, 3>(0, 0)).cwiseAbs().maxCoeff(), 1e-12);
@@ -100,7 +108,7 @@ TEST(RobotModel, ForwardKinematicsIsTheProductOfTable1Transforms) {
 // J4 offset (a3, d4) in frame 3 is a3 along x0 and d4 along -z0. Wrist center = tip =
 // (a1 + a2 + a3, 0, d1 - d4) = (1.280, 0, -0.451) m, and the tip axes are x0, -y0, -z0.
 TEST(RobotModel, ZeroConfigurationPutsTheWristCenterBelowTheShoulder) {
-  const Pose p = bundled_model().forward_kinematics(JointVector{});
+  const Pose p = fk(bundled_model(), JointVector{});
   EXPECT_NEAR(p.position_m.x(), 1.280, 1e-12);
   EXPECT_NEAR(p.position_m.y(), 0.0, 1e-12);
   EXPECT_NEAR(p.position_m.z(), -0.451, 1e-12);
@@ -115,15 +123,15 @@ TEST(RobotModel, JacobianMatchesFiniteDifferencesOfForwardKinematics) {
   const double h = 1e-6;
   for (int n = 0; n < 200; ++n) {
     const JointVector q = test::random_within(m, rng);
-    const Eigen::Matrix<double, 6, 6> jac = m.jacobian(q);
-    const Pose p0 = m.forward_kinematics(q);
+    const Eigen::Matrix<double, 6, 6> jac = jacobian_of(m, q);
+    const Pose p0 = fk(m, q);
     for (std::size_t j = 0; j < kNumJoints; ++j) {
       JointVector qp = q;
       JointVector qm = q;
       qp[j] += h;
       qm[j] -= h;
-      const Pose pp = m.forward_kinematics(qp);
-      const Pose pm = m.forward_kinematics(qm);
+      const Pose pp = fk(m, qp);
+      const Pose pm = fk(m, qm);
       const Eigen::Vector3d v = (pp.position_m - pm.position_m) / (2 * h);
       // Ṙ Rᵀ = [ω]x
       const Eigen::Matrix3d w = (pp.rotation - pm.rotation) / (2 * h) * p0.rotation.transpose();
@@ -140,11 +148,11 @@ TEST(RobotModel, MassMatrixIsSymmetricPositiveDefiniteWithItsDiagonalExposed) {
   auto rng = test::seeded_rng(5, "MassMatrixIsSymmetricPositiveDefinite");
   for (int n = 0; n < 200; ++n) {
     const JointVector q = test::random_within(m, rng);
-    const Eigen::Matrix<double, 6, 6> mm = m.mass_matrix(q);
+    const Eigen::Matrix<double, 6, 6> mm = mass_matrix_of(m, q);
     EXPECT_LT((mm - mm.transpose()).cwiseAbs().maxCoeff(), 1e-9);
     const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(mm);
     EXPECT_EQ(llt.info(), Eigen::Success);
-    const JointVector d = m.inertia_diagonal(q);
+    const JointVector d = inertia_diagonal_of(m, q);
     for (std::size_t i = 0; i < kNumJoints; ++i) {
       EXPECT_DOUBLE_EQ(d[i], mm(static_cast<int>(i), static_cast<int>(i)));
     }
@@ -157,7 +165,7 @@ TEST(RobotModel, GravityDoesNotLoadTheVerticalFirstAxisAndCoriolisVanishesAtRest
   const JointVector g = m.gravity_torque(q);
   EXPECT_NEAR(g[0], 0.0, 1e-9);
   EXPECT_GT(std::fabs(g[1]), 100.0);  // the shoulder carries the arm
-  const JointVector c = m.coriolis_torque(q, JointVector{});
+  const JointVector c = coriolis_of(m, q, JointVector{});
   for (double v : c)
     EXPECT_NEAR(v, 0.0, 1e-12);
 }
@@ -167,10 +175,63 @@ TEST(RobotModel, CopiesAndMovesAreIndependentModels) {
   RobotModel copy = m;
   RobotModel moved = std::move(copy);
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
-  EXPECT_EQ(moved.forward_kinematics(q).position_m, m.forward_kinematics(q).position_m);
+  EXPECT_EQ(fk(moved, q).position_m, fk(m, q).position_m);
   RobotModel assigned = m;
   assigned = moved;
-  EXPECT_EQ(assigned.jacobian(q), m.jacobian(q));
+  EXPECT_EQ(jacobian_of(assigned, q), jacobian_of(m, q));
+}
+
+// A RobotData serves the model it was made for; given to another model (a copy, or a model
+// assigned to since) every query returns NaN, never the other chain's numbers.
+TEST(RobotModel, ARobotDataOfAnotherModelGivesNaN) {
+  const RobotModel& m = bundled_model();
+  const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
+  RobotData data(m);
+  EXPECT_TRUE(m.forward_kinematics(q, data).position_m.allFinite());
+  const RobotModel copy = m;
+  const Pose p = copy.forward_kinematics(q, data);
+  EXPECT_TRUE(p.position_m.array().isNaN().all() && p.rotation.array().isNaN().all());
+  EXPECT_TRUE(copy.jacobian(q, data).array().isNaN().all());
+  EXPECT_TRUE(copy.mass_matrix(q, data).array().isNaN().all());
+  for (const double v : copy.inertia_diagonal(q, data))
+    EXPECT_TRUE(std::isnan(v));
+  for (const double v : copy.coriolis_torque(q, q, data))
+    EXPECT_TRUE(std::isnan(v));
+  RobotModel assigned = m;
+  RobotData assigned_data(assigned);
+  assigned = m;  // a new chain: the data made before no longer fits
+  EXPECT_TRUE(std::isnan(assigned.inertia_diagonal(q, assigned_data)[0]));
+  RobotData fresh(assigned);
+  EXPECT_EQ(assigned.inertia_diagonal(q, fresh), m.inertia_diagonal(q, data));
+}
+
+// One model, two threads, each with its own RobotData: the same numbers as one thread alone (the
+// model holds no scratch, so the threads share nothing they write).
+TEST(RobotModel, TwoThreadsQueryOneModelWithTheirOwnData) {
+  const RobotModel& m = bundled_model();
+  auto rng = test::seeded_rng(20261205, "two threads");
+  std::vector<JointVector> qs(2000);
+  for (JointVector& q : qs)
+    q = test::random_within(m, rng);
+  std::vector<Eigen::Matrix<double, 6, 6>> alone(qs.size());
+  {
+    RobotData data(m);
+    for (std::size_t k = 0; k < qs.size(); ++k)
+      alone[k] = m.mass_matrix(qs[k], data);
+  }
+  std::vector<Eigen::Matrix<double, 6, 6>> a(qs.size()), b(qs.size());
+  const auto work = [&](std::vector<Eigen::Matrix<double, 6, 6>>& out) {
+    RobotData data(m);
+    for (std::size_t k = 0; k < qs.size(); ++k)
+      out[k] = m.mass_matrix(qs[k], data);
+  };
+  std::thread t1(work, std::ref(a)), t2(work, std::ref(b));
+  t1.join();
+  t2.join();
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    ASSERT_EQ(a[k], alone[k]) << k;
+    ASSERT_EQ(b[k], alone[k]) << k;
+  }
 }
 
 struct BadUrdfCase {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "fuzzypid/robot/robot_data.hpp"
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
 
@@ -39,6 +40,29 @@ inline JointVector random_within(const RobotModel& m, std::mt19937_64& rng) {
     q[i] = d(rng);
   }
   return q;
+}
+
+// One query each on a RobotData made for it: the tests' shorthand (it allocates; the control path
+// keeps one RobotData and reuses it, tests/robot/test_no_allocation.cpp).
+inline Pose fk(const RobotModel& m, const JointVector& q) {
+  RobotData data(m);
+  return m.forward_kinematics(q, data);
+}
+inline Eigen::Matrix<double, 6, 6> jacobian_of(const RobotModel& m, const JointVector& q) {
+  RobotData data(m);
+  return m.jacobian(q, data);
+}
+inline Eigen::Matrix<double, 6, 6> mass_matrix_of(const RobotModel& m, const JointVector& q) {
+  RobotData data(m);
+  return m.mass_matrix(q, data);
+}
+inline JointVector inertia_diagonal_of(const RobotModel& m, const JointVector& q) {
+  RobotData data(m);
+  return m.inertia_diagonal(q, data);
+}
+inline JointVector coriolis_of(const RobotModel& m, const JointVector& q, const JointVector& qd) {
+  RobotData data(m);
+  return m.coriolis_torque(q, qd, data);
 }
 
 inline double position_error(const Pose& a, const Pose& b) {

@@ -114,8 +114,9 @@ TEST(RobotSetup, AnIkSeedIsRefusedWhereNoInverseKinematicsUsesIt) {
   const auto model = robot::RobotModel::load(ur5_setup().urdf);
   ASSERT_TRUE(model.model) << model.error;
   std::string rows = "t_s,x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad\n";
+  robot::RobotData data(*model.model);
   for (const double t : {0.0, 1.0}) {
-    const robot::Pose p = model.model->forward_kinematics({0, -1, 1 + 0.2 * t, 0, 0, 0});
+    const robot::Pose p = model.model->forward_kinematics({0, -1, 1 + 0.2 * t, 0, 0, 0}, data);
     const Eigen::Vector3d rpy = p.rotation.eulerAngles(2, 1, 0);
     char buf[200];
     std::snprintf(buf, sizeof buf, "%g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, p.position_m.x(),
@@ -277,8 +278,11 @@ TEST(ClosedLoop, APayloadMassLoadsThePlantNotTheControllersModel) {
   Condition light, heavy;
   heavy.payload_kg = 50.0;
   const auto q = ex->path().position_rad.front();
-  const robot::JointVector j0 = ex->plant_model(light).inertia_diagonal(q);
-  const robot::JointVector j1 = ex->plant_model(heavy).inertia_diagonal(q);
+  const robot::RobotModel light_model = ex->plant_model(light);
+  const robot::RobotModel heavy_model = ex->plant_model(heavy);
+  robot::RobotData light_data(light_model), heavy_data(heavy_model);
+  const robot::JointVector j0 = light_model.inertia_diagonal(q, light_data);
+  const robot::JointVector j1 = heavy_model.inertia_diagonal(q, heavy_data);
   EXPECT_GT(j1[0], j0[0] + 1.0);  // 50 kg about 1.5 m from the base axis
   EXPECT_EQ(j1[5], j0[5]);        // a point mass on the last axis adds nothing to it
   const controller::ControllerSpec pid =

@@ -197,14 +197,15 @@ TEST(RunOutputs, TheToolPathErrorIsTheDistanceOfTheForwardKinematics) {
   const sim::TcpTrack track = sim::tcp_track(ex->model(), r.rows);
   ASSERT_EQ(track.t_s.size(), ex->ticks());
   double max_mm = 0.0, sum_sq = 0.0;
+  robot::RobotData data(ex->model());
   for (std::size_t k = 0; k < ex->ticks(); ++k) {
     robot::JointVector qd{}, q{};
     for (std::size_t i = 0; i < kJ; ++i) {
       qd[i] = r.rows[k * kJ + i].theta_d;
       q[i] = r.rows[k * kJ + i].theta;
     }
-    const double d = (ex->model().forward_kinematics(q).position_m -
-                      ex->model().forward_kinematics(qd).position_m)
+    const double d = (ex->model().forward_kinematics(q, data).position_m -
+                      ex->model().forward_kinematics(qd, data).position_m)
                          .norm() *
                      1e3;
     max_mm = std::max(max_mm, d);

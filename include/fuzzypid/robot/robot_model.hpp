@@ -1,9 +1,9 @@
 // The kinematic and dynamic model of a six-joint serial arm, loaded from a URDF through urdfdom and
-// evaluated with Orocos KDL. No KDL or urdfdom type appears here: the KDL chain and its solvers
-// live behind a pointer to an implementation.
+// evaluated with Orocos KDL. No KDL or urdfdom type appears here: the KDL chain lives behind a
+// pointer to an implementation, the solvers and their scratch in a RobotData (robot_data.hpp).
 //
-// Thread safety: const members reuse scratch buffers inside the model, so one RobotModel must not
-// be used from two threads at once. Copies are independent (copy one per thread).
+// Thread safety: a RobotModel is immutable once loaded; any number of threads may query one model
+// at once, each with its own RobotData.
 #pragma once
 
 #include <memory>
@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "fuzzypid/robot/robot_data.hpp"
 #include "fuzzypid/robot/types.hpp"
 
 namespace fuzzypid::robot {
@@ -76,26 +77,30 @@ class RobotModel {
   // bundled ER50-C20.
   const std::vector<std::string>& notes() const noexcept;
 
-  // Tip pose in the root frame. Does not allocate.
-  Pose forward_kinematics(const JointVector& q) const noexcept;
+  // The queries below work in `data`, a RobotData made for this model (robot_data.hpp), and do
+  // not allocate. With a RobotData made for another model every number they return is NaN.
+
+  // Tip pose in the root frame.
+  Pose forward_kinematics(const JointVector& q, RobotData& data) const noexcept;
 
   // Geometric Jacobian: rows 0-2 map q̇ to the linear velocity (m/s) of the tip origin, rows 3-5 to
-  // the angular velocity (rad/s), both expressed in the root frame. Does not allocate.
-  Eigen::Matrix<double, 6, 6> jacobian(const JointVector& q) const noexcept;
+  // the angular velocity (rad/s), both expressed in the root frame.
+  Eigen::Matrix<double, 6, 6> jacobian(const JointVector& q, RobotData& data) const noexcept;
 
-  // Joint-space inertia matrix M(q) (kg·m²) of the links alone (no motor armature). Does not
-  // allocate.
-  Eigen::Matrix<double, 6, 6> mass_matrix(const JointVector& q) const noexcept;
+  // Joint-space inertia matrix M(q) (kg·m²) of the links alone (no motor armature).
+  Eigen::Matrix<double, 6, 6> mass_matrix(const JointVector& q, RobotData& data) const noexcept;
 
   // Diagonal of mass_matrix(q): the inertia each joint sees with the others locked.
-  JointVector inertia_diagonal(const JointVector& q) const noexcept;
+  JointVector inertia_diagonal(const JointVector& q, RobotData& data) const noexcept;
 
-  // Coriolis and centrifugal torques C(q, q̇)·q̇ (N·m). Does not allocate.
-  JointVector coriolis_torque(const JointVector& q, const JointVector& qd) const noexcept;
+  // Coriolis and centrifugal torques C(q, q̇)·q̇ (N·m).
+  JointVector coriolis_torque(const JointVector& q, const JointVector& qd,
+                              RobotData& data) const noexcept;
 
   // Gravity torques g(q) (N·m) for gravity along -z of the root frame with the given magnitude.
   // A fixed-size recursive Newton-Euler pass (equal to KDL's ChainDynParam within 1e-12 relative,
-  // about a third of its cost): cheap enough for a feed-forward every tick. Does not allocate.
+  // about a third of its cost): cheap enough for a feed-forward every tick. Needs no RobotData;
+  // does not allocate.
   JointVector gravity_torque(const JointVector& q, double gravity_m_s2 = 9.81) const noexcept;
 
   class Impl;  // defined in src/robot/robot_model_impl.hpp; used by the other robot sources

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "load failed: %s\n", loaded.error.c_str());
     return 1;
   }
-  const fuzzypid::robot::Pose pose = loaded.model->forward_kinematics({0, 0, 0, 0, 0, 0});
+  fuzzypid::robot::RobotData data(*loaded.model);
+  const fuzzypid::robot::Pose pose = loaded.model->forward_kinematics({0, 0, 0, 0, 0, 0}, data);
   const double reach_m = pose.position_m.norm();
   std::printf("reach at q = 0: %.3f m\n", reach_m);
   return std::isfinite(reach_m) && reach_m > 0.5 ? 0 : 1;
