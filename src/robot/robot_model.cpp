@@ -23,9 +23,10 @@ RobotModel::Impl::Impl(ChainDescription description)
 
 RobotData::Impl::Impl(const RobotModel::Impl& model)
     : model_id(model.id),
-      fk_solver(model.desc.chain),
-      jac_solver(model.desc.chain),
-      dyn_solver(model.desc.chain, KDL::Vector(0.0, 0.0, -1.0)),
+      chain(model.desc.chain),
+      fk_solver(chain),
+      jac_solver(chain),
+      dyn_solver(chain, KDL::Vector(0.0, 0.0, -1.0)),
       q(kNumJoints),
       qd(kNumJoints),
       tau(kNumJoints),
@@ -103,6 +104,7 @@ bool RobotModel::within_limits(const JointVector& q, double tolerance_rad) const
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr JointVector kNaNJoints = {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
 }  // namespace
 
 Pose RobotModel::forward_kinematics(const JointVector& q, RobotData& data) const noexcept {
@@ -139,11 +141,8 @@ Eigen::Matrix<double, 6, 6> RobotModel::mass_matrix(const JointVector& q,
 
 JointVector RobotModel::inertia_diagonal(const JointVector& q, RobotData& data) const noexcept {
   RobotData::Impl& d = data.impl();
+  if (d.model_id != impl_->id) return kNaNJoints;
   JointVector out{};
-  if (d.model_id != impl_->id) {
-    out.fill(kNaN);
-    return out;
-  }
   to_kdl(q, d.q);
   d.dyn_solver.JntToMass(d.q, d.mass);
   for (std::size_t i = 0; i < kNumJoints; ++i) {
@@ -156,11 +155,7 @@ JointVector RobotModel::inertia_diagonal(const JointVector& q, RobotData& data) 
 JointVector RobotModel::coriolis_torque(const JointVector& q, const JointVector& qd,
                                         RobotData& data) const noexcept {
   RobotData::Impl& d = data.impl();
-  if (d.model_id != impl_->id) {
-    JointVector out{};
-    out.fill(kNaN);
-    return out;
-  }
+  if (d.model_id != impl_->id) return kNaNJoints;
   to_kdl(q, d.q);
   to_kdl(qd, d.qd);
   d.dyn_solver.JntToCoriolis(d.q, d.qd, d.tau);
@@ -186,11 +181,7 @@ const RigidBodyDynamics& dynamics_of(const RobotModel& model) noexcept {
 JointVector kdl_gravity_torque(const RobotModel& model, const JointVector& q, double gravity_m_s2,
                                RobotData& data) noexcept {
   RobotData::Impl& d = data.impl();
-  if (d.model_id != model.impl().id) {
-    JointVector out{};
-    out.fill(std::numeric_limits<double>::quiet_NaN());
-    return out;
-  }
+  if (d.model_id != model.impl().id) return kNaNJoints;
   to_kdl(q, d.q);
   d.dyn_solver.JntToGravity(d.q, d.tau);
   JointVector g = from_kdl(d.tau);

@@ -36,9 +36,9 @@ struct ChainDescription {
   std::vector<std::string> notes;             // RobotModel::notes()
 };
 
-// Owns the chain (immutable once built). KDL solvers keep a reference to a chain, so an Impl is
-// never moved (RobotModel holds it by unique_ptr): the RobotData made for it stay bound to it.
-// Every Impl has its own id (a copy too), so a RobotData can tell the model it was made for.
+// Owns the chain, which no query of the model solves on (a RobotData solves on its own copy), and
+// the fixed-size dynamics built from it. Every Impl has its own id (a copy too), so a RobotData
+// can tell the model it was made for.
 class RobotModel::Impl {
  public:
   explicit Impl(ChainDescription description);
@@ -51,13 +51,18 @@ class RobotModel::Impl {
   std::uint64_t id;
 };
 
-// The solvers bound to one model's chain and their scratch (sized at construction, never
-// reallocated): KDL's solvers change their own state when they solve.
+// A copy of one model's chain, the solvers bound to it and their scratch (sized at construction,
+// never reallocated). The copy is needed: KDL's solvers change their own state when they solve,
+// and so does the chain itself (each KDL::Joint caches the rotation of its last angle in mutable
+// members), so two threads solving on one chain race (RobotModel.TwoThreadsQueryOneModel...).
 class RobotData::Impl {
  public:
   explicit Impl(const RobotModel::Impl& model);
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
 
   std::uint64_t model_id;
+  KDL::Chain chain;  // the solvers below keep a reference to it: an Impl is never moved
   KDL::ChainFkSolverPos_recursive fk_solver;
   KDL::ChainJntToJacSolver jac_solver;
   KDL::ChainDynParam dyn_solver;  // built with unit gravity along -z (results scale linearly)

@@ -188,7 +188,7 @@ TEST(RobotModel, ARobotDataOfAnotherModelGivesNaN) {
   const JointVector q = {0.1, -0.2, 0.3, -0.4, 0.5, -0.6};
   RobotData data(m);
   EXPECT_TRUE(m.forward_kinematics(q, data).position_m.allFinite());
-  const RobotModel copy = m;
+  const RobotModel copy = m.with_payload(0.0);  // an equal copy: another model
   const Pose p = copy.forward_kinematics(q, data);
   EXPECT_TRUE(p.position_m.array().isNaN().all() && p.rotation.array().isNaN().all());
   EXPECT_TRUE(copy.jacobian(q, data).array().isNaN().all());
