@@ -355,18 +355,9 @@ bool front_files(const std::string& dir, std::vector<std::string>& files, std::s
   return true;
 }
 
-int run_sim_ab(int argc, char** argv) {
-  sim_ab::Options o;
-  switch (sim_ab::parse(argc, argv, o)) {
-    case sim_ab::ParseResult::Exit:
-      return 0;
-    case sim_ab::ParseResult::UsageError:
-      return 2;
-    case sim_ab::ParseResult::Run:
-      break;
-  }
-  // A front's folder stands for its points, named FOLDER_point_NNN.
-  std::vector<std::string> prefixes;
+// Replaces each front folder among --controller's files by its points, named FOLDER_point_NNN
+// (`prefixes`: each file's name prefix, empty for a file). Empty, or the exit code.
+std::optional<int> expand_fronts(sim_ab::Options& o, std::vector<std::string>& prefixes) {
   {
     std::vector<std::string> expanded;
     for (const std::string& path : o.controllers) {
@@ -393,8 +384,12 @@ int run_sim_ab(int argc, char** argv) {
     }
     o.controllers = expanded;
   }
-  // The output folder is checked before any work (apps/common/output_files.hpp): a refused --out
-  // is a usage error, like a bad option.
+  return std::nullopt;
+}
+
+// The output folder is checked before any work (apps/common/output_files.hpp): a refused --out
+// is a usage error, like a bad option. Empty, or the exit code.
+std::optional<int> check_out_dir(const sim_ab::Options& o) {
   {
     std::vector<std::string> inputs = o.controllers;
     inputs.push_back(o.conditions_file);
@@ -407,8 +402,13 @@ int run_sim_ab(int argc, char** argv) {
     }
   }
 
-  // Controllers: the files, or the paper's two.
-  std::vector<NamedController> controllers;
+  return std::nullopt;
+}
+
+// Controllers: the files, or the paper's two. Empty, or the exit code.
+std::optional<int> load_controllers(const sim_ab::Options& o,
+                                    const std::vector<std::string>& prefixes,
+                                    std::vector<NamedController>& controllers) {
   for (std::size_t k = 0; k < o.controllers.size(); ++k) {
     const std::string& path = o.controllers[k];
     NamedController c;
@@ -440,8 +440,14 @@ int run_sim_ab(int argc, char** argv) {
                            std::nullopt, std::nullopt});
   }
 
-  // Conditions: a file's sets, or the scenario(s) with the overrides.
-  std::vector<Run> runs;
+  return std::nullopt;
+}
+
+// The runs: a condition file's sets, or the scenario(s) with the overrides; checked against the
+// options and the controllers. Empty, or the exit code.
+std::optional<int> gather_runs(const sim_ab::Options& o,
+                               const std::vector<NamedController>& controllers,
+                               std::vector<Run>& runs) {
   if (!o.conditions_file.empty()) {
     sim::ConditionFile file;
     fuzzypid::FileError err;
@@ -499,25 +505,22 @@ int run_sim_ab(int argc, char** argv) {
           return 2;
         }
       }
-  // One experiment per robot setup (URDF, path, tick): built before any output is opened.
-  std::vector<sim::Condition> conditions;
-  conditions.reserve(runs.size());
-  for (const auto& r : runs)
-    conditions.push_back(r.condition);
-  std::string error;
-  const auto experiments = sim::ExperimentSet::create(conditions, o.experiment, error);
-  if (!experiments) {
-    std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
-    return 1;
-  }
-  for (std::size_t k = 0; k < experiments->size(); ++k) {
-    const sim::Experiment& ex = experiments->experiment(k);
+  return std::nullopt;
+}
+
+// What a user should hear before the runs: the robots and plants, the model's notes, and what
+// the controller files say they were made for against what they now run on.
+void print_setup_notes(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
+                       const std::vector<Run>& runs,
+                       const std::vector<NamedController>& controllers) {
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    const sim::Experiment& ex = experiments.experiment(k);
     if (!o.quiet) {
       cli::print_robot_note("sim_ab", ex);
       // The plants of the conditions on this robot, each with how many conditions run on it.
       std::vector<std::pair<std::string, std::size_t>> plants;
       for (std::size_t i = 0; i < runs.size(); ++i) {
-        if (&experiments->of(i) != &ex) continue;
+        if (&experiments.of(i) != &ex) continue;
         const std::string note = cli::plant_note(runs[i].condition);
         auto it = std::find_if(plants.begin(), plants.end(),
                                [&note](const auto& p) { return p.first == note; });
@@ -545,9 +548,9 @@ int run_sim_ab(int argc, char** argv) {
   }
   // What the controller files say they were made for, against what they now run on.
   for (const auto& c : controllers) {
-    for (std::size_t k = 0; k < experiments->size(); ++k)
+    for (std::size_t k = 0; k < experiments.size(); ++k)
       if (const std::string why = sim::tick_mismatch(c.tuning ? c.tuning->tick_s : 0.0,
-                                                     experiments->experiment(k).options().tick_s);
+                                                     experiments.experiment(k).options().tick_s);
           !why.empty()) {
         std::fprintf(stderr, "sim_ab: warning: %s: %s\n", c.name.c_str(), why.c_str());
         break;
@@ -562,7 +565,7 @@ int run_sim_ab(int argc, char** argv) {
                    c.name.c_str(), without_gravity);
   }
   for (std::size_t k = 0; k < runs.size(); ++k)
-    cli::warn_about_payload("sim_ab", experiments->of(k), runs[k].condition);
+    cli::warn_about_payload("sim_ab", experiments.of(k), runs[k].condition);
   // The margins a controller file records ([margins], written by `fuzzypid tune`): the worst
   // joint of each, and whether it was certified. `fuzzypid certify` recomputes them for any plant.
   for (const auto& c : controllers) {
@@ -578,8 +581,12 @@ int run_sim_ab(int argc, char** argv) {
                  worst(m.gain_margin_db), worst(m.phase_margin_deg), worst(m.delay_margin_ms),
                  m.verdict.c_str());
   }
-  if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
+}
 
+// Runs every controller on every condition and writes the outputs (all or none). The exit code.
+int run_and_write(const sim_ab::Options& o, const sim::ExperimentSet& experiments,
+                  const std::vector<Run>& runs, const std::vector<NamedController>& controllers) {
+  std::string error;
   Outputs outs;
   if (!open_outputs(
           o.out_dir,
@@ -590,8 +597,8 @@ int run_sim_ab(int argc, char** argv) {
   std::FILE* metrics = outs[1].file;
   std::FILE* tip = outs[2].file;
   std::FILE* conds = outs[3].file;
-  write_settings(outs[4].file, o, *experiments, controllers);
-  write_condition_settings(outs[4].file, runs, *experiments);
+  write_settings(outs[4].file, o, experiments, controllers);
+  write_condition_settings(outs[4].file, runs, experiments);
   std::fprintf(outs[4].file, "divergence_rad=%s\n", fmt(o.divergence_rad).c_str());
   std::fputs(
       "scenario,controller,t,joint,theta_d,theta,error,error_rate,u,kp,ki,kd,tau_nm,omega_rad_s\n",
@@ -614,7 +621,7 @@ int run_sim_ab(int argc, char** argv) {
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& r = runs[k];
     const auto& c = r.condition;
-    const sim::Experiment& ex = experiments->of(k);
+    const sim::Experiment& ex = experiments.of(k);
     // The effects' values only, in the header's order.
     std::string effects;
     for (const std::string& field : split_fields(effects_text(c.effects, "|", ";")))
@@ -641,7 +648,7 @@ int run_sim_ab(int argc, char** argv) {
   std::size_t done = 0;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& run = runs[k];
-    const sim::Experiment& experiment = experiments->of(k);
+    const sim::Experiment& experiment = experiments.of(k);
     const robot::RobotModel& model = experiment.model();
     ++done;
     const sim::Condition& cond = run.condition;
@@ -732,6 +739,39 @@ int run_sim_ab(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+int run_sim_ab(int argc, char** argv) {
+  sim_ab::Options o;
+  switch (sim_ab::parse(argc, argv, o)) {
+    case sim_ab::ParseResult::Exit:
+      return 0;
+    case sim_ab::ParseResult::UsageError:
+      return 2;
+    case sim_ab::ParseResult::Run:
+      break;
+  }
+  std::vector<std::string> prefixes;
+  if (const auto exit = expand_fronts(o, prefixes)) return *exit;
+  if (const auto exit = check_out_dir(o)) return *exit;
+  std::vector<NamedController> controllers;
+  if (const auto exit = load_controllers(o, prefixes, controllers)) return *exit;
+  std::vector<Run> runs;
+  if (const auto exit = gather_runs(o, controllers, runs)) return *exit;
+  // One experiment per robot setup (URDF, path, tick): built before any output is opened.
+  std::vector<sim::Condition> conditions;
+  conditions.reserve(runs.size());
+  for (const auto& r : runs)
+    conditions.push_back(r.condition);
+  std::string error;
+  const auto experiments = sim::ExperimentSet::create(conditions, o.experiment, error);
+  if (!experiments) {
+    std::fprintf(stderr, "sim_ab: %s\n", error.c_str());
+    return 1;
+  }
+  print_setup_notes(o, *experiments, runs, controllers);
+  if (o.sweep) return run_sweep(o, *experiments, runs, controllers);
+  return run_and_write(o, *experiments, runs, controllers);
 }
 
 }  // namespace
