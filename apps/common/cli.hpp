@@ -30,23 +30,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include "fuzzypid/enum_names.hpp"
+
 namespace fuzzypid::cli {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitUsage = 2;
 
-// An enum's names in the command-line spelling, kept next to the enum it names.
+// The accepted spellings of an enum's name table (enum_names.hpp), for messages: "a, b or c".
 template <class Enum, std::size_t N>
-using NameTable = std::array<std::pair<std::string_view, Enum>, N>;
-
-// The accepted spellings, for messages: "a, b or c".
-template <class Enum, std::size_t N>
-std::string names_of(const NameTable<Enum, N>& table) {
+std::string names_listed(const std::array<EnumName<Enum>, N>& table) {
   std::string out;
   for (std::size_t k = 0; k < N; ++k) {
     if (k > 0) out += k + 1 == N ? " or " : ", ";
-    out += table[k].first;
+    out += table[k].name;
   }
   return out;
 }
@@ -54,24 +52,21 @@ std::string names_of(const NameTable<Enum, N>& table) {
 // Adds an option whose value must be one of the table's names; --help lists them.
 template <class Enum, std::size_t N>
 CLI::Option* add_enum_option(CLI::App& app, const std::string& name, Enum& value,
-                             const NameTable<Enum, N>& table, const std::string& help) {
-  std::string default_name;
-  for (const auto& entry : table)
-    if (entry.second == value) default_name = std::string(entry.first);
+                             const std::array<EnumName<Enum>, N>& table, const std::string& help) {
+  const std::string default_name = name_of(table, value);
   // The validator turns the name into the enumerator's number, which CLI11 then converts.
   CLI::Validator by_name(
       [table](std::string& s) -> std::string {
-        for (const auto& entry : table) {
-          if (entry.first == s) {
-            s = std::to_string(static_cast<long long>(entry.second));
-            return {};
-          }
+        if (const std::optional<Enum> e = parse_enum(table, s)) {
+          s = std::to_string(static_cast<long long>(*e));
+          return {};
         }
-        return "'" + s + "' is not " + names_of(table);
+        return "'" + s + "' is not " + names_listed(table);
       },
       "");
   return app
-      .add_option(name, value, help + " (" + names_of(table) + "; default " + default_name + ")")
+      .add_option(name, value,
+                  help + " (" + names_listed(table) + "; default " + default_name + ")")
       ->transform(by_name)
       ->option_text("NAME");
 }

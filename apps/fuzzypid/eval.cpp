@@ -29,9 +29,9 @@ constexpr const char* kTool = "fuzzypid eval";
 constexpr std::size_t kMaxNamedRows = 10;
 
 // The conjunctions the paper's table system takes, named by the enum's own to_string.
-const NameTable<fuzzy::Conjunction, 2> kAndNames = {
-    {{to_string(fuzzy::Conjunction::Minimum), fuzzy::Conjunction::Minimum},
-     {to_string(fuzzy::Conjunction::Product), fuzzy::Conjunction::Product}}};
+const std::array<EnumName<fuzzy::Conjunction>, 2> kAndNames = {
+    {{fuzzy::Conjunction::Minimum, to_string(fuzzy::Conjunction::Minimum)},
+     {fuzzy::Conjunction::Product, to_string(fuzzy::Conjunction::Product)}}};
 
 struct EvalOptions {
   fuzzy::Conjunction conjunction = fuzzy::Conjunction::Minimum;

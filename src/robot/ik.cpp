@@ -10,9 +10,7 @@
 namespace fuzzypid::robot {
 
 std::optional<IkSolver> ik_solver_from_string(std::string_view name) noexcept {
-  for (const auto& [text, value] : kIkSolverNames)
-    if (text == name) return value;
-  return std::nullopt;
+  return parse_enum(kIkSolverNames, name);
 }
 
 bool is_valid_pose(const Pose& pose) noexcept {

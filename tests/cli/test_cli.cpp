@@ -37,7 +37,8 @@ TEST(ParseFinite, AcceptsSubnormalsAsRead) {
 }
 
 enum class Color { Red, Green };
-constexpr NameTable<Color, 2> kColorNames = {{{"red", Color::Red}, {"green", Color::Green}}};
+constexpr std::array<fuzzypid::EnumName<Color>, 2> kColorNames = {
+    {{Color::Red, "red"}, {Color::Green, "green"}}};
 
 // Runs a parser of one --seed, --gain and --color option; the exit code (or -1 to run).
 int parse_args(std::vector<const char*> args, std::uint64_t& seed, double& gain, Color& color) {

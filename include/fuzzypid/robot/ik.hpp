@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
-#include <utility>
 
+#include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/robot/analytic_ik.hpp"
 #include "fuzzypid/robot/ik_status.hpp"
 #include "fuzzypid/robot/kdl_ik.hpp"
@@ -24,16 +24,14 @@ enum class IkSolver : std::uint8_t {
 };
 
 // The names of IkSolver (the command-line spelling); to_string and ik_solver_from_string use them.
-inline constexpr std::array<std::pair<std::string_view, IkSolver>, 3> kIkSolverNames = {{
-    {"analytic", IkSolver::Analytic},
-    {"kdl-nr", IkSolver::KdlNr},
-    {"kdl-lma", IkSolver::KdlLma},
+inline constexpr std::array<EnumName<IkSolver>, 3> kIkSolverNames = {{
+    {IkSolver::Analytic, "analytic"},
+    {IkSolver::KdlNr, "kdl-nr"},
+    {IkSolver::KdlLma, "kdl-lma"},
 }};
 
 [[nodiscard]] constexpr const char* to_string(IkSolver s) noexcept {
-  for (const auto& [name, value] : kIkSolverNames)
-    if (value == s) return name.data();
-  return "unknown";
+  return name_of(kIkSolverNames, s);
 }
 
 [[nodiscard]] std::optional<IkSolver> ik_solver_from_string(std::string_view name) noexcept;
