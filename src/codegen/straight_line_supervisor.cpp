@@ -143,7 +143,7 @@ std::string snorm(fuzzy::SNorm op, const std::string& a, const std::string& b) {
 }
 
 const char* comparison(fuzzy::Comparison c) {
-  return fuzzy::kComparisonNames[static_cast<unsigned>(c)];
+  return fuzzypid::name_of(fuzzy::kComparisonNames, c);
 }
 
 // A proposition as it is computed: which input and term, and the hedges.
@@ -205,7 +205,7 @@ std::string straight_line_refusal(const Model& m) {
     const auto a = m.blocks[b].activation;
     if (a != fuzzy::ActivationMethod::General && a != fuzzy::ActivationMethod::Threshold)
       return std::string("rule block ") + num(b + 1) + " activates by " +
-             fuzzy::kActivationNames[static_cast<unsigned>(a)] + " (General and Threshold only)";
+             fuzzypid::name_of(fuzzy::kActivationNames, a) + " (General and Threshold only)";
   }
   for (std::size_t o = 0; o < m.num_outputs; ++o) {
     const auto& out = m.outputs[o];

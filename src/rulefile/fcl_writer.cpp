@@ -90,7 +90,7 @@ bool to_fcl(const Model& m, std::string& out, std::string& error) {
     const auto& block = m.blocks[b];
     if (block.activation != fuzzy::ActivationMethod::General) {
       error = std::string(".fcl has no activation method (a block uses ") +
-              fuzzy::kActivationNames[static_cast<int>(block.activation)] + ")";
+              fuzzypid::name_of(fuzzy::kActivationNames, block.activation) + ")";
       return false;
     }
     const std::string name(text::name_of(block.name));

@@ -105,7 +105,7 @@ bool to_fis(const Model& m, std::string& out, std::string& error) {
   const auto& block = m.blocks[0];
   if (block.activation != fuzzy::ActivationMethod::General) {
     error = std::string(".fis has no activation method (the model's block uses ") +
-            fuzzy::kActivationNames[static_cast<int>(block.activation)] + ")";
+            fuzzypid::name_of(fuzzy::kActivationNames, block.activation) + ")";
     return false;
   }
   const auto& first = m.outputs[0];

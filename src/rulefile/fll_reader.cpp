@@ -373,11 +373,9 @@ class FllParser {
       b.activation = fuzzy::ActivationMethod::General;
       return words.size() <= 1 || fail("General takes no parameters");
     }
-    int method = -1;
-    for (int k = 0; k < 7; ++k)
-      if (words[0] == fuzzy::kActivationNames[k]) method = k;
-    if (method < 0) return fail("unsupported activation '" + std::string(words[0]) + "'");
-    b.activation = static_cast<fuzzy::ActivationMethod>(method);
+    const auto method = fuzzypid::parse_enum(fuzzy::kActivationNames, words[0]);
+    if (!method) return fail("unsupported activation '" + std::string(words[0]) + "'");
+    b.activation = *method;
     using fuzzy::ActivationMethod;
     const auto count = [&](std::size_t at) {
       std::size_t n = 0;
@@ -402,13 +400,11 @@ class FllParser {
         b.comparison = fuzzy::Comparison::GreaterThanOrEqualTo;
         if (words.size() > 3) return fail("Threshold takes a comparison and a value");
         if (words.size() > 1) {
-          int c = -1;
-          for (int k = 0; k < 6; ++k)
-            if (words[1] == fuzzy::kComparisonNames[k]) c = k;
-          if (c < 0)
+          const auto c = fuzzypid::parse_enum(fuzzy::kComparisonNames, words[1]);
+          if (!c)
             return fail("Threshold comparison must be <, <=, ==, !=, >= or >, got '" +
                         std::string(words[1]) + "'");
-          b.comparison = static_cast<fuzzy::Comparison>(c);
+          b.comparison = *c;
         }
         return threshold(2);
       }

@@ -81,10 +81,10 @@ bool to_fll(const Model& m, std::string& out, std::string& error) {
          (block.has_disjunction ? fuzzy::names(block.disjunction).fuzzylite : "none") + "\n";
     s += std::string("  implication: ") +
          (block.has_implication ? fuzzy::names(block.implication).fuzzylite : "none") + "\n";
-    std::string act = fuzzy::kActivationNames[static_cast<int>(block.activation)];
+    std::string act = fuzzypid::name_of(fuzzy::kActivationNames, block.activation);
     switch (block.activation) {
       case fuzzy::ActivationMethod::Threshold:
-        act += std::string(" ") + fuzzy::kComparisonNames[static_cast<int>(block.comparison)] +
+        act += std::string(" ") + fuzzypid::name_of(fuzzy::kComparisonNames, block.comparison) +
                " " + format_number(block.threshold);
         break;
       case fuzzy::ActivationMethod::First:

@@ -15,6 +15,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "fuzzypid/enum_names.hpp"
 #include "fuzzypid/fuzzy/defuzzify.hpp"
 #include "fuzzypid/fuzzy/engine_storage.hpp"
 #include "fuzzypid/fuzzy/formula.hpp"
@@ -154,9 +155,22 @@ enum class Comparison : std::uint8_t {
   GreaterThanOrEqualTo,
   GreaterThan
 };
-inline constexpr const char* kActivationNames[] = {"General", "Proportional", "Threshold", "First",
-                                                   "Last",    "Highest",      "Lowest"};
-inline constexpr const char* kComparisonNames[] = {"<", "<=", "==", "!=", ">=", ">"};
+// fuzzylite's names (the .fll spelling).
+inline constexpr std::array<EnumName<ActivationMethod>, 7> kActivationNames{
+    {{ActivationMethod::General, "General"},
+     {ActivationMethod::Proportional, "Proportional"},
+     {ActivationMethod::Threshold, "Threshold"},
+     {ActivationMethod::First, "First"},
+     {ActivationMethod::Last, "Last"},
+     {ActivationMethod::Highest, "Highest"},
+     {ActivationMethod::Lowest, "Lowest"}}};
+inline constexpr std::array<EnumName<Comparison>, 6> kComparisonNames{
+    {{Comparison::LessThan, "<"},
+     {Comparison::LessThanOrEqualTo, "<="},
+     {Comparison::EqualTo, "=="},
+     {Comparison::NotEqualTo, "!="},
+     {Comparison::GreaterThanOrEqualTo, ">="},
+     {Comparison::GreaterThan, ">"}}};
 
 struct RuleBlock {
   Name name{};
