@@ -18,9 +18,10 @@
 #   THREADS=N  threads per run (default: all cores)          SKIP_SEEDS=1   only seed 1
 #   RULES_ARGS="..."  the fuzzy-rules stage's regulariser (default: the documented defaults)
 #   RESUME=1   keep the seed files that exist (the runs are deterministic for a seed)
-#   CHATTER_WEIGHT=W   the objective's chatter weight (default 10: docs/tuning.md, "Chatter")
+#   CHATTER_WEIGHT=W CHATTER_LIMIT=L   the objective's chatter weight above L % reversals (defaults
+#                      300 and 5: docs/tuning.md, "Chatter")
 # The controllers shipped before the drive re-tune came from
-#   CONDITIONS=tuning/robust.toml CHATTER_WEIGHT=0 SEARCH_FILTER=0 BUDGET=64000 scripts/tune.sh
+#   CONDITIONS=tuning/robust.toml CHATTER_WEIGHT=0 CHATTER_LIMIT=0 SEARCH_FILTER=0 BUDGET=64000 scripts/tune.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 budget="${BUDGET:-4000}"
@@ -39,7 +40,7 @@ control="pid:$((budget / 16)),scheduled:$((budget - budget / 16))"
 # tune_one FAMILY SEED OUT: each run prints its stages, evaluations, wall time and rate.
 tune_one() {
   local common=(--conditions "${conditions}" --set training --validation 4 --seed "$2"
-                --chatter-weight "${CHATTER_WEIGHT:-10}" "${filter}" --threads "${threads}"
+                --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}" "${filter}" --threads "${threads}"
                 --quiet --out "$3")
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086

@@ -1106,11 +1106,12 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
       ->check(finite_in(0.0, 1e12));
   cmd->add_option("--chatter-weight", t->objective.chatter_weight,
                   "cost per unit of each joint's command reversal share (0..1: the share of ticks "
-                  "on which the command's change reverses; docs/tuning.md) (default 10)")
+                  "on which the command's change reverses) above --chatter-limit (default 300; "
+                  "docs/tuning.md, \"Chatter\")")
       ->check(finite_in(0.0, 1e9));
   cmd->add_option("--chatter-limit", t->objective.chatter_limit_pct,
                   "reversal share per joint and run, %, that costs nothing: the chatter term "
-                  "counts only the share above it (default 0: every reversal costs)")
+                  "counts only the share above it (default 5; 0: every reversal costs)")
       ->check(finite_in(0.0, 100.0));
   cmd->add_option("--effort-weight", t->objective.effort_weight,
                   "cost per unit of each joint's RMS command over its limit (0..1) (default 0)")

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -331,6 +332,9 @@ bool parse_conditions(std::string_view text, const std::string& source, Conditio
     auto sets = r.table("sets", true);
     ConditionFile out;
     out.path = source;
+    // Every output (conditions.csv, metrics.csv, trajectory.csv) keys its rows by condition name,
+    // so a name is unique across the file's sets, not only within one.
+    std::map<std::string, std::string> set_of;
     for (auto&& [key, node] : sets->raw()) {
       const std::string name(key.str());
       auto st = sets->table(name, true);
@@ -340,17 +344,25 @@ bool parse_conditions(std::string_view text, const std::string& source, Conditio
       Condition defaults;
       PlantKeys plant;
       read_robot(*st, defaults, plant);
-      std::set<std::string> names;
+      const auto duplicate = [&](const std::string& c) {
+        const auto [it, fresh] = set_of.emplace(c, name);
+        if (fresh) return std::string();
+        return "duplicate condition name '" + c + "'" +
+               (it->second == name ? std::string() : " (set '" + it->second + "' has it too)");
+      };
       if (const toml::array* list = st->array("conditions", false)) {
         for (const toml::node& n : *list) {
           Condition c = read_condition(n, source, defaults, plant);
-          if (!names.insert(c.name).second)
-            st->fail(n, "duplicate condition name '" + c.name + "'");
+          if (const std::string e = duplicate(c.name); !e.empty()) st->fail(n, e);
           set.conditions.push_back(std::move(c));
         }
       }
-      if (auto mc = st->table("monte_carlo", false))
+      if (auto mc = st->table("monte_carlo", false)) {
+        const std::size_t named = set.conditions.size();
         read_monte_carlo(*mc, name, defaults, plant, set);
+        for (std::size_t i = named; i < set.conditions.size(); ++i)
+          if (const std::string e = duplicate(set.conditions[i].name); !e.empty()) mc->fail_here(e);
+      }
       st->finish();
       if (set.conditions.empty()) st->fail_here("set '" + name + "' has no conditions");
       out.sets.push_back(std::move(set));

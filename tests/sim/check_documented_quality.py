@@ -6,8 +6,13 @@ file and checks each row (set, controller): the summed ITAE within 0.5 % (the ta
 significant digits) and the worst overshoot within 0.1 percentage points. A controller that tracks
 worse, or a table that no longer says what the shipped files do, fails.
 
+With a DRIVE_HEADING it also checks the first table under it, the drive metrics: per row (set,
+controller) the worst joint's reversals_pct over the set's conditions without measurement noise
+(the column headed "reversals %" or "reversals %, no noise") and its saturated_pct over all of
+them ("saturated %"), each within 0.05 percentage points (the tables print one decimal).
+
 usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR [DOC HEADING CONDITIONS ROWS
-                                   [allow-faults]]
+                                   [allow-faults [DRIVE_HEADING]]]
   (default: docs/tuning.md, "### The six-way table", tuning/robust.toml, 21 rows; no controller
   may fault -- sim_ab exits 1 -- unless allow-faults: a table that documents controllers which
   diverge or leave the joint limits)
@@ -32,6 +37,30 @@ def documented(doc, heading):
                      r"([0-9.]+) \|", line)
         if m:
             rows[(m.group(1), m.group(2))] = (float(m.group(3)), float(m.group(4)))
+    return rows
+
+
+def documented_drive(doc, heading):
+    """Rows (set, controller) -> (reversals %, saturated %) of the first table after `heading`
+    with a "saturated %" column."""
+    lines = open(doc, encoding="utf-8").read().split("\n")
+    columns, rows = None, {}
+    for line in lines[lines.index(heading):]:
+        if not line.startswith("|"):
+            if rows:
+                break
+            columns = None
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if columns is None:
+            columns = cells
+            continue
+        if "saturated %" not in columns:
+            continue
+        rev = next(i for i, c in enumerate(columns) if c in ("reversals %", "reversals %, no noise"))
+        sat = columns.index("saturated %")
+        if cells[0] in ("training", "held-out", "stress") and cells[rev] and cells[sat]:
+            rows[(cells[0], cells[1])] = (float(cells[rev]), float(cells[sat]))
     return rows
 
 
@@ -69,9 +98,27 @@ def main():
               f"worst overshoot {got_overshoot:.1f} % (documented {want_overshoot:.1f} %)"
               f"{'' if ok else '  <-- FAIL'}")
         failures += 0 if ok else 1
+    drive = documented_drive(os.path.join(src, doc), sys.argv[9]) if len(sys.argv) > 9 else {}
+    if len(sys.argv) > 9 and not drive:
+        sys.exit(f"no drive rows under '{sys.argv[9]}' in {doc}")
+    noisy = {r["scenario"]: float(r["noise_q"]) > 0 or float(r["noise_qd"]) > 0
+             for r in csv.DictReader(open(os.path.join(out, "conditions.csv")))}
+    reversals = collections.defaultdict(float)
+    saturated = collections.defaultdict(float)
+    for r in csv.DictReader(open(os.path.join(out, "metrics.csv"))):
+        key = (sets[r["scenario"]], r["controller"])
+        if not noisy[r["scenario"]]:
+            reversals[key] = max(reversals[key], float(r["reversals_pct"]))
+        saturated[key] = max(saturated[key], float(r["saturated_pct"]))
+    for key, (want_rev, want_sat) in sorted(drive.items()):
+        got_rev, got_sat = reversals[key], saturated[key]
+        ok = abs(got_rev - want_rev) <= 0.05 and abs(got_sat - want_sat) <= 0.05
+        print(f"{key[0]:9s} {key[1]:16s} reversals {got_rev:.1f} % (documented {want_rev:.1f} %), "
+              f"saturated {got_sat:.1f} % (documented {want_sat:.1f} %){'' if ok else '  <-- FAIL'}")
+        failures += 0 if ok else 1
     if failures:
         sys.exit(f"{failures} row(s) differ from {doc}")
-    print(f"all {len(rows)} documented rows hold")
+    print(f"all {len(rows) + len(drive)} documented rows hold")
 
 
 if __name__ == "__main__":

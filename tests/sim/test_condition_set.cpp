@@ -153,6 +153,12 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
        "friction must be within 0 .. 10000"},
       {"[sets.s]\nconditions = [ { name = \"c\", friction = nan } ]\n", 2, 41, "NaN"},
       {"[sets.s]\nconditions = [ { name = \"c\" }, { name = \"c\" } ]\n", 2, 32, "duplicate"},
+      // Outputs key their rows by condition name: a name is unique across sets, drawn ones too.
+      {"[sets.a]\nconditions = [ { name = \"c\" } ]\n[sets.b]\nconditions = [ { name = \"c\" } ]\n",
+       4, 16, "duplicate condition name 'c' (set 'a' has it too)"},
+      {"[sets.a]\nconditions = [ { name = \"b-mc001\" } ]\n[sets.b.monte_carlo]\ncount = 1\nseed = "
+       "1\n",
+       3, 1, "duplicate condition name 'b-mc001' (set 'a' has it too)"},
       {"[sets.s]\nconditions = [ { name = \"c\", scenario = \"moon\" } ]\n", 2, 41,
        "unknown scenario 'moon'"},
       {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nfriction = [2.0, 1.0]\n", 4, 12, "reversed"},
@@ -351,6 +357,20 @@ int coulomb_conditions(const ConditionFile& f, const char* set) {
   return n;
 }
 
+// The training envelope has in kind what the held-out set has, Coulomb friction aside: the path
+// run backwards and viscous friction.
+void expect_backwards_and_friction(const ConditionFile& f) {
+  for (const char* set : {"training", "held-out"}) {
+    const auto& cs = f.find(set)->conditions;
+    EXPECT_GE(std::count_if(cs.begin(), cs.end(), [](const auto& c) { return c.reverse; }), 2)
+        << set;
+    EXPECT_GE(
+        std::count_if(cs.begin(), cs.end(), [](const auto& c) { return c.friction_per_s > 0.0; }),
+        2)
+        << set;
+  }
+}
+
 double longest_delay_s(const ConditionFile& f, const char* set) {
   double longest = 0.0;
   for (const auto& c : f.find(set)->conditions)
@@ -365,7 +385,7 @@ TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
   ConditionFile f;
   ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", f));
   const auto& training = f.find("training")->conditions;
-  ASSERT_EQ(training.size(), 14u);
+  ASSERT_EQ(training.size(), 16u);
   for (const auto& c : training) {
     EXPECT_LE(c.effects.delay_s, 0.05 + 1e-12) << c.name;
     EXPECT_GE(c.effects.torque_bandwidth_hz, 20.0) << c.name;
@@ -376,6 +396,7 @@ TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
   EXPECT_EQ(coulomb_conditions(f, "training"), 0);
   EXPECT_GE(coulomb_conditions(f, "held-out"), 1);
   EXPECT_GT(longest_delay_s(f, "stress"), 0.05);
+  expect_backwards_and_friction(f);
 }
 
 // tuning/ur5_class_drive.toml: the UR5-class sets with a real joint's effects, one 10 ms tick of
@@ -384,7 +405,7 @@ TEST(ConditionSets, TheUr5DriveFileTrainsWithinOneTickOfDelay) {
   ConditionFile f;
   ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive.toml", f));
   const auto& training = f.find("training")->conditions;
-  ASSERT_EQ(training.size(), 10u);
+  ASSERT_EQ(training.size(), 12u);
   for (const auto& c : training) {
     EXPECT_LE(c.effects.delay_s, 0.01 + 1e-12) << c.name;
     EXPECT_GE(c.effects.torque_bandwidth_hz, 50.0) << c.name;
@@ -394,6 +415,7 @@ TEST(ConditionSets, TheUr5DriveFileTrainsWithinOneTickOfDelay) {
   EXPECT_EQ(coulomb_conditions(f, "training"), 0);
   EXPECT_EQ(coulomb_conditions(f, "held-out"), 2);
   EXPECT_GT(longest_delay_s(f, "stress"), 0.01);
+  expect_backwards_and_friction(f);
 }
 
 }  // namespace

@@ -103,8 +103,10 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
   const auto conditions = noisy_condition();  // both terms non-zero
   const controller::ControllerSpec pid = controller::paper_pid();
   tune::Objective plain;
-  EXPECT_EQ(plain.chatter_weight, 10.0);  // the default (docs/tuning.md, "Chatter")
+  EXPECT_EQ(plain.chatter_weight, 300.0);    // the defaults (docs/tuning.md, "Chatter")
+  EXPECT_EQ(plain.chatter_limit_pct, 5.0);
   plain.chatter_weight = 0.0;
+  plain.chatter_limit_pct = 0.0;  // every reversal costs: the closed form below
   const tune::Cost base = tune::evaluate(*ex, conditions, pid, plain);
   EXPECT_EQ(base.chatter_penalty, 0.0);
   EXPECT_EQ(base.effort_penalty, 0.0);

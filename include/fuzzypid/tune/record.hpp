@@ -36,15 +36,16 @@ struct Objective {
   double fault_cost = 1000.0;         // per run that faults, diverges or gives non-finite ITAE
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
   // What a drive feels (tune/tune.hpp): cost per unit of each joint's command reversal share
-  // (0..1) and of its RMS command relative to its limit (0..1), summed over the joints. The
-  // chatter default is the smallest of 0.1, 1, 3, 10 with which the pid family (its derivative
-  // filter searched) keeps every joint's reversals at or below 10 % on the validation conditions
-  // of tuning/robust_drive.toml (docs/tuning.md, "Chatter"); a file without the key was tuned
-  // without it.
-  double chatter_weight = 10.0;
+  // (0..1) above chatter_limit_pct and of its RMS command relative to its limit (0..1), summed
+  // over the joints. The defaults (300 above 5 %) are the smallest weight of 10, 100, 300, 1000
+  // (above 5 %) with which each of the pid, scheduled and fuzzy families keeps every joint's
+  // reversals at or below 10 % on the training and validation conditions of
+  // tuning/robust_drive.toml (docs/tuning.md, "Chatter"); a file without the key was tuned
+  // without the term.
+  double chatter_weight = 300.0;
   // Reversals up to this share (percent, 0..100) cost nothing: the term is chatter_weight x the
   // share above it. 0: every reversal costs (a file without the key).
-  double chatter_limit_pct = 0.0;
+  double chatter_limit_pct = 5.0;
   double effort_weight = 0.0;
   // Margins every candidate must keep (`fuzzypid tune --min-disk-margin` and the gain, phase and
   // delay forms; docs/margins.md): the worst frozen-gain margin over the joints and the training
