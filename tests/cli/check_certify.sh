@@ -29,7 +29,7 @@ expect() {
 pid="$src/controllers/paper_pid.toml"
 expect 0 "^certified (linear, no saturation; gains may change every tick)$" -- "$fuzzypid" certify "$pid"
 expect 0 "^certified (linear, no saturation; gains may change every tick)$" -- \
-  "$fuzzypid" certify "$src/controllers/tuned_scheduled.toml" --grid 5
+  "$fuzzypid" certify "$src/tests/sim/data/certified_schedule.toml" --grid 5
 expect 1 "^not certified (joint 1: Ki reaches 0 inside the box" -- \
   "$fuzzypid" certify "$src/controllers/paper_fuzzy.toml" --grid 5
 

@@ -168,7 +168,7 @@ TEST(CommonLyapunov, TheCertifiedTunedScheduleNeverDivergesUnderRandomSwitchingI
   fuzzypid::controller::ControllerSpec spec;
   fuzzypid::FileError err;
   ASSERT_TRUE(fuzzypid::controller_file::load(
-      std::string(FUZZYPID_SOURCE_DIR) + "/controllers/tuned_scheduled.toml", spec, err))
+      std::string(FUZZYPID_SOURCE_DIR) + "/tests/sim/data/certified_schedule.toml", spec, err))
       << err.to_string();
   const std::vector<fuzzypid::sim::Condition> conditions{fuzzypid::sim::Condition{}};
   std::string error;

@@ -288,7 +288,7 @@ TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
 
 TEST(Certify, AGainScheduleIsCertifiedOverTheBoxOfTheGainsItProduces) {
   const Er50 er50;
-  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_scheduled.toml");
+  const fuzzypid::sim::Certificate cert = er50.certify("tests/sim/data/certified_schedule.toml");
   EXPECT_TRUE(cert.moving_gains);
   EXPECT_TRUE(cert.certified) << cert.verdict;
   EXPECT_EQ(cert.verdict, "certified (linear, no saturation; gains may change every tick)");
