@@ -103,7 +103,7 @@ TEST(Objective, ChatterAndEffortTermsAreTheirWeightsTimesTheRunsSharesAndZeroByD
   const auto conditions = noisy_condition();  // both terms non-zero
   const controller::ControllerSpec pid = controller::paper_pid();
   tune::Objective plain;
-  EXPECT_EQ(plain.chatter_weight, 300.0);    // the defaults (docs/tuning.md, "Chatter")
+  EXPECT_EQ(plain.chatter_weight, 300.0);  // the defaults (docs/tuning.md, "Chatter")
   EXPECT_EQ(plain.chatter_limit_pct, 5.0);
   plain.chatter_weight = 0.0;
   plain.chatter_limit_pct = 0.0;  // every reversal costs: the closed form below
