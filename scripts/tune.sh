@@ -40,8 +40,8 @@ control="pid:$((budget / 16)),scheduled:$((budget - budget / 16))"
 # tune_one FAMILY SEED OUT: each run prints its stages, evaluations, wall time and rate.
 tune_one() {
   local common=(--conditions "${conditions}" --set training --validation 4 --seed "$2"
-                --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}" "${filter}" --threads "${threads}"
-                --quiet --out "$3")
+                --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}"
+                "${filter}" --threads "${threads}" --quiet --out "$3")
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086
     build/bin/fuzzypid tune --stages "${stages}" ${rules_args} "${common[@]}"

@@ -2,8 +2,9 @@
 # Re-tunes the UR5-class example's controllers (docs/your_robot.md) on the drive plant of
 # tuning/ur5_class_drive.toml, as scripts/tune.sh tunes the ER50's: the training set with its last
 # four conditions held back for validation (--validation 4), the objective's defaults (chatter
-# weight 300 above 5 % reversals, the derivative filter searched), from tuning/ur5_class_base.toml (the paper's PID
-# with gravity feed-forward), one seed, BUDGET evaluations per family (default 4000). Then every
+# weight 300 above 5 % reversals, the derivative filter searched), from
+# tuning/ur5_class_base.toml (the paper's PID with gravity feed-forward), one seed, BUDGET
+# evaluations per family (default 4000). Then every
 # controller on every set of the file with sim_ab.
 # Outputs: controllers/ur5_class_tuned_{pid,scheduled,fuzzy}.toml, out/ur5_drive/ (the runs).
 #   BUDGET=N  SEED=N (default 1)  THREADS=N (default: all cores)

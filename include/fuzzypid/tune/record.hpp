@@ -37,11 +37,11 @@ struct Objective {
   double divergence_rad = 1.0;        // |e| above this (any joint, any tick) counts as diverged
   // What a drive feels (tune/tune.hpp): cost per unit of each joint's command reversal share
   // (0..1) above chatter_limit_pct and of its RMS command relative to its limit (0..1), summed
-  // over the joints. The defaults (300 above 5 %) are the smallest weight of 10, 100, 300, 1000
-  // (above 5 %) with which each of the pid, scheduled and fuzzy families keeps every joint's
-  // reversals at or below 10 % on the training and validation conditions of
-  // tuning/robust_drive.toml (docs/tuning.md, "Chatter"); a file without the key was tuned
-  // without the term.
+  // over the joints. The defaults (300 above 5 %) are the smallest weight of 100, 300, 1000 (above
+  // 5 %) with which each of the pid, scheduled and fuzzy families keeps every joint's reversals
+  // at or below 10 % on the training and validation conditions of tuning/robust_drive.toml
+  // (docs/tuning.md, "Chatter, chosen a third time"); a file without the key was tuned without
+  // the term.
   double chatter_weight = 300.0;
   // Reversals up to this share (percent, 0..100) cost nothing: the term is chatter_weight x the
   // share above it. 0: every reversal costs (a file without the key).
