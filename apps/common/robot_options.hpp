@@ -228,6 +228,10 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
                           "Stribeck peak of static friction, N·m (default 0: none)", "S|S1,...,S6");
   add_effect_option(app, sim::kStribeckVelocityRange, 1.0, o.effects.stribeck_velocity_rad_s,
                     "Stribeck velocity, rad/s (default 0.01)", "V");
+  add_effect_option(app, sim::kCoulombSmoothingRange, 1.0, o.effects.coulomb_smoothing_rad_s,
+                    "velocity over which the friction's sign is smoothed, rad/s (default 0.001; "
+                    "wider: cheaper runs, creep instead of stiction)",
+                    "V");
   add_joint_effect_option(app, sim::kJointResonanceRange, o.effects.joint_resonance_hz,
                           "gear resonance of a two-mass joint, Hz (needs an armature; the drive "
                           "measures the motor side; default 0: rigid)",

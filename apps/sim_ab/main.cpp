@@ -228,6 +228,7 @@ std::string effects_text(const sim::JointEffects& e, const char* separator, cons
   t += "coulomb_nm=" + joined(e.coulomb_nm, list) + sep;
   t += "stribeck_nm=" + joined(e.stribeck_nm, list) + sep;
   t += "stribeck_velocity=" + fmt(e.stribeck_velocity_rad_s) + sep;
+  t += "coulomb_smoothing=" + fmt(e.coulomb_smoothing_rad_s) + sep;
   t += "joint_resonance_hz=" + joined(e.joint_resonance_hz, list) + sep;
   t += "joint_damping_ratio=" + fmt(e.joint_damping_ratio) + sep;
   t += "backlash_rad=" + fmt(e.backlash_rad);
@@ -616,6 +617,7 @@ int run_and_write(const sim_ab::Options& o, const sim::ExperimentSet& experiment
       "scenario,set,payload_scale,friction,torque_limit,contact,noise_q,noise_qd,seed,reverse,"
       "initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2,plant_step_ms,"
       "delay_ms,torque_bandwidth_hz,encoder_counts,coulomb_nm,stribeck_nm,stribeck_velocity,"
+      "coulomb_smoothing,"
       "joint_resonance_hz,joint_damping_ratio,backlash_rad\n",
       conds);
   for (std::size_t k = 0; k < runs.size(); ++k) {

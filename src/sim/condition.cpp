@@ -40,6 +40,7 @@ bool JointEffects::operator==(const JointEffects& o) const noexcept {
          torque_bandwidth_hz == o.torque_bandwidth_hz && encoder_counts == o.encoder_counts &&
          coulomb_nm == o.coulomb_nm && stribeck_nm == o.stribeck_nm &&
          stribeck_velocity_rad_s == o.stribeck_velocity_rad_s &&
+         coulomb_smoothing_rad_s == o.coulomb_smoothing_rad_s &&
          joint_resonance_hz == o.joint_resonance_hz &&
          joint_damping_ratio == o.joint_damping_ratio && backlash_rad == o.backlash_rad;
 }
@@ -52,6 +53,7 @@ std::string JointEffects::validate() const {
         std::pair{kTorqueBandwidthRange, torque_bandwidth_hz},
         std::pair{kEncoderCountsRange, static_cast<double>(encoder_counts)},
         std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s},
+        std::pair{kCoulombSmoothingRange, coulomb_smoothing_rad_s},
         std::pair{kJointDampingRatioRange, joint_damping_ratio},
         std::pair{kBacklashRange, backlash_rad}})
     if (std::string bad = off_or_within(range, value); !bad.empty()) return bad + " (0: off)";

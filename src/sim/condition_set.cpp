@@ -107,6 +107,7 @@ void read_effects(TableReader& r, JointEffects& e, const DrawnKeys* skip = nullp
   read_joint_effect(r, kCoulombRange, e.coulomb_nm, skip);
   read_joint_effect(r, kStribeckRange, e.stribeck_nm, skip);
   read_effect(r, kStribeckVelocityRange, 1.0, e.stribeck_velocity_rad_s, skip);
+  read_effect(r, kCoulombSmoothingRange, 1.0, e.coulomb_smoothing_rad_s, skip);
   read_joint_effect(r, kJointResonanceRange, e.joint_resonance_hz, skip);
   read_effect(r, kJointDampingRatioRange, 1.0, e.joint_damping_ratio, skip);
   read_effect(r, kBacklashRange, 1.0, e.backlash_rad, skip);
@@ -227,6 +228,8 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
   const auto initial = range(r, "initial_error", 0.05, 0.05);
   // payload_kg and the keys of what real joints have: a number sets them, [min, max] draws them
   // uniformly (one value for every joint; encoder_counts rounded to a whole count).
+  // coulomb_smoothing, a numerical setting, is not drawn and not on this list: one draw per
+  // listed key and condition, so a new entry would move every later draw of every file.
   struct Draw {
     const char* key;
     double lo = 0.0, hi = 0.0;

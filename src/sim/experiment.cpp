@@ -229,6 +229,7 @@ robot::PlantConfig Experiment::plant_config(const Condition& condition) const {
   config.coulomb_nm = e.coulomb_nm;
   config.stribeck_nm = e.stribeck_nm;
   if (e.stribeck_velocity_rad_s > 0.0) config.stribeck_velocity_rad_s = e.stribeck_velocity_rad_s;
+  if (e.coulomb_smoothing_rad_s > 0.0) config.coulomb_smoothing_rad_s = e.coulomb_smoothing_rad_s;
   config.joint_resonance_hz = e.joint_resonance_hz;
   config.joint_damping_ratio = e.joint_damping_ratio;
   config.backlash_rad = e.backlash_rad;

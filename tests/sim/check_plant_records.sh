@@ -20,7 +20,7 @@ fail() {
 cmp -s "$work/paper/conditions.csv" "$work/coupled/conditions.csv" &&
   fail "conditions.csv identical for two plants"
 head -1 "$work/paper/conditions.csv" |
-  grep -q ",initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2,plant_step_ms,delay_ms,torque_bandwidth_hz,encoder_counts,coulomb_nm,stribeck_nm,stribeck_velocity,joint_resonance_hz,joint_damping_ratio,backlash_rad$" ||
+  grep -q ",initial_error,urdf,path,tick_s,payload_kg,dynamics,gravity,armature_kgm2,plant_step_ms,delay_ms,torque_bandwidth_hz,encoder_counts,coulomb_nm,stribeck_nm,stribeck_velocity,coulomb_smoothing,joint_resonance_hz,joint_damping_ratio,backlash_rad$" ||
   fail "conditions.csv header: $(head -1 "$work/paper/conditions.csv")"
 grep -q "^paper,scenario,.*/er50_c20.urdf,line,0.050000000000000003,0,decoupled,0,8.5;16;" \
   "$work/paper/conditions.csv" || fail "paper row: $(tail -1 "$work/paper/conditions.csv")"
@@ -31,15 +31,16 @@ grep -q "^condition.paper=set=scenario urdf=.*/er50_c20.urdf path=line tick_s=0.
 grep -q "^sim_ab: plant dynamics coupled, gravity on, payload 2 kg (1 condition)$" "$work/err" ||
   fail "banner: $(cat "$work/err")"
 # What real joints have is on record too, in the keys' units.
-"$sim_ab" --quiet --delay-ms 10 --encoder-counts 4096 --coulomb-nm 1,2,3,4,5,6 --out "$work/effects" \
-  2>"$work/err" || fail "effects: $(cat "$work/err")"
-grep -q ",0,10,0,4096,1;2;3;4;5;6,0;0;0;0;0;0,0,0;0;0;0;0;0,0,0$" "$work/effects/conditions.csv" ||
+"$sim_ab" --quiet --delay-ms 10 --encoder-counts 4096 --coulomb-nm 1,2,3,4,5,6 \
+  --coulomb-smoothing 0.03 --out "$work/effects" 2>"$work/err" || fail "effects: $(cat "$work/err")"
+grep -q ",0,10,0,4096,1;2;3;4;5;6,0;0;0;0;0;0,0,0.029999999999999999,0;0;0;0;0;0,0,0$" \
+  "$work/effects/conditions.csv" ||
   fail "effects row: $(tail -1 "$work/effects/conditions.csv")"
 "$sim_ab" --delay-ms 10 --encoder-counts 4096 --coulomb-nm 1,2,3,4,5,6 --out "$work/banner" \
   >/dev/null 2>"$work/err" || fail "effects banner run: $(cat "$work/err")"
 grep -q "^sim_ab: plant dynamics decoupled, gravity off, payload 0 kg, delay 10 ms, encoder 4096 counts, Coulomb up to 6 N·m (1 condition)$" \
   "$work/err" || fail "effects banner: $(cat "$work/err")"
-grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 " \
+grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 .* coulomb_smoothing=0.029999999999999999 " \
   "$work/effects/settings.txt" || fail "effects settings: $(grep '^condition' "$work/effects/settings.txt")"
 # The banner is a record too: a run whose standard error cannot be written exits 1.
 "$sim_ab" --out "$work/lost" >/dev/null 2>/dev/full && fail "sim_ab exits 0 with its banner lost"

@@ -672,6 +672,41 @@ TEST_F(ClosedLoopTest, AtHighFrictionTheDefaultStepIsWithinAMicroradianOfATenTim
   EXPECT_LT(coupled, 1e-6);
 }
 
+// coulomb_smoothing: the condition's v_ε reaches the plant (0: the plant's 0.001 rad/s), and
+// widening it 30x -- what tuning/robust_drive.toml trains with, for the step rule's sake -- keeps
+// what Coulomb friction does to the paper's PID: the wrist, whose torque stays below 1.5 % of its
+// limit, sticks behind the path either way, and the summed ITAE moves by less than a fifth.
+TEST_F(ClosedLoopTest, AWiderCoulombSmoothingReachesThePlantAndKeepsAStuckWristStuck) {
+  sim::Condition c;
+  c.initial_error_rad = 0.05;
+  c.effects.coulomb_nm = {70.0, 100.0, 50.0, 6.0, 6.0, 3.0};
+  EXPECT_EQ(experiment_->plant_config(c).coulomb_smoothing_rad_s, 1e-3);
+  const sim::RunResult stiff = experiment_->run(c, controller::paper_pid());
+  c.effects.coulomb_smoothing_rad_s = 0.03;
+  EXPECT_EQ(experiment_->plant_config(c).coulomb_smoothing_rad_s, 0.03);
+  const sim::RunResult wide = experiment_->run(c, controller::paper_pid());
+  ASSERT_TRUE(stiff.ok && wide.ok) << stiff.error << wide.error;
+  // The ITAE summed over the joints (rectangle rule over the ticks) and joint 6's largest |e|.
+  const double tick_s = experiment_->options().tick_s;
+  const auto measure = [tick_s](const sim::RunResult& r, double& itae, double& wrist) {
+    itae = wrist = 0.0;
+    for (std::size_t k = 0; k < r.rows.size(); ++k) {
+      itae += r.rows[k].t_s * std::fabs(r.rows[k].error) * tick_s;
+      if (r.rows[k].joint == 6) wrist = std::fmax(wrist, std::fabs(r.rows[k].error));
+    }
+  };
+  double itae_stiff = 0.0, itae_wide = 0.0, wrist_stiff = 0.0, wrist_wide = 0.0;
+  measure(stiff, itae_stiff, wrist_stiff);
+  measure(wide, itae_wide, wrist_wide);
+  std::printf(
+      "[ friction ] summed ITAE %.3f (0.001 rad/s) %.3f (0.03 rad/s); joint 6 max |e| "
+      "%.3f %.3f rad\n",
+      itae_stiff, itae_wide, wrist_stiff, wrist_wide);
+  EXPECT_GT(wrist_stiff, 0.3);
+  EXPECT_GT(wrist_wide, 0.3);
+  EXPECT_NEAR(itae_wide / itae_stiff, 1.0, 0.2);
+}
+
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   sim::Condition bad;
   bad.payload_scale = 0.0;

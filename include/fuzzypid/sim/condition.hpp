@@ -88,6 +88,7 @@ inline constexpr FieldRange kJointResonanceRange{"joint_resonance_hz", 0.0, 1e4}
 inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0};
 inline constexpr FieldRange kBacklashRange{"backlash_rad", 0.0, 1.0};                  // rad
 inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
+inline constexpr FieldRange kCoulombSmoothingRange{"coulomb_smoothing", 1e-5, 1.0};    // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
@@ -118,6 +119,12 @@ struct JointEffects {
   robot::JointVector coulomb_nm{};
   robot::JointVector stribeck_nm{};
   double stribeck_velocity_rad_s = 0.0;
+  // coulomb_smoothing: the velocity v_ε over which the friction's sign is smoothed, rad/s (0: the
+  // plant's 0.001 rad/s). The smoothed sign is the plant's stiffest term (the step rule takes
+  // steps of about v_ε J / C), so a wider v_ε makes a run with friction much cheaper; it turns
+  // stiction into a creep below about v_ε (robot/plant.hpp) -- a numerical compromise for
+  // tuning, not a property of a joint.
+  double coulomb_smoothing_rad_s = 0.0;
   // joint_resonance_hz (one number for every joint, or six; 0: rigid) and joint_damping_ratio:
   // an elastic gear as a two-mass joint, the motor side the armature (which must be > 0 there,
   // --armature), the link side the arm, the stiffness from the resonance and the two inertias at

@@ -35,7 +35,7 @@
 //   delay_ms = 10.0            (sampling to torque, ms)    torque_bandwidth_hz = 200.0
 //   encoder_counts = 131072    (per revolution, integer)
 //   coulomb_nm = 20.0 | [C1, ..., C6]   stribeck_nm = 30.0 | [S1, ..., S6]   (N·m)
-//   stribeck_velocity = 0.01   (rad/s)
+//   stribeck_velocity = 0.01   (rad/s)     coulomb_smoothing = 0.02   (rad/s; default 0.001)
 //   joint_resonance_hz = 20.0 | [F1, ..., F6]   joint_damping_ratio = 0.05   (two-mass gear)
 //   backlash_rad = 0.001       (play of the elastic gears, rad)
 // Relative file names resolve against the condition file's folder. Given in a set's table (next
