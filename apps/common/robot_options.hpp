@@ -336,4 +336,11 @@ inline void warn_about_training(const char* tool, const std::string& controller_
                  "tuned on: " + d);
 }
 
+// A controller file run on the condition file it was tuned on, after that file changed.
+inline void warn_about_conditions(const char* tool, const std::string& controller_path,
+                                  const tune::Tuning* tuning, const std::string& conditions) {
+  const std::string d = controller_file::conditions_changed(tuning, controller_path, conditions);
+  if (!d.empty()) say_once(tool, "warning", "controller " + controller_path + " was " + d);
+}
+
 }  // namespace fuzzypid::cli

@@ -177,6 +177,11 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
   }
   tune::Tuning& record = *file.tuning;
   record.conditions = path_from_folder_of(out, t.conditions);
+  // The condition file as read: a file edited later (or while the tune ran) shows in its hash.
+  if (!t.conditions.empty() &&
+      std::none_of(record.trained_on.begin(), record.trained_on.end(),
+                   [](const tune::TrainedOn& f) { return f.kind == "conditions"; }))
+    record.trained_on.push_back({"conditions", record.conditions, cf::file_hash(t.conditions)});
   for (std::size_t k = 0; k < training.conditions.size(); ++k) {
     const sim::RobotSetup& setup = experiments.of(k).setup();
     const auto add = [&](const char* kind, const std::string& file) {

@@ -537,8 +537,11 @@ void print_setup_notes(const sim_ab::Options& o, const sim::ExperimentSet& exper
     }
     cli::print_model_notes("sim_ab", ex);
     for (const auto& c : controllers)
-      if (c.source != "built-in")
+      if (c.source != "built-in") {
         cli::warn_about_training("sim_ab", c.source, c.tuning ? &*c.tuning : nullptr, ex);
+        cli::warn_about_conditions("sim_ab", c.source, c.tuning ? &*c.tuning : nullptr,
+                                   o.conditions_file);
+      }
     for (const auto& c : controllers)
       if (c.spec.units.form == controller::PidForm::PerTick &&
           std::fabs(c.spec.units.tick_s - ex.options().tick_s) > 1e-12 && !o.quiet)

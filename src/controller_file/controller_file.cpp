@@ -301,13 +301,13 @@ ControllerFile read_file(const toml::table& root, const std::string& file) {
         const auto* ft = entry.as_table();
         if (ft == nullptr)
           t->fail(entry,
-                  "trained_on entries must be { kind = \"urdf|path\", file = \"...\", "
+                  "trained_on entries must be { kind = \"conditions|urdf|path\", file = \"...\", "
                   "fnv1a64 = \"...\" }");
         TableReader fr(*ft, file);
         TrainedOn f;
         f.kind = fr.text("kind");
-        if (f.kind != "urdf" && f.kind != "path")
-          fr.fail(*ft->get("kind"), "trained_on kind must be \"urdf\" or \"path\"");
+        if (f.kind != "conditions" && f.kind != "urdf" && f.kind != "path")
+          fr.fail(*ft->get("kind"), "trained_on kind must be \"conditions\", \"urdf\" or \"path\"");
         f.file = fr.text("file");
         f.fnv1a64 = fr.text("fnv1a64");
         if (!is_fnv1a64(f.fnv1a64))
@@ -572,7 +572,8 @@ std::string to_toml(const ControllerFile& file) {
       o += "]\n";
     }
     if (!t.trained_on.empty()) {
-      o += "trained_on = [  # robot and path files of the training conditions\n";
+      o += "trained_on = [  # files the tune read: the condition file, the training robots and "
+           "paths\n";
       for (const TrainedOn& f : t.trained_on)
         o += "  { kind = " + quoted(f.kind) + ", file = " + quoted(f.file) +
              ", fnv1a64 = " + quoted(f.fnv1a64) + " },\n";
@@ -715,6 +716,24 @@ std::vector<std::string> trained_on_differences(const Tuning* tuning,
   compare("urdf", urdf, "the bundled ER50-C20", bundled_urdf);
   compare("path", path, "the built-in line A -> B", std::string());
   return out;
+}
+
+std::string conditions_changed(const Tuning* tuning, const std::string& controller_path,
+                               const std::string& conditions) {
+  if (tuning == nullptr || conditions.empty()) return {};
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(controller_path).parent_path();
+  for (const TrainedOn& f : tuning->trained_on) {
+    if (f.kind != "conditions") continue;
+    const fs::path file = fs::path(f.file).is_absolute() ? fs::path(f.file) : folder / f.file;
+    std::error_code ec;
+    if (!fs::equivalent(file, conditions, ec) || ec) continue;
+    const std::string now = file_hash(conditions);
+    if (now == f.fnv1a64) return {};
+    return "tuned on " + f.file + " (fnv1a64 " + f.fnv1a64 + "), which has changed since (now " +
+           now + "): its sets may not be the ones the tune read";
+  }
+  return {};
 }
 
 }  // namespace fuzzypid::controller_file

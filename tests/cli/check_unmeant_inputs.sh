@@ -148,6 +148,20 @@ expect 0 "note: $work/unlimited.urdf: joint 'wrist_1_joint': <limit> effort=\"0\
 grep -q "joint 'wrist_1_joint': <limit> velocity=\"0\" means no limit" "$work/err" ||
   fail "velocity=\"0\" not noted: $(cat "$work/err")"
 [ "$(grep -c "means no limit" "$work/err")" -eq 2 ] || fail "not once per joint: $(cat "$work/err")"
+# A tuned file records the condition file it read (its hash); run on that file after an edit, it
+# is warned about, and not before (a tune once read a half-edited file, and nothing showed it).
+cp "$src/tuning/robust.toml" "$work/conds.toml"
+timeout 60 "$fuzzypid" tune --family pid --conditions "$work/conds.toml" --out "$work/tuned.toml" --budget 40 \
+  --population 20 --quiet 2>"$work/err" || fail "tune on a copy: $(cat "$work/err")"
+grep -q '{ kind = "conditions", file = "conds.toml", fnv1a64 = "[0-9a-f]\{16\}" }' \
+  "$work/tuned.toml" || fail "no conditions entry: $(grep -A3 trained_on "$work/tuned.toml")"
+"$sim_ab" --quiet --out "$work/run" --conditions "$work/conds.toml" --set held-out \
+  --controller "$work/tuned.toml" --allow-faults 2>"$work/err" || fail "run: $(cat "$work/err")"
+grep -q "has changed since" "$work/err" && fail "warned before any edit: $(cat "$work/err")"
+echo "# edited after the tune" >>"$work/conds.toml"
+expect 0 "warning: controller $work/tuned.toml was tuned on conds.toml (fnv1a64 [0-9a-f]*), which has changed since (now [0-9a-f]*)" -- \
+  "$sim_ab" --quiet --out "$work/run" --conditions "$work/conds.toml" --set held-out \
+  --controller "$work/tuned.toml" --allow-faults
 
 [ "$failures" -eq 0 ] || {
   echo "$failures of $cases cases failed" >&2

@@ -347,6 +347,53 @@ TEST(ControllerFile, TrainedOnIsComparedWithTheRobotAndPathOfARun) {
   std::system(("rm -rf '" + dir + "'").c_str());
 }
 
+// The condition file a tune read (trained_on kind "conditions"): a run on that file after an edit
+// is told so, with both hashes; a run on another condition file, or on an unchanged copy of the
+// record's, is not. The entry reads back, and an unknown kind is refused.
+TEST(ControllerFile, AnEditedConditionFileIsToldFromTheOneTheTuneRead) {
+  const std::string dir = ::testing::TempDir() + "conditions_" + std::to_string(std::rand()) + "/";
+  ASSERT_EQ(std::system(("mkdir -p '" + dir + "tuning'").c_str()), 0);
+  const std::string conditions = dir + "tuning/drive.toml";
+  std::ofstream(conditions) << "[sets.training]\nconditions = [ { name = \"a\" } ]\n";
+  std::ofstream(dir + "tuning/other.toml") << "[sets.training]\n";
+  const std::string read_hash = cf::file_hash(conditions);
+  cf::ControllerFile spec = tuned_example();
+  spec.tuning->trained_on = {{"conditions", "tuning/drive.toml", read_hash}};
+  const std::string controller = dir + "c.toml";
+  const auto changed = [&](const std::string& file) {
+    return cf::conditions_changed(spec.tuning ? &*spec.tuning : nullptr, controller, file);
+  };
+  EXPECT_EQ(changed(conditions), "");
+  EXPECT_EQ(changed(dir + "tuning/other.toml"), "");
+  EXPECT_EQ(changed(""), "");
+
+  std::ofstream(conditions, std::ios::app) << "# edited\n";
+  EXPECT_EQ(changed(conditions), "tuned on tuning/drive.toml (fnv1a64 " + read_hash +
+                                     "), which has changed since (now " +
+                                     cf::file_hash(conditions) +
+                                     "): its sets may not be the ones the tune read");
+  EXPECT_EQ(changed(dir + "tuning/other.toml"), "");
+
+  // The entry is written and read back as it was.
+  cf::ControllerFile back;
+  fuzzypid::FileError e;
+  ASSERT_TRUE(cf::parse(cf::to_toml(spec), "c.toml", back, e)) << e.to_string();
+  ASSERT_TRUE(back.tuning.has_value());
+  ASSERT_EQ(back.tuning->trained_on.size(), 1u);
+  EXPECT_EQ(back.tuning->trained_on[0].kind, "conditions");
+  EXPECT_EQ(back.tuning->trained_on[0].fnv1a64, read_hash);
+  std::string text = cf::to_toml(spec);
+  text.replace(text.find("kind = \"conditions\""), 19, "kind = \"robot\"");
+  ASSERT_FALSE(cf::parse(text, "c.toml", back, e));
+  EXPECT_NE(e.message.find("trained_on kind must be \"conditions\", \"urdf\" or \"path\""),
+            std::string::npos)
+      << e.to_string();
+  // Written by hand: no record to compare.
+  spec.tuning.reset();
+  EXPECT_EQ(changed(conditions), "");
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
+
 TEST(ControllerFile, TheShippedPaperFilesAreThePapersControllers) {
   const std::string dir = FUZZYPID_SOURCE_DIR "/controllers/";
   for (const auto& [file, spec] : {std::pair{"paper_pid.toml", controller::paper_pid()},

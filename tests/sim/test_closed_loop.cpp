@@ -690,9 +690,9 @@ TEST_F(ClosedLoopTest, AWiderCoulombSmoothingReachesThePlantAndKeepsAStuckWristS
   const double tick_s = experiment_->options().tick_s;
   const auto measure = [tick_s](const sim::RunResult& r, double& itae, double& wrist) {
     itae = wrist = 0.0;
-    for (std::size_t k = 0; k < r.rows.size(); ++k) {
-      itae += r.rows[k].t_s * std::fabs(r.rows[k].error) * tick_s;
-      if (r.rows[k].joint == 6) wrist = std::fmax(wrist, std::fabs(r.rows[k].error));
+    for (const sim::TrajectoryRow& row : r.rows) {
+      itae += row.t_s * std::fabs(row.error) * tick_s;
+      if (row.joint == 6) wrist = std::fmax(wrist, std::fabs(row.error));
     }
   };
   double itae_stiff = 0.0, itae_wide = 0.0, wrist_stiff = 0.0, wrist_wide = 0.0;

@@ -59,5 +59,13 @@ struct ControllerFile {
                                                               const std::string& urdf,
                                                               const std::string& path,
                                                               const std::string& bundled_urdf);
+// Whether `conditions` (a condition file a run reads) is the one the tuning record names (its
+// "conditions" entry of trained_on, resolved against the folder of `controller_path`) but no
+// longer has the content the tune read: then a line naming both hashes, else empty (another
+// condition file, the same content, or no record). The training set's own results, and any
+// comparison on its held-out set, hold only for the content the tune read.
+[[nodiscard]] std::string conditions_changed(const tune::Tuning* tuning,
+                                             const std::string& controller_path,
+                                             const std::string& conditions);
 
 }  // namespace fuzzypid::controller_file

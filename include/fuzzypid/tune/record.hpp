@@ -62,11 +62,12 @@ struct Objective {
   }
 };
 
-// A file a controller was tuned on: the URDF or path of a training condition, by name and a
-// content hash (64-bit FNV-1a of the bytes, 16 hex digits), so a reader can tell whether the robot
-// it runs is the one the gains were tuned for.
+// A file a controller was tuned on: the condition file, or the URDF or path of a training
+// condition, by name and a content hash (64-bit FNV-1a of the bytes, 16 hex digits), so a reader
+// can tell whether the robot it runs is the one the gains were tuned for, and whether the
+// condition file still is the one the tune read.
 struct TrainedOn {
-  std::string kind;     // "urdf" or "path"
+  std::string kind;     // "conditions", "urdf" or "path"
   std::string file;     // as the condition named it
   std::string fnv1a64;  // hex
 };
