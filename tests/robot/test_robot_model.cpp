@@ -266,6 +266,60 @@ INSTANTIATE_TEST_SUITE_P(
                       BadUrdfCase{"@", "link6", "link2", "not below root link"},
                       BadUrdfCase{"@", "base_link", "link4", "has 4 movable joints"}));
 
+std::string bundled_urdf_text() {
+  std::ifstream in(default_urdf_path());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A URDF that is not UTF-8 is refused before the XML parser sees it, naming the byte: TinyXML
+// steps over a multi-byte character by its lead byte's length, so a lead byte without its
+// continuation bytes at the end of the text made it read past the buffer (fuzz_urdf found it;
+// fuzz/corpus/urdf/truncated_utf8_name.urdf). Well-formed multi-byte text still loads.
+TEST(RobotModel, RefusesTextThatIsNotUtf8NamingTheByte) {
+  const std::string text = bundled_urdf_text();
+  const std::size_t robot_tag = text.find("<robot");
+  ASSERT_NE(robot_tag, std::string::npos);
+  struct Case {
+    const char* name;
+    std::string text;
+    std::size_t bad;  // npos: loads
+  };
+  const std::string comment = "<!-- torque in N\xC2\xB7m, 50 \xE2\x80\x93 80 -->\n";
+  const std::vector<Case> cases = {
+      {"valid_multibyte", text.substr(0, robot_tag) + comment + text.substr(robot_tag),
+       std::string::npos},
+      {"lone_continuation", text.substr(0, robot_tag) + "<!-- \x80 -->" + text.substr(robot_tag),
+       robot_tag + 5},
+      {"latin1", text.substr(0, robot_tag) + "<!-- N\xB7m -->" + text.substr(robot_tag),
+       robot_tag + 6},
+      {"overlong", text.substr(0, robot_tag) + "<!-- \xC0\xAF -->" + text.substr(robot_tag),
+       robot_tag + 5},
+      {"surrogate", text.substr(0, robot_tag) + "<!-- \xED\xA0\x80 -->" + text.substr(robot_tag),
+       robot_tag + 5},
+      {"truncated_at_end", text + "\xE1", text.size()},
+  };
+  for (const Case& c : cases) {
+    const std::string path = ::testing::TempDir() + "fuzzypid_utf8_" + c.name + "_" +
+                             std::to_string(::getpid()) + ".urdf";
+    {
+      std::ofstream out(path, std::ios::binary);
+      out << c.text;
+    }
+    const LoadResult r = RobotModel::load(path);
+    std::remove(path.c_str());
+    if (c.bad == std::string::npos) {
+      EXPECT_TRUE(r.model.has_value()) << c.name << ": " << r.error;
+      continue;
+    }
+    EXPECT_FALSE(r.model.has_value()) << c.name;
+    EXPECT_NE(r.error.find("is not UTF-8 text: byte " + std::to_string(c.bad) + " (0x"),
+              std::string::npos)
+        << c.name << ": " << r.error;
+  }
+}
+
 // Physically meaningless URDF content is refused with the element named: each case edits one
 // element of the bundled URDF (first occurrence of `from`) and expects the loader to name it.
 struct InvalidElementCase {
@@ -274,13 +328,6 @@ struct InvalidElementCase {
   const char* to;
   const char* expected_fragment;
 };
-
-std::string bundled_urdf_text() {
-  std::ifstream in(default_urdf_path());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 class RobotModelRefusesInvalidElements : public ::testing::TestWithParam<InvalidElementCase> {};
 
