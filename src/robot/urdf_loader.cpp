@@ -21,6 +21,7 @@
 
 #include "fuzzypid_support/bounded_read.hpp"
 #include "fuzzypid_support/printable.hpp"
+#include "fuzzypid_support/utf8.hpp"
 
 #ifndef FUZZYPID_URDF_SOURCE_DIR
 #define FUZZYPID_URDF_SOURCE_DIR ""
@@ -69,45 +70,6 @@ class CapturingHandler : public console_bridge::OutputHandler {
 std::mutex& parse_mutex() {
   static std::mutex m;
   return m;
-}
-
-// The offset of the first byte of `text` that does not belong to a well-formed UTF-8 sequence
-// (RFC 3629: no overlong forms, surrogates or code points above U+10FFFF), or npos. urdfdom hands
-// the text to TinyXML 2.6, which steps over a multi-byte character by its lead byte's length alone:
-// a lead byte whose continuation bytes are missing at the end of the text makes it read past the
-// buffer (found by fuzz_urdf, docs/robustness.md). Refusing malformed UTF-8 first keeps every
-// sequence it steps over whole.
-std::size_t first_invalid_utf8(const std::string& text) {
-  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
-  std::size_t i = 0;
-  while (i < text.size()) {
-    const unsigned char c = byte(i);
-    std::size_t length = 0;
-    unsigned char lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
-    if (c < 0x80) {
-      ++i;
-      continue;
-    }
-    if (c >= 0xC2 && c <= 0xDF) {
-      length = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-      length = 3;
-      if (c == 0xE0) lo = 0xA0;
-      if (c == 0xED) hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-      length = 4;
-      if (c == 0xF0) lo = 0x90;
-      if (c == 0xF4) hi = 0x8F;
-    } else {
-      return i;
-    }
-    if (i + length > text.size()) return i;
-    if (byte(i + 1) < lo || byte(i + 1) > hi) return i;
-    for (std::size_t k = 2; k < length; ++k)
-      if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return i;
-    i += length;
-  }
-  return std::string::npos;
 }
 
 // urdfdom reports some malformed elements (e.g. an unparsable <mass>) as errors yet returns a model
@@ -297,7 +259,11 @@ LoadResult RobotModel::load(const std::string& urdf_path, const std::string& roo
     if (!support::read_file_bounded(urdf_path, kMaxUrdfBytes, text, read_error))
       return fail("URDF: " + read_error);
 
-    if (const std::size_t bad = first_invalid_utf8(text); bad != std::string::npos) {
+    // urdfdom hands the text to TinyXML 2.6, which steps over a multi-byte character by its lead
+    // byte's length alone: a lead byte whose continuation bytes are missing at the end of the text
+    // made it read past the buffer (found by fuzz_urdf, docs/robustness.md). Refusing malformed
+    // UTF-8 first keeps every sequence it steps over whole.
+    if (const std::size_t bad = support::first_invalid_utf8(text); bad != std::string::npos) {
       char where[96];
       std::snprintf(where, sizeof where, "byte %zu (0x%02X) is not part of a UTF-8 character", bad,
                     static_cast<unsigned>(static_cast<unsigned char>(text[bad])));

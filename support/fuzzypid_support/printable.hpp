@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "fuzzypid_support/utf8.hpp"
+
 namespace fuzzypid::support {
 
 // `text` with every control character (below 0x20, and DEL) and every byte that is not part of a
@@ -28,17 +30,8 @@ inline std::string printable(std::string_view text) {
       ++k;
       continue;
     }
-    // The length of a well-formed UTF-8 sequence starting here (0: none).
-    std::size_t n = c >= 0xc2 && c <= 0xdf   ? 2
-                    : c >= 0xe0 && c <= 0xef ? 3
-                    : c >= 0xf0 && c <= 0xf4 ? 4
-                                             : 0;
-    if (n != 0 && k + n <= text.size()) {
-      for (std::size_t j = 1; j < n; ++j)
-        if ((static_cast<unsigned char>(text[k + j]) & 0xc0) != 0x80) n = 0;
-    } else {
-      n = 0;
-    }
+    // A control character (a one-byte sequence here) or a byte outside well-formed UTF-8.
+    const std::size_t n = c < 0x80 ? 0 : utf8_sequence_length(text, k);
     if (n == 0) {
       escape(c);
       ++k;
