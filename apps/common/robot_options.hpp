@@ -59,8 +59,8 @@ struct RobotOptions {
   }
 };
 
-// An option of JointEffects: "--" + the range's key with '_' -> '-', in the range's units, 0 (off)
-// or within the range; stored times `to_si`.
+// An option of JointEffects: "--" + the range's key with '_' -> '-', in the range's units, 0
+// (range.zero: off, or the plant's default) or within the range; stored times `to_si`.
 inline void add_effect_option(CLI::App& app, const sim::FieldRange& range, double to_si,
                               double& target, const std::string& help, const std::string& text) {
   std::string name = std::string("--") + range.key;
@@ -71,7 +71,8 @@ inline void add_effect_option(CLI::App& app, const sim::FieldRange& range, doubl
          [name, range, to_si, &target](const std::string& s) {
            const auto v = parse_finite(s);
            if (!v || (*v != 0.0 && !range.contains(*v)))
-             throw CLI::ValidationError(name, "expected 0 (off) or a number within " +
+             throw CLI::ValidationError(name, std::string("expected 0 (") + range.zero +
+                                                  ") or a number within " +
                                                   CLI::detail::to_string(range.lo) + " .. " +
                                                   CLI::detail::to_string(range.hi) + ": " + s);
            target = *v * to_si;
@@ -216,8 +217,9 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
          [&o](const std::string& s) {
            const auto n = parse_unsigned(s);
            if (!n || (*n != 0 && !sim::kEncoderCountsRange.contains(static_cast<double>(*n))))
-             throw CLI::ValidationError("--encoder-counts",
-                                        "expected 0 (off) or an integer within 4 .. 1e12: " + s);
+             throw CLI::ValidationError(
+                 "--encoder-counts", std::string("expected 0 (") + sim::kEncoderCountsRange.zero +
+                                         ") or an integer within 4 .. 1e12: " + s);
            o.effects.encoder_counts = *n;
          },
          "the measured angle quantised to 2 pi/N, the rate differenced from it (default 0: exact)")

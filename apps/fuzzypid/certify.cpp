@@ -159,14 +159,18 @@ void print_table(const CertifyCli& o, const sim::Certificate& cert) {
 
 int run_certify(const CertifyCli& o) {
   const char* tool = "fuzzypid certify";
-  controller::ControllerSpec spec;
+  controller_file::ControllerFile controller_file;
   fuzzypid::FileError err;
-  if (!controller_file::load(o.controller, spec, err)) {
+  if (!controller_file::load(o.controller, controller_file, err)) {
     std::fprintf(stderr, "%s: %s\n", tool, err.to_string().c_str());
     return kExitUsage;
   }
+  const controller::ControllerSpec& spec = controller_file.controller;
   std::vector<sim::Condition> conditions;
   if (!o.conditions.empty()) {
+    warn_about_conditions(tool, o.controller,
+                          controller_file.tuning ? &*controller_file.tuning : nullptr,
+                          o.conditions);
     sim::ConditionFile file;
     if (!sim::load_conditions(o.conditions, file, err)) {
       std::fprintf(stderr, "%s: %s\n", tool, err.to_string().c_str());

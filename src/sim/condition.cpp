@@ -28,9 +28,12 @@ std::string out_of(const FieldRange& r, double v) {
   return buf;
 }
 
-// Empty when v is 0 (the effect is off) or within r.
+// Empty when v is 0 (off, or the plant's default: r.zero) or within r.
 std::string off_or_within(const FieldRange& r, double v) {
-  return v == 0.0 ? std::string() : out_of(r, v);
+  if (v == 0.0 || (std::isfinite(v) && r.contains(v))) return {};
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s must be 0 (%s) or within %g .. %g", r.key, r.zero, r.lo, r.hi);
+  return buf;
 }
 
 }  // namespace
@@ -46,17 +49,15 @@ bool JointEffects::operator==(const JointEffects& o) const noexcept {
 }
 
 std::string JointEffects::validate() const {
-  if (std::string bad = off_or_within(kPlantStepMsRange, plant_step_s * 1e3); !bad.empty())
-    return bad + " ms (0: the default step)";
   for (const auto& [range, value] :
-       {std::pair{kDelayMsRange, delay_s * 1e3},
+       {std::pair{kPlantStepMsRange, plant_step_s * 1e3}, std::pair{kDelayMsRange, delay_s * 1e3},
         std::pair{kTorqueBandwidthRange, torque_bandwidth_hz},
         std::pair{kEncoderCountsRange, static_cast<double>(encoder_counts)},
         std::pair{kStribeckVelocityRange, stribeck_velocity_rad_s},
         std::pair{kCoulombSmoothingRange, coulomb_smoothing_rad_s},
         std::pair{kJointDampingRatioRange, joint_damping_ratio},
         std::pair{kBacklashRange, backlash_rad}})
-    if (std::string bad = off_or_within(range, value); !bad.empty()) return bad + " (0: off)";
+    if (std::string bad = off_or_within(range, value); !bad.empty()) return bad;
   if (backlash_rad > 0.0 && joint_resonance_hz == robot::JointVector{})
     return "backlash_rad needs an elastic gear (joint_resonance_hz > 0)";
   for (const auto& [range, values] :

@@ -50,15 +50,16 @@ bool drawn(const DrawnKeys* keys, const char* key) {
   return keys != nullptr && keys->count(key) > 0;
 }
 
-// A key of JointEffects in the range's units, stored times `to_si`; 0 (off) or within the range.
+// A key of JointEffects in the range's units, stored times `to_si`; 0 (range.zero) or within the
+// range.
 void read_effect(TableReader& r, const FieldRange& range, double to_si, double& target,
                  const DrawnKeys* skip = nullptr) {
   if (!r.has(range.key) || drawn(skip, range.key)) return;
   const double v = r.number(range.key);
   if (v != 0.0 && !range.contains(v)) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "'%s' must be 0 (off) or within %g .. %g", range.key, range.lo,
-                  range.hi);
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "'%s' must be 0 (%s) or within %g .. %g", range.key, range.zero,
+                  range.lo, range.hi);
     r.fail(*r.raw().get(range.key), buf);
   }
   target = v * to_si;
@@ -100,8 +101,9 @@ void read_effects(TableReader& r, JointEffects& e, const DrawnKeys* skip = nullp
   if (r.has(kEncoderCountsRange.key) && !drawn(skip, kEncoderCountsRange.key)) {
     const std::uint64_t n = r.count(kEncoderCountsRange.key);
     if (n != 0 && !kEncoderCountsRange.contains(static_cast<double>(n)))
-      r.fail(*r.raw().get(kEncoderCountsRange.key),
-             "'encoder_counts' must be 0 (off) or within 4 .. 1e12");
+      r.fail(*r.raw().get(kEncoderCountsRange.key), std::string("'encoder_counts' must be 0 (") +
+                                                        kEncoderCountsRange.zero +
+                                                        ") or within 4 .. 1e12");
     e.encoder_counts = n;
   }
   read_joint_effect(r, kCoulombRange, e.coulomb_nm, skip);

@@ -63,24 +63,25 @@ expect 2 "the robot options apply without it" -- run --conditions "$src/tuning/r
 expect 2 "--gravity needs --dynamics coupled" -- "$rt_loop" --period-ms 0 --gravity
 expect 2 "--tick-ms and --dt both set the controller period" -- "$rt_loop" --tick-ms 10 --dt 0.01
 expect 1 "limits.csv:3" -- "$rt_loop" --period-ms 0 --urdf "$ur5" --path "$work/limits.csv"
-# What real joints have: 0 (off) or within the range, in sim_ab, rt_loop and condition files.
-expect 2 "--plant-step-ms: expected 0 (off) or a number within 0.001 .. 1000: -1" -- run --plant-step-ms -1
-expect 2 "--plant-step-ms: expected 0 (off) or a number within 0.001 .. 1000: nan" -- run --plant-step-ms nan
+# What real joints have: 0 (off, or the default: the message says which) or within the range, in
+# sim_ab, rt_loop and condition files.
+expect 2 "--plant-step-ms: expected 0 (the default step) or a number within 0.001 .. 1000: -1" -- run --plant-step-ms -1
+expect 2 "--plant-step-ms: expected 0 (the default step) or a number within 0.001 .. 1000: nan" -- run --plant-step-ms nan
 expect 2 "--plant-step-ms" -- "$rt_loop" --period-ms 0 --plant-step-ms 1e9
-expect 2 "--delay-ms: expected 0 (off) or a number within 0 .. 1000: -5" -- run --delay-ms -5
-expect 2 "--torque-bandwidth-hz: expected 0 (off) or a number within 0.1 .. 100000: nan" -- run --torque-bandwidth-hz nan
-expect 2 "--encoder-counts: expected 0 (off) or an integer within 4 .. 1e12: 1.5" -- run --encoder-counts 1.5
+expect 2 "--delay-ms: expected 0 (none) or a number within 0 .. 1000: -5" -- run --delay-ms -5
+expect 2 "--torque-bandwidth-hz: expected 0 (ideal) or a number within 0.1 .. 100000: nan" -- run --torque-bandwidth-hz nan
+expect 2 "--encoder-counts: expected 0 (exact) or an integer within 4 .. 1e12: 1.5" -- run --encoder-counts 1.5
 expect 2 "--coulomb-nm: values must be within 0 .. 1e+06: 1,2,3,4,5,-6" -- run --coulomb-nm 1,2,3,4,5,-6
 expect 2 "--stribeck-nm: expected one number or 6 comma-separated: 1,2" -- run --stribeck-nm 1,2
-expect 2 "--stribeck-velocity" -- "$rt_loop" --period-ms 0 --stribeck-velocity -1
+expect 2 "--stribeck-velocity: expected 0 (the plant's default) or a number within 1e-05 .. 100: -1" -- "$rt_loop" --period-ms 0 --stribeck-velocity -1
 expect 2 "delay_ms must be at most 60 ticks (60 ms at this tick)" -- run --tick-ms 1 --delay-ms 61
 expect 2 "--joint-resonance-hz: values must be within 0 .. 10000: -1" -- run --joint-resonance-hz -1
 expect 2 "--joint-damping-ratio" -- "$rt_loop" --period-ms 0 --joint-damping-ratio nan
 expect 1 "joint_resonance_hz needs an armature > 0 on joint 2" -- run --joint-resonance-hz 20 --armature 1,0,1,1,1,1
-expect 2 "--backlash-rad: expected 0 (off) or a number within 0 .. 1: 2" -- run --backlash-rad 2
+expect 2 "--backlash-rad: expected 0 (none) or a number within 0 .. 1: 2" -- run --backlash-rad 2
 expect 2 "backlash_rad needs an elastic gear (joint_resonance_hz > 0)" -- run --backlash-rad 0.001
 row "[sets.s]" "conditions = [ { name = \"c\", plant_step_ms = -1.0 } ]" >"$work/bad_step.toml"
-expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (off)" -- run --conditions "$work/bad_step.toml"
+expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (the default step)" -- run --conditions "$work/bad_step.toml"
 
 # And the good path runs, with the robot it used stated on stderr.
 run --urdf "$ur5" --path "$work/good.csv" --tick-ms 10 --allow-faults 2>"$work/err" ||

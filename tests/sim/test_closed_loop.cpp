@@ -717,7 +717,18 @@ TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
   step.effects.plant_step_s = -1e-3;
   const auto s = experiment_->run(step, controller::paper_pid());
   EXPECT_FALSE(s.ok);
-  EXPECT_NE(s.error.find("plant_step_ms must be within"), std::string::npos) << s.error;
+  EXPECT_NE(s.error.find("plant_step_ms must be 0 (the default step) or within 0.001 .. 1000"),
+            std::string::npos)
+      << s.error;
+  // 0 is the plant's default here, not "off": the message says which.
+  sim::Condition stribeck;
+  stribeck.effects.stribeck_velocity_rad_s = -0.1;
+  const auto v = experiment_->run(stribeck, controller::paper_pid());
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(
+      v.error.find("stribeck_velocity must be 0 (the plant's default) or within 1e-05 .. 100"),
+      std::string::npos)
+      << v.error;
 }
 
 TEST(Random, IsTheSameSequenceForTheSameSeedAndStandardNormalOnAverage) {

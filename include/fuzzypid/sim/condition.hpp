@@ -65,6 +65,9 @@ struct FieldRange {
   const char* key;  // condition-file key; the option is "--" + key with '_' -> '-'
   double lo;
   double hi;
+  // What 0 means for a key of JointEffects, which takes 0 outside its range ("none", "ideal",
+  // "the plant's default"); the messages say it.
+  const char* zero = "off";
   [[nodiscard]] constexpr bool contains(double v) const noexcept { return v >= lo && v <= hi; }
 };
 inline constexpr FieldRange kPayloadScaleRange{"payload_scale", 1e-3, 1e3};
@@ -77,18 +80,22 @@ inline constexpr FieldRange kInitialErrorRange{"initial_error", -1.0, 1.0};  // 
 inline constexpr FieldRange kPayloadKgRange{"payload_kg", 0.0, 1e4};         // kg
 inline constexpr FieldRange kTickMsRange{"tick_ms", 0.1, 1000.0};            // ms
 inline constexpr FieldRange kArmatureRange{"armature", 0.0, 1e6};            // kg·m²
-// What real joints have (JointEffects); each is off at 0 and otherwise within its range.
-inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0};        // ms
-inline constexpr FieldRange kDelayMsRange{"delay_ms", 0.0, 1000.0};                  // ms
-inline constexpr FieldRange kTorqueBandwidthRange{"torque_bandwidth_hz", 0.1, 1e5};  // Hz
-inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12};      // per revolution
+// What real joints have (JointEffects); each takes 0 (off, or the plant's default: `zero` says
+// which) and otherwise a value within its range.
+inline constexpr FieldRange kPlantStepMsRange{"plant_step_ms", 1e-3, 1000.0, "the default step"};
+inline constexpr FieldRange kDelayMsRange{"delay_ms", 0.0, 1000.0, "none"};                   // ms
+inline constexpr FieldRange kTorqueBandwidthRange{"torque_bandwidth_hz", 0.1, 1e5, "ideal"};  // Hz
+inline constexpr FieldRange kEncoderCountsRange{"encoder_counts", 4.0, 1e12,
+                                                "exact"};                          // per revolution
 inline constexpr FieldRange kCoulombRange{"coulomb_nm", 0.0, 1e6};                 // N·m
 inline constexpr FieldRange kStribeckRange{"stribeck_nm", 0.0, 1e6};               // N·m
 inline constexpr FieldRange kJointResonanceRange{"joint_resonance_hz", 0.0, 1e4};  // Hz
-inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0};
-inline constexpr FieldRange kBacklashRange{"backlash_rad", 0.0, 1.0};                  // rad
-inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0};  // rad/s
-inline constexpr FieldRange kCoulombSmoothingRange{"coulomb_smoothing", 1e-5, 1.0};    // rad/s
+inline constexpr FieldRange kJointDampingRatioRange{"joint_damping_ratio", 0.0, 10.0, "undamped"};
+inline constexpr FieldRange kBacklashRange{"backlash_rad", 0.0, 1.0, "none"};  // rad
+inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 100.0,
+                                                   "the plant's default"};  // rad/s
+inline constexpr FieldRange kCoulombSmoothingRange{"coulomb_smoothing", 1e-5, 1.0,
+                                                   "the plant's default"};  // rad/s
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
