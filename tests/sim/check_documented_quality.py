@@ -9,7 +9,8 @@ worse, or a table that no longer says what the shipped files do, fails.
 With a DRIVE_HEADING it also checks the first table under it, the drive metrics: per row (set,
 controller) the worst joint's reversals_pct over the set's conditions without measurement noise
 (the column headed "reversals %" or "reversals %, no noise") and its saturated_pct over all of
-them ("saturated %"), each within 0.05 percentage points (the tables print one decimal).
+them ("saturated %"), each within 0.05 percentage points (the tables print one decimal); its rows
+may also name the drive file's `encoders` set.
 
 usage: check_documented_quality.py SIM_AB SOURCE_DIR WORK_DIR [DOC HEADING CONDITIONS ROWS
                                    [allow-faults [DRIVE_HEADING]]]
@@ -59,7 +60,8 @@ def documented_drive(doc, heading):
             continue
         rev = next(i for i, c in enumerate(columns) if c in ("reversals %", "reversals %, no noise"))
         sat = columns.index("saturated %")
-        if cells[0] in ("training", "held-out", "stress") and cells[rev] and cells[sat]:
+        documented_set = cells[0] in ("training", "held-out", "stress", "encoders")
+        if documented_set and cells[rev] and cells[sat]:
             rows[(cells[0], cells[1])] = (float(cells[rev]), float(cells[sat]))
     return rows
 
