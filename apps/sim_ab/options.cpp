@@ -147,10 +147,22 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
       ->check([](const std::string& s) { return s.empty() ? std::string("empty path") : ""; });
   cli::add_robot_options(app, o.robot, true);
   std::array<double, 3> start{}, end{};
+  // The bound Condition::validate() puts on the path's end points (1 km), checked here so that an
+  // accepted command line leaves a valid condition.
+  const auto within_1_km = [](const std::string& name, const std::array<double, 3>& p_mm) {
+    for (double x : p_mm)
+      if (std::fabs(x) > 1e6) throw CLI::ValidationError(name, "values must be within ±1e6 mm");
+  };
   add_list(app, "--start", start, "path start X,Y,Z in mm (default the paper's A)", false,
-           [&o, &start] { o.start_mm = Eigen::Vector3d(start[0], start[1], start[2]); });
+           [&o, &start, within_1_km] {
+             within_1_km("--start", start);
+             o.start_mm = Eigen::Vector3d(start[0], start[1], start[2]);
+           });
   add_list(app, "--end", end, "path end X,Y,Z in mm (default the paper's B)", false,
-           [&o, &end] { o.end_mm = Eigen::Vector3d(end[0], end[1], end[2]); });
+           [&o, &end, within_1_km] {
+             within_1_km("--end", end);
+             o.end_mm = Eigen::Vector3d(end[0], end[1], end[2]);
+           });
 
   // Condition overrides.
   const auto opt_number = [&app](const std::string& name, std::optional<double>& target,

@@ -59,6 +59,8 @@ expect 2 "--gravity needs --dynamics coupled" -- run --dynamics decoupled --grav
 expect 2 "--dynamics" -- run --dynamics rigid
 expect 2 "--tick-ms" -- run --tick-ms 0
 expect 2 "--path replaces it" -- run --path "$work/good.csv" --start 1,2,3
+expect 2 "--start: values must be within ±1e6 mm" -- run --start 2e6,0,0
+expect 2 "--end: values must be within ±1e6 mm" -- run --end 0,0,-1.3e48
 expect 2 "the robot options apply without it" -- run --conditions "$src/tuning/robust.toml" --urdf "$ur5"
 expect 2 "--gravity needs --dynamics coupled" -- "$rt_loop" --period-ms 0 --gravity
 expect 2 "--tick-ms and --dt both set the controller period" -- "$rt_loop" --tick-ms 10 --dt 0.01
