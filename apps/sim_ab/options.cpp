@@ -147,11 +147,13 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
       ->check([](const std::string& s) { return s.empty() ? std::string("empty path") : ""; });
   cli::add_robot_options(app, o.robot, true);
   std::array<double, 3> start{}, end{};
-  // The bound Condition::validate() puts on the path's end points (1 km), checked here so that an
+  // The bound Condition::validate() puts on the path's end points, checked here so that an
   // accepted command line leaves a valid condition.
   const auto within_1_km = [](const std::string& name, const std::array<double, 3>& p_mm) {
+    constexpr double kMaxMm = sim::kMaxPathCoordinateM * 1e3;
+    static_assert(kMaxMm == 1e6, "the message names the bound");
     for (double x : p_mm)
-      if (std::fabs(x) > 1e6) throw CLI::ValidationError(name, "values must be within ±1e6 mm");
+      if (std::fabs(x) > kMaxMm) throw CLI::ValidationError(name, "values must be within ±1e6 mm");
   };
   add_list(app, "--start", start, "path start X,Y,Z in mm (default the paper's A)", false,
            [&o, &start, within_1_km] {

@@ -114,7 +114,8 @@ std::string RobotSetup::validate() const {
   for (const auto* p : {&start_m, &end_m})
     if (*p)
       for (double v : **p)
-        if (!std::isfinite(v) || std::fabs(v) > 1e3) return "path end points must be finite, m";
+        if (!std::isfinite(v) || std::fabs(v) > kMaxPathCoordinateM)
+          return "path end points must be finite and within ±1 km of the base, m";
   if (ik_seed_rad)
     for (double v : *ik_seed_rad)
       if (!std::isfinite(v) || std::fabs(v) > 100.0) return "IK seed must be finite, rad";

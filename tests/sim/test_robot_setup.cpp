@@ -1,6 +1,7 @@
 // A condition's robot, path, tick and plant (sim::RobotSetup, Condition::payload_kg, dynamics,
 // gravity): experiments built per setup, condition-file keys, continuous joints, gravity
 // feed-forward and the payload mass in the closed loop.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -129,6 +130,23 @@ TEST(RobotSetup, AnIkSeedIsRefusedWhereNoInverseKinematicsUsesIt) {
   const auto ex = Experiment::create(pose, ExperimentOptions{}, error);
   ASSERT_TRUE(ex) << error;
   EXPECT_NEAR(ex->path().position_rad.front()[2], 1.0, 1e-6);
+}
+
+// A path end point is a position within 1 km of the base on every axis, bound included; beyond
+// it, or not finite, the setup names what is wrong.
+TEST(RobotSetup, PathEndPointsBeyondOneKilometreOrNotFiniteAreRefused) {
+  const std::string refused = "path end points must be finite and within ±1 km of the base, m";
+  RobotSetup s;
+  s.start_m = std::array<double, 3>{1000.0, -1000.0, 0.5};
+  s.end_m = std::array<double, 3>{1.6, 0.24, 0.49};
+  EXPECT_EQ(s.validate(), "");
+  s.start_m = std::array<double, 3>{1.35, std::nextafter(1000.0, 2000.0), 1.25};
+  EXPECT_EQ(s.validate(), refused);
+  s.start_m.reset();
+  s.end_m = std::array<double, 3>{1.6, 0.24, -1e48};
+  EXPECT_EQ(s.validate(), refused);
+  s.end_m = std::array<double, 3>{std::nan(""), 0.24, 0.49};
+  EXPECT_EQ(s.validate(), refused);
 }
 
 TEST(ExperimentSet, BuildsOneExperimentPerDistinctSetup) {

@@ -96,6 +96,9 @@ inline constexpr FieldRange kStribeckVelocityRange{"stribeck_velocity", 1e-5, 10
                                                    "the plant's default"};  // rad/s
 inline constexpr FieldRange kCoulombSmoothingRange{"coulomb_smoothing", 1e-5, 1.0,
                                                    "the plant's default"};  // rad/s
+// The largest |coordinate| of a path's end points, m (RobotSetup::start_m, end_m): 1 km, beyond any
+// robot's reach, so that what passes is finite in every later sum.
+inline constexpr double kMaxPathCoordinateM = 1e3;
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
 inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
