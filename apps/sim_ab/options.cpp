@@ -207,7 +207,11 @@ ParseResult parse(int argc, const char* const* argv, Options& o) {
   add_enum(app, "--gain-units", e.gain_units, controller::kGainUnitsNames,
            "u is rad/s² scaled by the nominal inertia, or a torque in N·m");
   add_enum(app, "--pid-form", e.pid_form, controller::kPidFormNames, "units of Ki, Kd");
-  add_enum(app, "--derivative", e.derivative, controller::kDerivativeSourceNames,
+  // The paper's controllers take ec from rates or from differences; the observer, which needs a
+  // bandwidth, is for controller files.
+  static constexpr std::array<fuzzypid::EnumName<pid::DerivativeSource>, 2> kPaperDerivativeNames{
+      {controller::kDerivativeSourceNames[0], controller::kDerivativeSourceNames[1]}};
+  add_enum(app, "--derivative", e.derivative, kPaperDerivativeNames,
            "de/dt from velocities or from errors");
   add_enum(app, "--gain-update", e.gain_update, controller::kGainUpdateNames,
            "K = K0 + dK (Eq. 6) or K += dK");

@@ -55,8 +55,15 @@ std::string literal_safe(const std::string& s) {
 }
 
 const char* enum_code(pid::DerivativeSource d) {
-  return d == pid::DerivativeSource::Rates ? "fuzzypid::pid::DerivativeSource::Rates"
-                                           : "fuzzypid::pid::DerivativeSource::Difference";
+  switch (d) {
+    case pid::DerivativeSource::Rates:
+      return "fuzzypid::pid::DerivativeSource::Rates";
+    case pid::DerivativeSource::Difference:
+      return "fuzzypid::pid::DerivativeSource::Difference";
+    case pid::DerivativeSource::Observer:
+      return "fuzzypid::pid::DerivativeSource::Observer";
+  }
+  return "";
 }
 const char* enum_code(pid::DerivativeOn d) {
   return d == pid::DerivativeOn::Error ? "fuzzypid::pid::DerivativeOn::Error"
@@ -146,7 +153,8 @@ std::string check_float_range(const ControllerSpec& spec) {
       {"the PID's kp", pc.gains.kp},
       {"the PID's ki", pc.gains.ki},
       {"the PID's kd", pc.gains.kd},
-      {"derivative_filter_s", pc.derivative_filter_s}};
+      {"derivative_filter_s", pc.derivative_filter_s},
+      {"observer_bandwidth_hz", pc.observer_bandwidth_hz}};
   const FamilyTraits& traits = family_traits(spec.family);
   if (traits.supervised()) {
     const supervisor::FuzzyPidConfig<double> fc = fuzzy_pid_config(spec, inf);
@@ -325,6 +333,10 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   h += "  c.derivative_on = " + std::string(enum_code(pc.derivative_on)) + ";\n";
   h += "  c.derivative_source = " + std::string(enum_code(pc.derivative_source)) + ";\n";
   h += "  c.derivative_filter_s = " + lit(pc.derivative_filter_s) + ";\n";
+  if (pc.derivative_source == pid::DerivativeSource::Observer) {
+    h += "  c.observer_bandwidth_hz = " + lit(pc.observer_bandwidth_hz) + ";\n";
+    h += "  c.observer_delay_ticks = " + std::to_string(pc.observer_delay_ticks) + ";\n";
+  }
   h += "  c.anti_windup = " + std::string(enum_code(pc.anti_windup)) + ";\n";
   h += "  c.output_min = -output_limit;\n  c.output_max = output_limit;\n  return c;\n}\n\n";
   if (!family_traits(spec.family).supervised()) {

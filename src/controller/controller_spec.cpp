@@ -87,6 +87,17 @@ std::string validate(const ControllerSpec& s) {
   }
   if (!(s.pid.derivative_filter_s >= 0.0) || !std::isfinite(s.pid.derivative_filter_s))
     return "derivative_filter_s must be finite and >= 0";
+  if (s.pid.derivative == pid::DerivativeSource::Observer) {
+    if (!(s.pid.observer_bandwidth_hz > 0.0 && s.pid.observer_bandwidth_hz <= 1e6))
+      return "observer_bandwidth_hz must be within (0, 1e6] Hz with derivative = \"observer\"";
+    if (s.pid.observer_delay_ticks < 0 || s.pid.observer_delay_ticks > pid::kMaxObserverDelayTicks)
+      return "observer_delay_ticks must be 0 .. " + std::to_string(pid::kMaxObserverDelayTicks);
+    if (s.units.gains != GainUnits::Acceleration)
+      return "derivative = \"observer\" needs gains in acceleration units (its model reads the "
+             "command as rad/s²)";
+  } else if (s.pid.observer_bandwidth_hz != 0.0) {
+    return "observer_bandwidth_hz applies only to derivative = \"observer\"";
+  }
   return {};
 }
 

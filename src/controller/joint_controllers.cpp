@@ -9,6 +9,8 @@ pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit) 
   c.derivative_on = spec.pid.derivative_on;
   c.anti_windup = spec.pid.anti_windup;
   c.derivative_filter_s = spec.pid.derivative_filter_s;
+  c.observer_bandwidth_hz = spec.pid.observer_bandwidth_hz;
+  c.observer_delay_ticks = spec.pid.observer_delay_ticks;
   // The controller knows the actuator limit (in its own units), so conditional integration stops
   // windup when the plant saturates.
   c.output_min = -output_limit;

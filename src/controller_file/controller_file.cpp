@@ -218,6 +218,14 @@ ControllerFile read_file(const toml::table& root, const std::string& file) {
     s.pid.derivative_filter_s = p->number("derivative_filter_s", 0.0);
     if (s.pid.derivative_filter_s < 0.0)
       p->fail(*p->raw().get("derivative_filter_s"), "derivative_filter_s must be >= 0");
+    s.pid.observer_bandwidth_hz = p->number("observer_bandwidth_hz", 0.0);
+    if (p->has("observer_delay_ticks")) {
+      const std::uint64_t ticks = p->count("observer_delay_ticks");
+      if (ticks > static_cast<std::uint64_t>(pid::kMaxObserverDelayTicks))
+        p->fail(*p->raw().get("observer_delay_ticks"),
+                "observer_delay_ticks must be 0 .. " + std::to_string(pid::kMaxObserverDelayTicks));
+      s.pid.observer_delay_ticks = static_cast<int>(ticks);
+    }
     p->finish();
   }
 
@@ -543,6 +551,10 @@ std::string to_toml(const ControllerFile& file) {
   o += "derivative_on = " + quoted(name_of(kDerivativeOnNames, s.pid.derivative_on)) + "\n";
   o += "anti_windup = " + quoted(name_of(kAntiWindupNames, s.pid.anti_windup)) + "\n";
   o += "derivative_filter_s = " + format_double(s.pid.derivative_filter_s) + "\n";
+  if (s.pid.derivative == pid::DerivativeSource::Observer) {
+    o += "observer_bandwidth_hz = " + format_double(s.pid.observer_bandwidth_hz) + "\n";
+    o += "observer_delay_ticks = " + std::to_string(s.pid.observer_delay_ticks) + "\n";
+  }
   if (s.feedforward.gravity) {
     o += "\n[feedforward]\n";
     o += "gravity = true  # tau += g^(q_desired) of the nominal model\n";

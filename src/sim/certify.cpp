@@ -114,6 +114,10 @@ JointLoop group_loop(const ControllerSpec& spec, const PlantGroup& g, double del
   loop.tick_s = g.tick_s;
   loop.derivative_filter_s = spec.pid.derivative_filter_s;
   loop.derivative = spec.pid.derivative;
+  loop.observer_bandwidth_hz = spec.pid.observer_bandwidth_hz;
+  loop.observer_delay_ticks = spec.pid.observer_delay_ticks;
+  // The observer reads u as rad/s² (acceleration units only, validate()): c_m = 1.
+  loop.observer_plant_gain = 1.0;
   loop.torque_bandwidth_hz = g.torque_bandwidth_hz;
   set_delay(loop, delay_s);
   return loop;

@@ -28,15 +28,17 @@ struct DiscretePlant {
 // The closed loop's state matrix with `gains` (continuous SI form) in place of the loop's, plant
 // gain c = `plant_gain`, and a total delay of m + f ticks (f in [0, 1)). State: the plant's, then
 // I_{k−1}, d_{k−1}, θ_{k−1}, then the commands still on their way u_{k−1} .. u_{k−len} (len = m,
-// or m + 1 with a fraction). Entries are multi-affine in (c, Kp, Ki, Kd) for fixed damping, tick,
+// or m + 1 with a fraction; with an observer at least d_o + 1), then the observer's ŷ_{k−1},
+// ŵ_{k−1}. Entries are multi-affine in (c, Kp, Ki, Kd) for fixed damping, tick,
 // filter and delay, except that Ki = 0 freezes the integral (its row is then zero).
 [[nodiscard]] Eigen::MatrixXd closed_loop_matrix(const JointLoop& loop,
                                                  const pid::Gains<double>& gains, double plant_gain,
                                                  int m, double f);
 
-// The gain-independent terms of L at one frequency: L = Kp a + Ki b + Kd c.
+// The gain-independent terms of L at one frequency: L = (Kp a + Ki b + Kd c) / (1 + Kd g), g the
+// velocity observer's path from the controller's own output back to its D term (0 without one).
 struct ResponseTerms {
-  std::complex<double> a, b, c;
+  std::complex<double> a, b, c, g;
 };
 
 // The terms over margins()'s frequency grid for one plant (tick, plant gain, damping, filter,

@@ -72,7 +72,17 @@ bool valid(const JointLoop& l) {
          finite(l.damping_per_s) && l.damping_per_s >= 0.0 && l.gains.finite() &&
          finite(l.derivative_filter_s) && l.derivative_filter_s >= 0.0 && l.delay_ticks >= 0 &&
          l.delay_fraction >= 0.0 && l.delay_fraction < 1.0 && finite(l.torque_bandwidth_hz) &&
-         l.torque_bandwidth_hz >= 0.0;
+         l.torque_bandwidth_hz >= 0.0 &&
+         (l.derivative != pid::DerivativeSource::Observer ||
+          (finite(l.observer_bandwidth_hz) && l.observer_bandwidth_hz > 0.0 &&
+           l.observer_delay_ticks >= 0 && l.observer_delay_ticks <= pid::kMaxObserverDelayTicks &&
+           finite(l.observer_plant_gain) && l.observer_plant_gain > 0.0));
+}
+
+// The observer's correction gains l1, l2 (pid.hpp) at tick h.
+std::pair<double, double> observer_gains(const JointLoop& l) {
+  const double p = 1.0 / (1.0 + 2.0 * kPi * l.observer_bandwidth_hz * l.tick_s);
+  return {1.0 - p * p, (1.0 - p) * (1.0 - p)};
 }
 
 // Φ(t) and Γ(t) = ∫₀ᵗ e^{A s} ds B of the plant with a current loop (states θ, θ̇, v; v̇ = w (u − v),
@@ -143,13 +153,32 @@ Eigen::MatrixXd closed_loop_matrix(const JointLoop& loop, const pid::Gains<doubl
   const double h = loop.tick_s;
   const DiscretePlant plant = discretise(loop, plant_gain, f);
   const auto np = static_cast<int>(plant.phi.rows());
-  // State: the plant's (θ, θ̇[, v]), then I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−len}.
+  // State: the plant's (θ, θ̇[, v]), then I_{k−1}, d_{k−1}, θ_{k−1}, then u_{k−1} .. u_{k−len},
+  // then the observer's ŷ_{k−1}, ŵ_{k−1} (with one).
+  const bool observed = loop.derivative == pid::DerivativeSource::Observer;
   const int ii = np, id = np + 1, ip = np + 2, iu = np + 3;
-  const int len = f > 0.0 ? m + 1 : m;
-  const int n = iu + len;
+  const int len = std::max(f > 0.0 ? m + 1 : m, observed ? loop.observer_delay_ticks + 1 : 0);
+  const int io = iu + len;
+  const int n = io + (observed ? 2 : 0);
   const double beta = h / (loop.derivative_filter_s + h);
   Eigen::RowVectorXd d_raw = Eigen::RowVectorXd::Zero(n);
-  if (loop.derivative == pid::DerivativeSource::Rates) {
+  Eigen::RowVectorXd y_hat = Eigen::RowVectorXd::Zero(n), w_hat = Eigen::RowVectorXd::Zero(n);
+  if (observed) {
+    // Predict with u_{k−1−d_o}, correct with θ_k (pid.hpp).
+    const auto [l1, l2] = observer_gains(loop);
+    const double cm = loop.observer_plant_gain;
+    Eigen::RowVectorXd y_pred = Eigen::RowVectorXd::Zero(n), w_pred = Eigen::RowVectorXd::Zero(n);
+    y_pred(io) = 1.0;
+    y_pred(io + 1) = h;
+    y_pred(iu + loop.observer_delay_ticks) = 0.5 * h * h * cm;
+    w_pred(io + 1) = 1.0;
+    w_pred(iu + loop.observer_delay_ticks) = h * cm;
+    Eigen::RowVectorXd residual = -y_pred;
+    residual(0) += 1.0;
+    y_hat = y_pred + l1 * residual;
+    w_hat = w_pred + (l2 / h) * residual;
+    d_raw = -w_hat;
+  } else if (loop.derivative == pid::DerivativeSource::Rates) {
     d_raw(1) = -1.0;
   } else {
     d_raw(0) = -1.0 / h;
@@ -184,6 +213,10 @@ Eigen::MatrixXd closed_loop_matrix(const JointLoop& loop, const pid::Gains<doubl
     a.row(iu) = u;
     for (int j = 1; j < len; ++j)
       a(iu + j, iu + j - 1) = 1.0;
+  }
+  if (observed) {
+    a.row(io) = y_hat;
+    a.row(io + 1) = w_hat;
   }
   return a;
 }
@@ -223,16 +256,31 @@ class LoopResponse {
     }
     const double beta = h / (loop_.derivative_filter_s + h);
     const Complex filter = beta * z / (z - 1.0 + beta);
+    const Complex delay = std::polar(1.0, -omega_rad_s * h * loop_.delay_ticks);
+    if (loop_.derivative == pid::DerivativeSource::Observer) {
+      // ŵ = Gθ θ + Gu u with (I − Φo/z)⁻¹ applied to the gain K and to Γo c_m z^−(1+d_o).
+      const auto [l1, l2] = observer_gains(loop_);
+      const Eigen::Matrix2d phi_o{{(1.0 - l1), (1.0 - l1) * h}, {-l2 / h, 1.0 - l2}};
+      const Eigen::Vector2d gamma_o{(1.0 - l1) * 0.5 * h * h, h - l2 * 0.5 * h};
+      const Eigen::Matrix2cd inverse =
+          (Eigen::Matrix2cd::Identity() - phi_o.cast<Complex>() / z).inverse();
+      const Complex g_theta = (inverse * Eigen::Vector2d{l1, l2 / h}.cast<Complex>())(1);
+      const Complex g_u = (inverse * gamma_o.cast<Complex>())(1) * loop_.observer_plant_gain *
+                          std::pow(z, -(1 + loop_.observer_delay_ticks));
+      return {p_theta * delay, h * z / (z - 1.0) * p_theta * delay,
+              filter * g_theta * p_theta * delay, filter * g_u};
+    }
     const Complex derivative =
         loop_.derivative == pid::DerivativeSource::Rates ? p_omega : (1.0 - 1.0 / z) / h * p_theta;
-    const Complex delay = std::polar(1.0, -omega_rad_s * h * loop_.delay_ticks);
-    return {p_theta * delay, h * z / (z - 1.0) * p_theta * delay, filter * derivative * delay};
+    return {p_theta * delay, h * z / (z - 1.0) * p_theta * delay, filter * derivative * delay,
+            Complex(0.0)};
   }
 
   Complex operator()(double omega_rad_s) const { return combine(terms(omega_rad_s)); }
 
   Complex combine(const detail::ResponseTerms& t) const {
-    return loop_.gains.kp * t.a + loop_.gains.ki * t.b + loop_.gains.kd * t.c;
+    return (loop_.gains.kp * t.a + loop_.gains.ki * t.b + loop_.gains.kd * t.c) /
+           (1.0 + loop_.gains.kd * t.g);
   }
 
  private:
@@ -274,11 +322,14 @@ Complex loop_response(const JointLoop& loop, double omega_rad_s) {
 namespace {
 
 // Spectral radius with the loop's gains scaled and a total delay of m + f ticks.
+// With an observer the loop gain is the plant's (the PID's gains also act on the observer's own
+// path, so scaling them is another change).
 double spectral_radius(const JointLoop& loop, double gain_scale, int m, double f) {
-  const pid::Gains<double> k{gain_scale * loop.gains.kp, gain_scale * loop.gains.ki,
-                             gain_scale * loop.gains.kd};
-  const Eigen::VectorXcd lambda =
-      detail::closed_loop_matrix(loop, k, loop.plant_gain, m, f).eigenvalues();
+  const bool observed = loop.derivative == pid::DerivativeSource::Observer;
+  const double s = observed ? 1.0 : gain_scale;
+  const pid::Gains<double> k{s * loop.gains.kp, s * loop.gains.ki, s * loop.gains.kd};
+  const double c = observed ? gain_scale * loop.plant_gain : loop.plant_gain;
+  const Eigen::VectorXcd lambda = detail::closed_loop_matrix(loop, k, c, m, f).eigenvalues();
   double rho = 0.0;
   for (int i = 0; i < lambda.size(); ++i)
     rho = std::max(rho, std::abs(lambda(i)));

@@ -46,17 +46,25 @@ void advance(double& theta, double& omega, double u, double a, double c, double 
   omega = q * omega + c * p * u;
 }
 
-// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale) on θ̈ = c u − a θ̇ with its
+// Largest |θ| over the last tenth of a run of pid::Pid (gains × scale; with a velocity observer,
+// the plant's gain × scale, as margins() defines the loop gain then) on θ̈ = c u − a θ̇ with its
 // output reaching the plant delay_s later (held from then on until the next one arrives), stepped
 // exactly, from θ = 0.05 rad at rest.
 double simulate_delay(const JointLoop& loop, double scale, double delay_s, int ticks) {
+  const bool observed = loop.derivative == DerivativeSource::Observer;
+  const double gain_scale = observed ? 1.0 : scale;
   fuzzypid::pid::Config<double> config;
-  config.gains = {scale * loop.gains.kp, scale * loop.gains.ki, scale * loop.gains.kd};
+  config.gains = {gain_scale * loop.gains.kp, gain_scale * loop.gains.ki,
+                  gain_scale * loop.gains.kd};
   config.derivative_filter_s = loop.derivative_filter_s;
   config.derivative_source = loop.derivative;
+  config.observer_bandwidth_hz = loop.observer_bandwidth_hz;
+  config.observer_delay_ticks = loop.observer_delay_ticks;
+  config.observer_output_per_unit = 1.0 / loop.observer_plant_gain;
   config.anti_windup = fuzzypid::pid::AntiWindup::None;
   fuzzypid::pid::Pid<double> pid(config);
-  const double h = loop.tick_s, a = loop.damping_per_s, c = loop.plant_gain;
+  const double h = loop.tick_s, a = loop.damping_per_s;
+  const double c = observed ? scale * loop.plant_gain : loop.plant_gain;
   // delay_s = (m + f) h: over tick k the plant sees u_{k-m-1} for f h, then u_{k-m}.
   const double ticks_delay = delay_s / h;
   const double near = std::round(ticks_delay);
@@ -209,6 +217,40 @@ TEST(Margins, RandomJointsStableBelowAndDivergentAboveGainMargin) {
     const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
     EXPECT_LT(simulate(loop, 0.95 * gm, 0, 40000), 1e-3) << "trial " << trial;
     EXPECT_GT(simulate(loop, 1.05 * gm, 0, 40000), 1.0) << "trial " << trial;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+// A velocity observer in the loop (DerivativeSource::Observer, pid.hpp): the frequency response's
+// gain margin (now that of the plant's gain), the state matrix's stability boundary and pid::Pid
+// itself on the joint agree, over seeded random joints, bandwidths, modelled and real delays, and
+// observer models that are right or off by a factor of two.
+TEST(Margins, AVelocityObserverInTheLoopIsModelledAsPidRunsIt) {
+  const std::uint64_t seed = 20261206;
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  fuzzypid::support::UniformReal<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    JointLoop loop;
+    loop.tick_s = 0.005 * std::pow(10.0, unit(rng));   // 5 .. 50 ms
+    loop.plant_gain = 0.5 * std::pow(4.0, unit(rng));  // J^ / J in 0.5 .. 2
+    loop.damping_per_s = 2.0 * unit(rng);
+    const double wb = (0.03 + 0.12 * unit(rng)) * M_PI / loop.tick_s;
+    loop.gains = {wb * wb, 0.1 * wb * wb * wb, (1.0 + unit(rng)) * wb};
+    loop.derivative_filter_s = 0.5 * unit(rng) * loop.tick_s;
+    loop.derivative = DerivativeSource::Observer;
+    loop.observer_bandwidth_hz = (0.05 + 0.3 * unit(rng)) / loop.tick_s;
+    loop.observer_delay_ticks = static_cast<int>(unit(rng) * 2.0);  // 0 or 1
+    loop.observer_plant_gain = unit(rng) < 0.5 ? 1.0 : 2.0 * loop.plant_gain;
+    loop.delay_ticks = static_cast<int>(unit(rng) * 2.0);
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    if (!m.stable || !std::isfinite(m.gain_margin_db)) continue;
+    ++checked;
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 1e3), gm, 1e-6 * gm) << "trial " << trial;
+    EXPECT_LT(simulate(loop, 0.95 * gm, loop.delay_ticks, 40000), 1e-3) << "trial " << trial;
+    EXPECT_GT(simulate(loop, 1.05 * gm, loop.delay_ticks, 40000), 1.0) << "trial " << trial;
   }
   EXPECT_GE(checked, 15);
 }

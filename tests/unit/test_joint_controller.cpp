@@ -203,11 +203,12 @@ TEST(JointController, ThePapersControllerRunsThePapersFuzzyPidOnEveryJoint) {
   EXPECT_EQ(out.status, Status::Ok);
 }
 
-TEST(JointController, SixPaperJointsShareOneRuleBaseAndFitInTwoKilobytes) {
-  // Per-joint state only (integrator, previous error, gains, filter); the rule base is shared.
-  static_assert(sizeof(fuzzypid::paper::JointController<double, 6>) <= 2048);
+TEST(JointController, SixPaperJointsShareOneRuleBaseAndFitIn2400Bytes) {
+  // Per-joint state only (integrator, previous error, gains, filter, the velocity observer's
+  // estimate and last four commands: 2,304 bytes for six double joints); the rule base is shared.
+  static_assert(sizeof(fuzzypid::paper::JointController<double, 6>) <= 2400);
   static_assert(sizeof(fuzzypid::paper::JointController<double, 6>) <
-                sizeof(fuzzypid::paper::System<double>) + 2048);
+                sizeof(fuzzypid::paper::System<double>) + 2400);
   const auto controller = fuzzypid::paper::make_joint_controller<double, 6>();
   for (std::size_t i = 1; i < 6; ++i)
     EXPECT_EQ(controller.joint(i).supervisor(), controller.joint(0).supervisor());

@@ -669,4 +669,112 @@ TEST(Pid, DerivativeOnMeasurementWithRatesIgnoresTheSetpointRate) {
   }
 }
 
+// --- Velocity observer (DerivativeSource::Observer) ---
+
+Config observer_config(double bandwidth_hz, int delay_ticks) {
+  Config c = gains_only(0.0, 0.0, 0.0);
+  c.derivative_source = DerivativeSource::Observer;
+  c.observer_bandwidth_hz = bandwidth_hz;
+  c.observer_delay_ticks = delay_ticks;
+  return c;
+}
+
+// The estimation error (y^ - y, w^ - w) of a joint that moves as the observer's model says obeys
+// x_k = (I - L C) A x_{k-1}, whatever the command: checked against that product, tick by tick, for
+// a command driven through the feed-forward, a wrong start rate and each modelled delay.
+TEST(PidObserver, ItsErrorFollowsTheObserverMatrixForAJointThatMovesAsItsModel) {
+  const double dt = 0.05, f = 1.5;
+  const double p = 1.0 / (1.0 + 2.0 * 3.14159265358979323846 * f * dt);
+  const double l1 = 1.0 - p * p, l2 = (1.0 - p) * (1.0 - p);
+  for (int delay = 0; delay <= fuzzypid::pid::kMaxObserverDelayTicks; ++delay) {
+    Pid pid(observer_config(f, delay));
+    std::array<double, 8> commands{};  // newest first: what the joint receives `delay` ticks late
+    DoubleIntegrator joint{1.0, 0.3, -0.2};
+    const double start_rate_error = 0.7;
+    double ex = 0.0, ev = start_rate_error;  // the error after the first tick
+    for (int k = 0; k < 120; ++k) {
+      Input in = at(0.0, joint.position, joint.velocity + (k == 0 ? start_rate_error : 0.0));
+      in.feed_forward = std::sin(0.37 * k) * 4.0;
+      ASSERT_EQ(pid.update(in, dt), Status::Ok);
+      if (k > 0) {
+        // Predicted error, then corrected: x = (I - L C) A x.
+        const double px = ex + dt * ev, pv = ev;
+        ex = (1.0 - l1) * px;
+        ev = pv - l2 * px / dt;
+      }
+      EXPECT_NEAR(pid.derivative(), 0.0 - (joint.velocity + ev), 1e-9) << delay << " " << k;
+      for (std::size_t j = commands.size() - 1; j > 0; --j)
+        commands[j] = commands[j - 1];
+      commands[0] = pid.output();
+      joint.step(commands[static_cast<std::size_t>(delay)], dt);
+    }
+    EXPECT_LT(std::fabs(ev), 1e-6 * start_rate_error) << delay;
+  }
+}
+
+// What the observer is for: an encoder of N counts per revolution read at a 50 ms tick. The
+// differenced rate of a joint turning at a constant speed jumps by a count per tick, 2 pi / N /
+// dt; the observer's estimate stays within a fifth of that (1 Hz), and the D term with it.
+TEST(PidObserver, ItSmoothsTheRateOfACoarseEncoderThatDifferencingPassesOn) {
+  const double dt = 0.05, count = 2.0 * 3.14159265358979323846 / 16384.0, speed = 0.0123;
+  const auto quantised = [count](double x) { return std::round(x / count) * count; };
+  Config difference = gains_only(0.0, 0.0, 1.0);
+  difference.derivative_source = DerivativeSource::Difference;
+  Config observer = observer_config(1.0, 1);
+  observer.gains = {0.0, 0.0, 1.0};
+  // The joint turns whatever the command: a model acceleration of u / 1e12 is none.
+  observer.observer_output_per_unit = 1e12;
+  Pid a(difference), b(observer);
+  double worst_difference = 0.0, worst_observer = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    const double y = speed * dt * k;
+    Input in = at(0.0, quantised(y), k == 0 ? speed : 0.0);
+    in.setpoint_rate = 0.0;
+    ASSERT_EQ(a.update(in, dt), Status::Ok);
+    ASSERT_EQ(b.update(in, dt), Status::Ok);
+    if (k < 100) continue;  // settled
+    worst_difference = std::max(worst_difference, std::fabs(-a.output() - speed));
+    worst_observer = std::max(worst_observer, std::fabs(-b.output() - speed));
+  }
+  EXPECT_GT(worst_difference, 0.45 * count / dt);
+  EXPECT_LT(worst_observer, 0.2 * count / dt);
+}
+
+// A fault leaves the observer as it was: the ticks after it are those of a run without it.
+TEST(PidObserver, AFaultLeavesTheEstimateAndTheCommandHistoryUntouched) {
+  Config c = observer_config(2.0, 1);
+  c.gains = {3.0, 0.5, 0.8};
+  Pid clean(c), faulted(c);
+  for (int k = 0; k < 30; ++k) {
+    const Input in = at(0.2, 0.01 * k, 0.1);
+    if (k == 11) {
+      EXPECT_EQ(faulted.update(at(0.2, kNaN), 0.05), Status::NonFiniteInput);
+      EXPECT_EQ(faulted.update(in, -1.0), Status::InvalidTimeStep);
+    }
+    ASSERT_EQ(clean.update(in, 0.05), Status::Ok);
+    ASSERT_EQ(faulted.update(in, 0.05), Status::Ok);
+    EXPECT_EQ(clean.output(), faulted.output()) << k;
+  }
+}
+
+// An observer needs a bandwidth, an output scale and a delay it models; anything else is refused.
+TEST(PidObserver, AnObserverWithoutABandwidthOrBeyondThreeTicksIsRefused) {
+  EXPECT_TRUE(observer_config(1.0, 0).valid());
+  EXPECT_TRUE(observer_config(1.0, fuzzypid::pid::kMaxObserverDelayTicks).valid());
+  EXPECT_FALSE(observer_config(0.0, 1).valid());
+  EXPECT_FALSE(observer_config(kInf, 1).valid());
+  EXPECT_FALSE(observer_config(kNaN, 1).valid());
+  EXPECT_FALSE(observer_config(1.0, -1).valid());
+  EXPECT_FALSE(observer_config(1.0, fuzzypid::pid::kMaxObserverDelayTicks + 1).valid());
+  Config scale = observer_config(1.0, 1);
+  scale.observer_output_per_unit = 0.0;
+  EXPECT_FALSE(scale.valid());
+  Pid pid;
+  EXPECT_EQ(pid.configure(observer_config(0.0, 1)), Status::InvalidConfig);
+  // Without the observer its settings are not read.
+  Config rates = observer_config(0.0, 9);
+  rates.derivative_source = DerivativeSource::Rates;
+  EXPECT_TRUE(rates.valid());
+}
+
 }  // namespace

@@ -49,8 +49,10 @@ inline constexpr std::array<EnumName<paper::Tables>, 2> kRuleBaseNames{
     {{paper::Tables::Printed, "paper-printed"}, {paper::Tables::Corrected, "paper-corrected"}}};
 inline constexpr std::array<EnumName<paper::Tables>, 2> kPaperTablesNames{
     {{paper::Tables::Printed, "printed"}, {paper::Tables::Corrected, "corrected"}}};
-inline constexpr std::array<EnumName<pid::DerivativeSource>, 2> kDerivativeSourceNames{
-    {{pid::DerivativeSource::Rates, "rates"}, {pid::DerivativeSource::Difference, "difference"}}};
+inline constexpr std::array<EnumName<pid::DerivativeSource>, 3> kDerivativeSourceNames{
+    {{pid::DerivativeSource::Rates, "rates"},
+     {pid::DerivativeSource::Difference, "difference"},
+     {pid::DerivativeSource::Observer, "observer"}}};
 inline constexpr std::array<EnumName<pid::DerivativeOn>, 2> kDerivativeOnNames{
     {{pid::DerivativeOn::Error, "error"}, {pid::DerivativeOn::Measurement, "measurement"}}};
 inline constexpr std::array<EnumName<pid::AntiWindup>, 3> kAntiWindupNames{
@@ -145,6 +147,11 @@ struct PidOptions {
   pid::DerivativeOn derivative_on = pid::DerivativeOn::Error;
   pid::AntiWindup anti_windup = pid::AntiWindup::Clamping;
   double derivative_filter_s = 0.0;
+  // derivative = "observer" (pid.hpp's velocity observer): its bandwidth, Hz (> 0), and the ticks
+  // of computation delay it models (0 .. pid::kMaxObserverDelayTicks; the sim's delay_ms is
+  // usually one tick). Only with acceleration gain units: the observer reads the command as rad/s².
+  double observer_bandwidth_hz = 0.0;
+  int observer_delay_ticks = 1;
 };
 
 // Model-based feed-forward added to the PID's torque.

@@ -11,9 +11,23 @@
 // The error rate ec (error()) is the one definition of de/dt, chosen by DerivativeSource:
 //   Rates       ec = setpoint_rate - measurement_rate      (Eq. 2 as written)
 //   Difference  ec = (e - e_prev) / dt                     (0 without a previous sample)
+//   Observer    ec = setpoint_rate - w^                    (w^: the velocity observer below)
 // and d_raw is ec with DerivativeOn::Error, or the measurement's part alone with
-// DerivativeOn::Measurement (-measurement_rate, or -(y - y_prev) / dt), which gives no derivative
-// kick when the setpoint steps. The filter is d = d_prev + dt / (Tf + dt) (d_raw - d_prev)
+// DerivativeOn::Measurement (-measurement_rate, -(y - y_prev) / dt or -w^), which gives no
+// derivative kick when the setpoint steps.
+//
+// The velocity observer (DerivativeSource::Observer) is what a drive uses when its encoder is
+// coarse for its tick: a rate differenced from a quantised angle moves in steps of one count per
+// tick, and the D term passes each step on. The observer follows the measured angle y with a model
+// of the joint, a double integrator driven by the PID's own output a = u / observer_output_per_unit
+// (rad/s², u of observer_delay_ticks + 1 ticks ago: the command that acted over the last tick):
+//   predict  y^- = y^ + w^ dt + a dt^2 / 2,   w^- = w^ + a dt
+//   correct  r = y - y^-,   y^ = y^- + l1 r,   w^ = w^- + l2 r / dt
+// with l1 = 1 - p^2, l2 = (1 - p)^2: both poles of the estimation error at p = 1 / (1 + 2 pi F
+// dt), the backward-Euler image of a double pole at -2 pi F (F = observer_bandwidth_hz; as F dt
+// grows, p -> 0, y^ -> y and w^ -> the differenced rate plus a dt / 2). A quantisation step of q
+// then moves w^ by l2 q / dt instead of q / dt. The first tick (no previous sample) starts it at
+// y^ = y, w^ = measurement_rate. The filter is d = d_prev + dt / (Tf + dt) (d_raw - d_prev)
 // (Tf = 0: no filter).
 //
 // The gains are an argument of the tick: update(in, dt) runs with the configured gains
@@ -39,6 +53,8 @@
 // allocates, throws, locks or prints.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -49,7 +65,10 @@
 namespace fuzzypid::pid {
 
 enum class DerivativeOn : std::uint8_t { Error, Measurement };
-enum class DerivativeSource : std::uint8_t { Rates, Difference };
+enum class DerivativeSource : std::uint8_t { Rates, Difference, Observer };
+
+// The most ticks of computation delay the velocity observer models (Config::observer_delay_ticks).
+inline constexpr int kMaxObserverDelayTicks = 3;
 enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
 
 template <class Scalar>
@@ -61,18 +80,28 @@ struct Config {
   Scalar integral_min = -detail::infinity<Scalar>();  // limits on I, in output units
   Scalar integral_max = detail::infinity<Scalar>();
   Scalar tracking_gain_per_s = Scalar(0);  // Kt of back-calculation, 1/s
+  // DerivativeSource::Observer only (see the header comment):
+  Scalar observer_bandwidth_hz = Scalar(0);     // F, Hz, > 0
+  Scalar observer_output_per_unit = Scalar(1);  // output units per rad/s² (1: u is an acceleration)
+  int observer_delay_ticks = 1;                 // 0 .. kMaxObserverDelayTicks
   DerivativeOn derivative_on = DerivativeOn::Error;
   DerivativeSource derivative_source = DerivativeSource::Rates;
   AntiWindup anti_windup = AntiWindup::Clamping;
 
-  // Gains finite; limits ordered (infinite allowed); Tf and Kt finite and non-negative.
+  // Gains finite; limits ordered (infinite allowed); Tf and Kt finite and non-negative; with the
+  // observer, F and the output scale finite and positive, the delay within 0 .. 3 ticks.
   constexpr bool valid() const noexcept {
     const auto not_nan = [](Scalar x) { return x == x; };
+    const bool observer =
+        derivative_source != DerivativeSource::Observer ||
+        (detail::is_finite(observer_bandwidth_hz) && observer_bandwidth_hz > Scalar(0) &&
+         detail::is_finite(observer_output_per_unit) && observer_output_per_unit > Scalar(0) &&
+         observer_delay_ticks >= 0 && observer_delay_ticks <= kMaxObserverDelayTicks);
     return gains.finite() && not_nan(output_min) && not_nan(output_max) &&
            output_min <= output_max && not_nan(integral_min) && not_nan(integral_max) &&
            integral_min <= integral_max && detail::is_finite(derivative_filter_s) &&
            derivative_filter_s >= Scalar(0) && detail::is_finite(tracking_gain_per_s) &&
-           tracking_gain_per_s >= Scalar(0);
+           tracking_gain_per_s >= Scalar(0) && observer;
   }
 };
 
@@ -139,6 +168,8 @@ class Pid {
   constexpr void reset() noexcept {
     integral_ = derivative_ = output_ = unsaturated_ = Scalar(0);
     previous_error_ = previous_measurement_ = Scalar(0);
+    observer_ = {};
+    past_output_ = {};
     terms_ = {};
     has_previous_ = false;
   }
@@ -162,6 +193,8 @@ class Pid {
     output_ = unsaturated_ = output;
     previous_error_ = e;
     previous_measurement_ = in.measurement;
+    observer_ = {in.measurement, in.measurement_rate};
+    past_output_.fill(output);
     has_previous_ = true;
     return Status::Ok;
   }
@@ -173,10 +206,30 @@ class Pid {
     Scalar ec = Scalar(0);
     if (config_.derivative_source == DerivativeSource::Rates) {
       ec = in.setpoint_rate - in.measurement_rate;
+    } else if (config_.derivative_source == DerivativeSource::Observer) {
+      ec = in.setpoint_rate - observe(in, dt_s).velocity;
     } else if (has_previous_) {
       ec = (e - previous_error_) / dt_s;
     }
     return {e, ec};
+  }
+
+  // The velocity observer's estimate after this input (DerivativeSource::Observer; see the header
+  // comment). Pure; meaningful for finite inputs and a valid dt.
+  struct Estimate {
+    Scalar position = Scalar(0);  // y^, units of the measurement
+    Scalar velocity = Scalar(0);  // w^, per second
+  };
+  constexpr Estimate observe(const Input& in, Scalar dt_s) const noexcept {
+    if (!has_previous_) return {in.measurement, in.measurement_rate};
+    const auto lag = static_cast<std::size_t>(config_.observer_delay_ticks);
+    const Scalar a = past_output_[lag] / config_.observer_output_per_unit;
+    const Scalar y = observer_.position + observer_.velocity * dt_s + Scalar(0.5) * a * dt_s * dt_s;
+    const Scalar w = observer_.velocity + a * dt_s;
+    constexpr Scalar kTwoPi = Scalar(6.283185307179586476925286766559L);
+    const Scalar p = Scalar(1) / (Scalar(1) + kTwoPi * config_.observer_bandwidth_hz * dt_s);
+    const Scalar r = in.measurement - y;
+    return {y + (Scalar(1) - p * p) * r, w + (Scalar(1) - p) * (Scalar(1) - p) * r / dt_s};
   }
 
   // Whether update() would accept this input and dt: InvalidConfig, InvalidTimeStep,
@@ -202,11 +255,15 @@ class Pid {
     const ErrorSignal err = error(in, dt_s);
     const Scalar e = err.e;
 
+    const bool observed = config_.derivative_source == DerivativeSource::Observer;
+    const Estimate estimate = observed ? observe(in, dt_s) : Estimate{};
     Scalar d_raw = err.ec;
     if (config_.derivative_on == DerivativeOn::Measurement) {
       if (config_.derivative_source == DerivativeSource::Rates) {
         // setpoint_rate * 0 keeps a NaN/inf setpoint rate visible to the check on v below.
         d_raw = in.setpoint_rate * Scalar(0) - in.measurement_rate;
+      } else if (observed) {
+        d_raw = in.setpoint_rate * Scalar(0) - estimate.velocity;
       } else {
         d_raw = has_previous_ ? -(in.measurement - previous_measurement_) / dt_s : Scalar(0);
       }
@@ -251,6 +308,12 @@ class Pid {
     derivative_ = d;
     previous_error_ = e;
     previous_measurement_ = in.measurement;
+    if (observed) {
+      observer_ = estimate;
+      for (std::size_t j = past_output_.size() - 1; j > 0; --j)
+        past_output_[j] = past_output_[j - 1];
+      past_output_[0] = u;
+    }
     has_previous_ = true;
     unsaturated_ = v;
     output_ = u;
@@ -288,10 +351,10 @@ class Pid {
     return Status::NumericOverflow;
   }
 
-  // The inputs the tick reads are finite (the rates only with DerivativeSource::Rates).
+  // The inputs the tick reads are finite (the rates not with DerivativeSource::Difference).
   constexpr bool finite(const Input& in) const noexcept {
     using detail::is_finite;
-    const bool rates = config_.derivative_source == DerivativeSource::Rates;
+    const bool rates = config_.derivative_source != DerivativeSource::Difference;
     return is_finite(in.setpoint) && is_finite(in.measurement) && is_finite(in.feed_forward) &&
            (!rates || (is_finite(in.setpoint_rate) && is_finite(in.measurement_rate)));
   }
@@ -303,6 +366,9 @@ class Pid {
   Scalar unsaturated_ = Scalar(0);
   Scalar previous_error_ = Scalar(0);
   Scalar previous_measurement_ = Scalar(0);
+  Estimate observer_{};  // y^, w^ after the last tick
+  std::array<Scalar, kMaxObserverDelayTicks + 1>
+      past_output_{};  // u of the last ticks, newest first
   Terms<Scalar> terms_{};
   Status configured_ = Status::Ok;
   bool has_previous_ = false;

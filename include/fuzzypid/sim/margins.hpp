@@ -9,6 +9,9 @@
 //               or (e_k − e_{k−1}) / h (Difference), d_k = d_{k−1} + β (d_raw − d_{k−1}) with
 //               β = h / (Tf + h), u_k = P + I_k + Kd d_k; gains in continuous SI form.
 //               DerivativeOn does not matter here: with a constant setpoint both give the same d.
+//               With DerivativeSource::Observer d_raw = −ŵ_k, the velocity observer's estimate
+//               (x̂ = (ŷ, ŵ): x̂_k = Φo x̂_{k−1} + Γo c_m u_{k−1−d_o} + K θ_k, Φo = (I − K C) A,
+//               Γo = (I − K C) B for the double integrator A, B at h, C = (1 0), K = (l1, l2 / h)).
 //   current loop (torque_bandwidth_hz F > 0) the plant receives v, the command lagged to first
 //               order: v̇ = 2π F (u_delayed − v), as robot::Plant applies torque_bandwidth_hz;
 //               discretised exactly (matrix exponential) with the ZOH.
@@ -18,7 +21,12 @@
 // Broken at the plant input, the loop transfer is (1 + L = 0 closes it)
 //   L(z) = z^−d [ (Kp + Ki h z / (z − 1)) Pθ(z) + Kd F(z) D(z) ],
 //   F(z) = β z / (z − 1 + β),  D = Pω (Rates) or (1 − z^−1) Pθ / h (Difference),
-// with Pθ, Pω the ZOH transfers from u to θ and θ̇ (the fraction f of a tick included).
+// with Pθ, Pω the ZOH transfers from u to θ and θ̇ (the fraction f of a tick included). With the
+// observer, ŵ = Gθ(z) θ + Gu(z) u, so D = Gθ Pθ and the loop is
+//   L(z) = z^−d [ (Kp + Ki h z / (z − 1)) Pθ(z) + Kd F(z) Gθ(z) Pθ(z) ] / (1 + Kd F(z) Gu(z)),
+// Gθ = e2ᵀ (I − Φo/z)⁻¹ K, Gu = e2ᵀ (I − Φo/z)⁻¹ Γo c_m z^−(1+d_o). Its gain margin is that of
+// the plant's gain (L scales with c; closed_loop_spectral_radius scales c, not the PID's gains,
+// which with an observer is not the same).
 //
 // The margins follow MATLAB's allmargin and diskmargin:
 //   gain margin     at each phase crossover ω_p (L(e^{jω_p h}) real and negative, including the
@@ -64,6 +72,12 @@ struct JointLoop {
   // The current loop, a first-order lag on the (delayed) command, Hz; 0: ideal (robot::PlantConfig's
   // torque_bandwidth_hz). With it the plant is θ̈ = c v − a θ̇, v̇ = 2π F (u − v).
   double torque_bandwidth_hz = 0.0;
+  // DerivativeSource::Observer (pid.hpp): the observer's bandwidth F (Hz, > 0), the ticks of delay
+  // it models (0 .. pid::kMaxObserverDelayTicks) and its model's c (rad/s² per unit of u: 1 with
+  // acceleration gain units, whatever the plant's c is).
+  double observer_bandwidth_hz = 0.0;
+  int observer_delay_ticks = 1;
+  double observer_plant_gain = 1.0;
 };
 
 struct LoopMargins {
@@ -87,7 +101,7 @@ struct LoopMargins {
 [[nodiscard]] std::complex<double> loop_response(const JointLoop& loop, double omega_rad_s);
 
 // Spectral radius of the closed loop with the loop gain scaled by `gain_scale` (all three PID
-// gains multiplied) and `extra_delay_ticks` more ticks of delay.
+// gains multiplied; with an observer, the plant's gain) and `extra_delay_ticks` more ticks of delay.
 [[nodiscard]] double closed_loop_spectral_radius(const JointLoop& loop, double gain_scale = 1.0,
                                                  int extra_delay_ticks = 0);
 
