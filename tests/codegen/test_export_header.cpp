@@ -25,6 +25,7 @@
 #include "fuzzypid/supervisor/joint_controller.hpp"
 #include "paper_fuzzy.hpp"
 #include "rule_table_fuzzy.hpp"
+#include "observer_pid.hpp"
 #include "tuned_fuzzy.hpp"
 #include "tuned_fuzzy_rules.hpp"
 #include "tuned_pid.hpp"
@@ -108,6 +109,15 @@ TEST(ExportHeader, GeneratedControllersEqualTheFilesBitForBit) {
   expect_equal_to_file("tuned_fuzzy.toml", tuned_fuzzy::make_controller<double>(3.0));
   expect_equal_to_file("tuned_fuzzy_rules.toml", tuned_fuzzy_rules::make_controller<double>(3.0));
   expect_equal_to_file("paper_fuzzy.toml", paper_fuzzy::make_controller<double>(3.0));
+}
+
+// The velocity observer (derivative = "observer") is part of the exported PID's configuration.
+TEST(ExportHeader, AControllerWithAVelocityObserverEqualsItsFileBitForBit) {
+  constexpr auto config = observer_pid::pid_config<double>(3.0);
+  static_assert(config.derivative_source == fuzzypid::pid::DerivativeSource::Observer);
+  static_assert(config.observer_bandwidth_hz == 1.2 && config.observer_delay_ticks == 1);
+  expect_equal_to_file("observer_pid.toml", observer_pid::make_controller<double>(3.0),
+                       "/tests/sim/data/");
 }
 
 TEST(ExportHeader, RuleFileControllersEqualTheFilesBitForBit) {

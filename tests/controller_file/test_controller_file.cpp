@@ -606,6 +606,56 @@ TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
   EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Difference);
 }
 
+// derivative = "observer" with its bandwidth and modelled delay reads, reaches the PID, and is
+// written back as read; settings it cannot run with are refused naming the key.
+TEST(ControllerFile, AVelocityObserverIsReadWrittenBackAndReachesThePid) {
+  const std::string observer = std::string(kValid) +
+                               "[pid]\nderivative = \"observer\"\nobserver_bandwidth_hz = 1.5\n"
+                               "observer_delay_ticks = 0\n";
+  controller::ControllerSpec spec;
+  fuzzypid::FileError error;
+  ASSERT_TRUE(cf::parse(observer, "ok.toml", spec, error)) << error.to_string();
+  EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Observer);
+  EXPECT_EQ(spec.pid.observer_bandwidth_hz, 1.5);
+  EXPECT_EQ(spec.pid.observer_delay_ticks, 0);
+  const auto pc = controller::pid_config(spec, 1.0);
+  EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Observer);
+  EXPECT_EQ(pc.observer_bandwidth_hz, 1.5);
+  EXPECT_EQ(pc.observer_delay_ticks, 0);
+  EXPECT_TRUE(pc.valid());
+  const std::string text = cf::to_toml(spec);
+  EXPECT_NE(text.find("derivative = \"observer\"\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("observer_bandwidth_hz = 1.5\nobserver_delay_ticks = 0\n"), std::string::npos)
+      << text;
+  controller::ControllerSpec back;
+  ASSERT_TRUE(cf::parse(text, "back.toml", back, error)) << error.to_string();
+  EXPECT_EQ(cf::to_toml(back), text);
+  // Without the observer its keys are not written.
+  EXPECT_EQ(cf::to_toml(controller::paper_pid()).find("observer"), std::string::npos);
+
+  const auto refused = [](const std::string& text) {
+    controller::ControllerSpec s;
+    fuzzypid::FileError e;
+    EXPECT_FALSE(cf::parse(text, "bad.toml", s, e)) << text;
+    return e.to_string();
+  };
+  const std::string pid = std::string(kValid) + "[pid]\n";
+  EXPECT_NE(refused(pid + "derivative = \"observer\"\n")
+                .find("observer_bandwidth_hz must be within (0, 1e6] Hz"),
+            std::string::npos);
+  EXPECT_NE(refused(pid + "observer_bandwidth_hz = 2.0\n")
+                .find("observer_bandwidth_hz applies only to derivative = \"observer\""),
+            std::string::npos);
+  EXPECT_NE(
+      refused(pid +
+              "derivative = \"observer\"\nobserver_bandwidth_hz = 2.0\nobserver_delay_ticks = 4\n")
+          .find("bad.toml:13:24: observer_delay_ticks must be 0 .. 3"),
+      std::string::npos);
+  std::string torque = pid + "derivative = \"observer\"\nobserver_bandwidth_hz = 2.0\n";
+  torque.replace(torque.find("\"acceleration\""), 14, "\"torque\"");
+  EXPECT_NE(refused(torque).find("needs gains in acceleration units"), std::string::npos);
+}
+
 // gain_update = "incremental" reaches the runtime fuzzy controller's configuration.
 TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
   controller::ControllerSpec spec = controller::paper_fuzzy();

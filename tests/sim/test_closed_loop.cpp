@@ -22,6 +22,7 @@
 #include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/closed_loop.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "fuzzypid/sim/metrics.hpp"
 #include "fuzzypid/sim/random.hpp"
 #include "fuzzypid/supervisor/fuzzy_pid.hpp"
 #include "fuzzypid/supervisor/gain_schedule.hpp"
@@ -705,6 +706,51 @@ TEST_F(ClosedLoopTest, AWiderCoulombSmoothingReachesThePlantAndKeepsAStuckWristS
   EXPECT_GT(wrist_stiff, 0.3);
   EXPECT_GT(wrist_wide, 0.3);
   EXPECT_NEAR(itae_wide / itae_stiff, 1.0, 0.2);
+}
+
+// What the velocity observer is for: with a 2^14-count encoder at the 50 ms tick, one tick of
+// delay, a current loop and a 12 Hz gear, tuned_pid's command reverses with the encoder's counts
+// through its D term; the same gains with a 1.2 Hz observer (tests/sim/data/observer_pid.toml)
+// reverse on a few per cent of the ticks, still track, and every run stays without faults.
+TEST_F(ClosedLoopTest, AVelocityObserverQuietsTheCommandOfACoarseEncoder) {
+  sim::Condition c;
+  c.initial_error_rad = 0.05;
+  c.effects.encoder_counts = 16384;
+  c.effects.delay_s = 0.05;
+  c.effects.torque_bandwidth_hz = 50.0;
+  c.effects.joint_resonance_hz.fill(12.0);
+  c.effects.joint_damping_ratio = 0.05;
+  const auto worst = [&](const controller::ControllerSpec& spec, double& itae) {
+    const sim::RunResult r = experiment_->run(c, spec);
+    EXPECT_TRUE(r.ok) << r.error;
+    EXPECT_FALSE(r.tracking_faults.any());
+    std::array<std::vector<double>, kJ> u;
+    itae = 0.0;
+    for (const sim::TrajectoryRow& row : r.rows) {
+      u[static_cast<std::size_t>(row.joint - 1)].push_back(row.u);
+      itae += row.t_s * std::fabs(row.error) * experiment_->options().tick_s;
+    }
+    double pct = 0.0;
+    for (const auto& joint : u)
+      pct = std::fmax(pct, sim::reversals_pct(joint));
+    return pct;
+  };
+  const auto load = [](const std::string& file) {
+    controller::ControllerSpec spec;
+    fuzzypid::FileError err;
+    EXPECT_TRUE(cf::load(FUZZYPID_SOURCE_DIR "/" + file, spec, err)) << err.to_string();
+    return spec;
+  };
+  double itae_rates = 0.0, itae_observer = 0.0;
+  const double rates = worst(load("controllers/tuned_pid.toml"), itae_rates);
+  const double observer = worst(load("tests/sim/data/observer_pid.toml"), itae_observer);
+  std::printf(
+      "[ observer ] worst joint's reversals %.1f %% (rates) %.1f %% (observer); summed ITAE "
+      "%.3f %.3f\n",
+      rates, observer, itae_rates, itae_observer);
+  EXPECT_GT(rates, 20.0);
+  EXPECT_LT(observer, 10.0);
+  EXPECT_LT(itae_observer, 1.2 * itae_rates);
 }
 
 TEST_F(ClosedLoopTest, InvalidConditionsAreRefused) {
