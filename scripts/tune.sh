@@ -18,6 +18,8 @@
 #   THREADS=N  threads per run (default: all cores)          SKIP_SEEDS=1   only seed 1
 #   RULES_ARGS="..."  the fuzzy-rules stage's regulariser (default: the documented defaults)
 #   RESUME=1   keep the seed files that exist (the runs are deterministic for a seed)
+#   BASE=FILE  every run starts from FILE's units and PID options (--base), e.g. a PID whose
+#              derivative is the velocity observer, whose bandwidth is then searched too
 #   CHATTER_WEIGHT=W CHATTER_LIMIT=L   the objective's chatter weight above L % reversals (defaults
 #                      300 and 5: docs/tuning.md, "Chatter")
 # The controllers shipped before the drive re-tune came from
@@ -42,6 +44,7 @@ tune_one() {
   local common=(--conditions "${conditions}" --set training --validation 4 --seed "$2"
                 --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}"
                 "${filter}" --threads "${threads}" --quiet --out "$3")
+  if [ -n "${BASE:-}" ]; then common+=(--base "${BASE}"); fi
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086
     build/bin/fuzzypid tune --stages "${stages}" ${rules_args} "${common[@]}"

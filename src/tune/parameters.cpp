@@ -24,6 +24,7 @@ constexpr double kRatioBox[2] = {-2.0, 2.0};                                 // 
 constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // sp, si, sd
 // The derivative filter's time constant, s: 1 ms (no filter to speak of at a 50 ms tick) .. 1 s.
 constexpr double kFilterBox[2] = {-3.0, 0.0};
+constexpr double kObserverBox[2] = {-1.0, 1.0};
 // An inner center as a fraction of the next one out: 0.1 .. 0.955.
 constexpr double kFractionBox[2] = {-1.0, -0.02};
 
@@ -78,6 +79,7 @@ std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, d
     if (b.name == "ki" || (scales && b.name == "si")) exponent = 3.0;
     if (b.name == "kd" || (scales && b.name == "sd")) exponent = 1.0;
     if (b.name == "kec" || b.name == kFilterParameter) exponent = -1.0;
+    if (b.name == kObserverParameter) exponent = 1.0;
     b.log10_min += exponent * decades;
     b.log10_max += exponent * decades;
   }
@@ -90,6 +92,7 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
                                                      bool search_filter) {
   ParameterSpace p;
   p.search_filter_ = search_filter;
+  p.search_observer_ = search_filter && start.pid.derivative == pid::DerivativeSource::Observer;
   p.family_ = family;
   p.start_ = start;
   p.start_.family = family;
@@ -97,6 +100,8 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
   p.box_ = fixed_box(family);
   const auto with_filter = [&p]() -> std::optional<ParameterSpace> {
     if (p.search_filter_) p.box_.push_back({kFilterParameter, kFilterBox[0], kFilterBox[1]});
+    if (p.search_observer_)
+      p.box_.push_back({kObserverParameter, kObserverBox[0], kObserverBox[1]});
     return p;
   };
   if (!family_traits(family).rule_table) return with_filter();
@@ -175,7 +180,9 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   ControllerSpec s = start_;
   const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
   s.gains = {p(0), p(1), p(2)};
-  if (search_filter_) s.pid.derivative_filter_s = p(box_.size() - 1);
+  const std::size_t filter = box_.size() - (search_observer_ ? 2 : 1);
+  if (search_filter_) s.pid.derivative_filter_s = p(filter);
+  if (search_observer_) s.pid.observer_bandwidth_hz = p(box_.size() - 1);
   const controller::FamilyTraits& traits = family_traits(family_);
   if (traits.supervised()) {
     s.supervisor.error_scale = p(3);
@@ -213,6 +220,7 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
 std::vector<double> ParameterSpace::from_spec(const ControllerSpec& s) const {
   std::vector<double> x = from_spec_without_filter(s);
   if (search_filter_) x.push_back(std::log10(std::fmax(s.pid.derivative_filter_s, 1e-3)));
+  if (search_observer_) x.push_back(std::log10(s.pid.observer_bandwidth_hz));
   return x;
 }
 

@@ -372,3 +372,47 @@ TEST(SearchFilter, TfsBoxMovesWithTheTick) {
   EXPECT_NEAR(moved[0].log10_min, -3.0 - std::log10(5.0), 1e-12);
   EXPECT_NEAR(moved[0].log10_max, -std::log10(5.0), 1e-12);
 }
+
+// A start whose derivative is the velocity observer adds "observer_hz" after "tf": log10 of the
+// observer's bandwidth (Hz), which to_spec writes and from_spec reads back, tf keeping its value;
+// without --search-filter, or without the observer, nothing is added.
+TEST(SearchFilter, AnObserversBandwidthIsSearchedAfterTfAndRoundTrips) {
+  controller::ControllerSpec start = controller::paper_pid();
+  start.pid.derivative = fuzzypid::pid::DerivativeSource::Observer;
+  start.pid.observer_bandwidth_hz = 1.0;
+  for (const controller::Family family :
+       {named_family("pid"), named_family("scheduled"), named_family("fuzzy")}) {
+    tune::TableOptions o;
+    std::string error;
+    const auto plain =
+        tune::ParameterSpace::create(family, controller::paper_pid(), o, nullptr, error, true);
+    const auto observed = tune::ParameterSpace::create(family, start, o, nullptr, error, true);
+    const auto kept = tune::ParameterSpace::create(family, start, o, nullptr, error, false);
+    ASSERT_TRUE(plain && observed && kept) << error;
+    ASSERT_EQ(observed->box().size(), plain->box().size() + 1);
+    EXPECT_EQ(kept->box().size(), plain->box().size() - 1);
+    EXPECT_EQ(observed->box()[observed->box().size() - 2].name, "tf");
+    EXPECT_EQ(observed->box().back().name, "observer_hz");
+    EXPECT_EQ(observed->box().back().log10_min, -1.0);
+    EXPECT_EQ(observed->box().back().log10_max, 1.0);
+
+    std::vector<double> x = observed->from_spec(start);
+    EXPECT_EQ(x.back(), 0.0);  // 1 Hz
+    x[x.size() - 2] = std::log10(0.02);
+    x.back() = std::log10(3.5);
+    const controller::ControllerSpec s = observed->to_spec(x);
+    EXPECT_NEAR(s.pid.derivative_filter_s, 0.02, 1e-15);
+    EXPECT_NEAR(s.pid.observer_bandwidth_hz, 3.5, 1e-14);
+    EXPECT_EQ(s.pid.derivative, fuzzypid::pid::DerivativeSource::Observer);
+    const std::vector<double> back = observed->from_spec(s);
+    ASSERT_EQ(back.size(), x.size());
+    EXPECT_NEAR(back.back(), std::log10(3.5), 1e-12);
+    EXPECT_NEAR(back[back.size() - 2], std::log10(0.02), 1e-12);
+    EXPECT_EQ(kept->to_spec(kept->from_spec(start)).pid.observer_bandwidth_hz, 1.0);
+  }
+  // A bandwidth is a frequency: at a 10 ms tick its box moves up by log10(5).
+  const auto moved =
+      tune::box_for_tick({{"observer_hz", -1.0, 1.0}}, named_family("pid"), 0.05, 0.01);
+  EXPECT_NEAR(moved[0].log10_min, -1.0 + std::log10(5.0), 1e-12);
+  EXPECT_NEAR(moved[0].log10_max, 1.0 + std::log10(5.0), 1e-12);
+}

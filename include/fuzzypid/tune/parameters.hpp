@@ -35,8 +35,12 @@ namespace fuzzypid::tune {
 using controller::ControllerSpec;
 using controller::Family;
 
-// The searched derivative filter's name in a box (the last parameter with --search-filter).
+// The searched derivative filter's name in a box (the last parameter with --search-filter, or the
+// one before the observer's bandwidth).
 inline constexpr const char* kFilterParameter = "tf";
+// The searched velocity observer's bandwidth (the last parameter with --search-filter when the
+// start's derivative is "observer").
+inline constexpr const char* kObserverParameter = "observer_hz";
 
 enum class Symmetry : std::uint8_t { Even, Odd, None };
 inline constexpr std::array<EnumName<Symmetry>, 3> kSymmetryNames{
@@ -72,7 +76,9 @@ class ParameterSpace {
   // is required when options.unvisited is Seed). Returns nullopt with `error` set otherwise.
   // With search_filter, the last parameter is tf: log10 of the derivative filter's time constant
   // Tf (s), in [-3, 0] at a 0.05 s tick (1 ms, no filter to speak of, .. 20 ticks); a start's
-  // Tf below 1 ms enters the space at 1 ms.
+  // Tf below 1 ms enters the space at 1 ms. When start's derivative is "observer" it is followed
+  // by observer_hz: log10 of the observer's bandwidth F (Hz), in [-1, 1] at a 0.05 s tick (a tenth
+  // of a hertz .. 10 Hz, where the observer is nearly the differenced rate, pid.hpp).
   [[nodiscard]] static std::optional<ParameterSpace> create(
       Family family, const ControllerSpec& start, const TableOptions& options,
       const VisitMap* visits, std::string& error, bool search_filter = false);
@@ -110,7 +116,8 @@ class ParameterSpace {
   std::vector<CellClass> classes_;
   std::size_t first_cell_ = 0;  // index of the first cell parameter in x
   std::size_t held_cells_ = 0;
-  bool search_filter_ = false;  // tf is the last parameter
+  bool search_filter_ = false;    // tf is the last parameter, or the one before observer_hz
+  bool search_observer_ = false;  // observer_hz is the last parameter
 };
 
 // The start of a stage: `from` as a controller of family `to`, exactly (the same commands for
