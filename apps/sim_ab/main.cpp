@@ -200,8 +200,12 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
                    rules.c_str(), cf::file_hash(rules).c_str());
     }
     if (s.feedforward.gravity) std::fprintf(f, " feedforward=gravity");
-    std::fprintf(f, " derivative=%s\n",
+    std::fprintf(f, " derivative=%s",
                  fuzzypid::name_of(controller::kDerivativeSourceNames, s.pid.derivative));
+    if (s.pid.derivative == pid::DerivativeSource::Observer)
+      std::fprintf(f, " observer_bandwidth_hz=%.17g observer_delay_ticks=%d",
+                   s.pid.observer_bandwidth_hz, s.pid.observer_delay_ticks);
+    std::fprintf(f, "\n");
   }
 }
 

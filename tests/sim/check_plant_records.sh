@@ -42,6 +42,12 @@ grep -q "^sim_ab: plant dynamics decoupled, gravity off, payload 0 kg, delay 10 
   "$work/err" || fail "effects banner: $(cat "$work/err")"
 grep -q " delay_ms=10 torque_bandwidth_hz=0 encoder_counts=4096 coulomb_nm=1,2,3,4,5,6 .* coulomb_smoothing=0.029999999999999999 " \
   "$work/effects/settings.txt" || fail "effects settings: $(grep '^condition' "$work/effects/settings.txt")"
+# A controller's derivative source is on record, with the velocity observer's settings.
+"$sim_ab" --quiet --controller "$2/tests/sim/data/observer_pid.toml" --out "$work/observer" ||
+  fail "observer run"
+grep -q " derivative=observer observer_bandwidth_hz=1.2 observer_delay_ticks=1$" \
+  "$work/observer/settings.txt" ||
+  fail "observer settings: $(grep 'derivative' "$work/observer/settings.txt")"
 # The banner is a record too: a run whose standard error cannot be written exits 1.
 "$sim_ab" --out "$work/lost" >/dev/null 2>/dev/full && fail "sim_ab exits 0 with its banner lost"
 echo "plant records: conditions.csv, settings.txt and the banner name the plant"

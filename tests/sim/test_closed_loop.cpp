@@ -167,8 +167,11 @@ TEST_F(ClosedLoopTest, ARuleFileRunsLikeTheBuiltInTablesItEncodes) {
 }
 
 TEST_F(ClosedLoopTest, ATickAllocatesNothing) {
+  controller::ControllerSpec observed = controller::paper_pid();
+  observed.pid.derivative = pid::DerivativeSource::Observer;
+  observed.pid.observer_bandwidth_hz = 1.0;
   for (const controller::ControllerSpec& spec :
-       {controller::paper_pid(), controller::paper_fuzzy()}) {
+       {controller::paper_pid(), controller::paper_fuzzy(), observed}) {
     sim::Condition cond;
     cond.noise_position_rad = 1e-4;
     cond.contact_rad_s2 = 0.5;
