@@ -757,6 +757,22 @@ TEST(PidObserver, AFaultLeavesTheEstimateAndTheCommandHistoryUntouched) {
   }
 }
 
+// An observer switched on by configure() mid-run starts where the joint was last measured, at
+// rest: a joint held still reads no rate on the first observed tick.
+TEST(PidObserver, SwitchedOnMidRunItStartsAtTheLastMeasurementAtRest) {
+  Config rates = gains_only(0.0, 0.0, 2.0);
+  Pid pid(rates);
+  for (int k = 0; k < 5; ++k)
+    ASSERT_EQ(pid.update(at(0.0, 0.3, 0.0), 0.05), Status::Ok);
+  Config observer = observer_config(1.0, 1);
+  observer.gains = rates.gains;
+  ASSERT_EQ(pid.configure(observer), Status::Ok);
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_EQ(pid.update(at(0.0, 0.3, 0.0), 0.05), Status::Ok);
+    EXPECT_EQ(pid.output(), 0.0) << k;
+  }
+}
+
 // An observer needs a bandwidth, an output scale and a delay it models; anything else is refused.
 TEST(PidObserver, AnObserverWithoutABandwidthOrBeyondThreeTicksIsRefused) {
   EXPECT_TRUE(observer_config(1.0, 0).valid());

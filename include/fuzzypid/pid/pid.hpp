@@ -150,6 +150,13 @@ class Pid {
   // the configuration is invalid.
   [[nodiscard]] constexpr Status configure(const Config& config) noexcept {
     if (!config.valid()) return Status::InvalidConfig;
+    // An observer switched on mid-run starts at the last measurement, at rest, with the last
+    // output as every past command (its state was not kept while it was off).
+    if (config.derivative_source == DerivativeSource::Observer &&
+        config_.derivative_source != DerivativeSource::Observer) {
+      observer_ = {previous_measurement_, Scalar(0)};
+      past_output_.fill(output_);
+    }
     config_ = config;
     configured_ = Status::Ok;
     return Status::Ok;
