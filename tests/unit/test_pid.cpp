@@ -773,6 +773,28 @@ TEST(PidObserver, SwitchedOnMidRunItStartsAtTheLastMeasurementAtRest) {
   }
 }
 
+// The observer reads the measured rate on its first tick only: a NaN rate faults that tick, and
+// after it check() and update() agree that it is not read (the same output as a finite rate).
+TEST(PidObserver, TheMeasuredRateIsReadOnTheFirstTickOnly) {
+  Config c = observer_config(1.0, 1);
+  c.gains = {2.0, 0.1, 0.5};
+  Pid with_nan(c), with_rate(c);
+  EXPECT_EQ(with_nan.check(at(0.1, 0.0, kNaN), 0.05), Status::NonFiniteInput);
+  EXPECT_EQ(with_nan.update(at(0.1, 0.0, kNaN), 0.05), Status::NonFiniteInput);
+  ASSERT_EQ(with_nan.update(at(0.1, 0.0, 0.2), 0.05), Status::Ok);
+  ASSERT_EQ(with_rate.update(at(0.1, 0.0, 0.2), 0.05), Status::Ok);
+  for (int k = 1; k < 20; ++k) {
+    EXPECT_EQ(with_nan.check(at(0.1, 0.01 * k, kNaN), 0.05), Status::Ok);
+    ASSERT_EQ(with_nan.update(at(0.1, 0.01 * k, kNaN), 0.05), Status::Ok);
+    ASSERT_EQ(with_rate.update(at(0.1, 0.01 * k, 0.2), 0.05), Status::Ok);
+    EXPECT_EQ(with_nan.output(), with_rate.output()) << k;
+  }
+  // The setpoint rate is read on every tick.
+  Input bad = at(0.1, 0.3, 0.2);
+  bad.setpoint_rate = kInf;
+  EXPECT_EQ(with_nan.update(bad, 0.05), Status::NonFiniteInput);
+}
+
 // An observer needs a bandwidth, an output scale and a delay it models; anything else is refused.
 TEST(PidObserver, AnObserverWithoutABandwidthOrBeyondThreeTicksIsRefused) {
   EXPECT_TRUE(observer_config(1.0, 0).valid());

@@ -66,10 +66,10 @@ namespace fuzzypid::pid {
 
 enum class DerivativeOn : std::uint8_t { Error, Measurement };
 enum class DerivativeSource : std::uint8_t { Rates, Difference, Observer };
+enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
 
 // The most ticks of computation delay the velocity observer models (Config::observer_delay_ticks).
 inline constexpr int kMaxObserverDelayTicks = 3;
-enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
 
 template <class Scalar>
 struct Config {
@@ -358,12 +358,15 @@ class Pid {
     return Status::NumericOverflow;
   }
 
-  // The inputs the tick reads are finite (the rates not with DerivativeSource::Difference).
+  // The inputs the tick reads are finite: the setpoint rate with Rates and Observer, the
+  // measured rate with Rates and on the observer's first tick only (it starts from it).
   constexpr bool finite(const Input& in) const noexcept {
     using detail::is_finite;
-    const bool rates = config_.derivative_source != DerivativeSource::Difference;
+    const bool rates = config_.derivative_source == DerivativeSource::Rates;
+    const bool observed = config_.derivative_source == DerivativeSource::Observer;
     return is_finite(in.setpoint) && is_finite(in.measurement) && is_finite(in.feed_forward) &&
-           (!rates || (is_finite(in.setpoint_rate) && is_finite(in.measurement_rate)));
+           (!(rates || observed) || is_finite(in.setpoint_rate)) &&
+           (!(rates || (observed && !has_previous_)) || is_finite(in.measurement_rate));
   }
 
   Config config_{};
