@@ -1143,7 +1143,8 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                   "docs/tuning.md)");
   cmd->add_flag("--search-filter,!--keep-filter", t->search_filter,
                 "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
-                "[-3, 0] at a 50 ms tick; default), or keep the start's Tf");
+                "[-3, 0] at a 50 ms tick; default), and with a start whose derivative is "
+                "\"observer\" its bandwidth (observer_hz, log10 Hz in [-1, 1]); or keep both");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
 #if FUZZYPID_HAVE_MPI
   t->transport = mpi_transport;
