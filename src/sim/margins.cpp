@@ -79,10 +79,10 @@ bool valid(const JointLoop& l) {
            finite(l.observer_plant_gain) && l.observer_plant_gain > 0.0));
 }
 
-// The observer's correction gains l1, l2 (pid.hpp) at tick h.
+// The observer's correction gains l1, l2 at tick h, as pid::Pid computes them.
 std::pair<double, double> observer_gains(const JointLoop& l) {
-  const double p = 1.0 / (1.0 + 2.0 * kPi * l.observer_bandwidth_hz * l.tick_s);
-  return {1.0 - p * p, (1.0 - p) * (1.0 - p)};
+  const auto k = pid::observer_gains(l.observer_bandwidth_hz, l.tick_s);
+  return {k.l1, k.l2};
 }
 
 // Φ(t) and Γ(t) = ∫₀ᵗ e^{A s} ds B of the plant with a current loop (states θ, θ̇, v; v̇ = w (u − v),

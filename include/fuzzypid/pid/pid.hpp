@@ -71,6 +71,20 @@ enum class AntiWindup : std::uint8_t { None, Clamping, BackCalculation };
 // The most ticks of computation delay the velocity observer models (Config::observer_delay_ticks).
 inline constexpr int kMaxObserverDelayTicks = 3;
 
+// The velocity observer's correction gains l1 = 1 - p^2, l2 = (1 - p)^2 for its bandwidth (Hz) at
+// tick dt_s, p = 1 / (1 + 2 pi F dt) (see Pid's header comment); sim/margins models the same.
+template <class Scalar>
+struct ObserverGains {
+  Scalar l1;
+  Scalar l2;
+};
+template <class Scalar>
+constexpr ObserverGains<Scalar> observer_gains(Scalar bandwidth_hz, Scalar dt_s) noexcept {
+  constexpr Scalar kTwoPi = Scalar(6.283185307179586476925286766559L);
+  const Scalar p = Scalar(1) / (Scalar(1) + kTwoPi * bandwidth_hz * dt_s);
+  return {Scalar(1) - p * p, (Scalar(1) - p) * (Scalar(1) - p)};
+}
+
 template <class Scalar>
 struct Config {
   Gains<Scalar> gains{Scalar(1), Scalar(0), Scalar(0)};  // used by update(in, dt)
@@ -233,10 +247,9 @@ class Pid {
     const Scalar a = past_output_[lag] / config_.observer_output_per_unit;
     const Scalar y = observer_.position + observer_.velocity * dt_s + Scalar(0.5) * a * dt_s * dt_s;
     const Scalar w = observer_.velocity + a * dt_s;
-    constexpr Scalar kTwoPi = Scalar(6.283185307179586476925286766559L);
-    const Scalar p = Scalar(1) / (Scalar(1) + kTwoPi * config_.observer_bandwidth_hz * dt_s);
+    const ObserverGains<Scalar> k = observer_gains(config_.observer_bandwidth_hz, dt_s);
     const Scalar r = in.measurement - y;
-    return {y + (Scalar(1) - p * p) * r, w + (Scalar(1) - p) * (Scalar(1) - p) * r / dt_s};
+    return {y + k.l1 * r, w + k.l2 * r / dt_s};
   }
 
   // Whether update() would accept this input and dt: InvalidConfig, InvalidTimeStep,
