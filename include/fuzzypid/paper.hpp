@@ -147,9 +147,11 @@ constexpr supervisor::FuzzyPidConfig<Scalar> paper_config() noexcept {
   return c;
 }
 
-// A PID retuned by the paper's supervisor (or any System<Scalar> the caller owns).
+// A PID retuned by the paper's supervisor (or any System<Scalar> the caller owns). The paper's
+// derivative is the rates' or the differenced error's, so its PID omits the velocity observer's
+// storage (pid::ObserverStorage): six double joints then fit in 2 KB.
 template <class Scalar>
-using FuzzyPid = supervisor::FuzzyPid<Scalar, System<Scalar>>;
+using FuzzyPid = supervisor::FuzzyPid<Scalar, System<Scalar>, pid::ObserverStorage::Omitted>;
 
 // N joints, each a paper::FuzzyPid; 6 for the ER50-C20.
 template <class Scalar, std::size_t N = 6>

@@ -339,8 +339,13 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   }
   h += "  c.anti_windup = " + std::string(enum_code(pc.anti_windup)) + ";\n";
   h += "  c.output_min = -output_limit;\n  c.output_max = output_limit;\n  return c;\n}\n\n";
+  // A controller without the velocity observer omits its storage (pid::ObserverStorage).
+  const std::string storage = pc.derivative_source == pid::DerivativeSource::Observer
+                                  ? ""
+                                  : ", fuzzypid::pid::ObserverStorage::Omitted";
   if (!family_traits(spec.family).supervised()) {
-    h += "template <class Scalar>\nusing Controller = fuzzypid::pid::Pid<Scalar>;\n\n";
+    h += "template <class Scalar>\nusing Controller = fuzzypid::pid::Pid<Scalar" + storage +
+         ">;\n\n";
     h += "template <class Scalar>\nconstexpr Controller<Scalar> make_controller(Scalar "
          "output_limit) noexcept {\n  return Controller<Scalar>(pid_config<Scalar>(output_limit));"
          "\n}\n\n";
@@ -361,7 +366,8 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += "  return c;\n}\n\n";
     h += supervisor.definitions;
     h += "template <class Scalar>\nusing Controller = fuzzypid::supervisor::FuzzyPid<Scalar, "
-         "Supervisor<Scalar>>;\n\n";
+         "Supervisor<Scalar>" +
+         storage + ">;\n\n";
     h += "template <class Scalar>\nController<Scalar> make_controller(Scalar output_limit) "
          "noexcept {\n  return Controller<Scalar>(&kSupervisor<Scalar>, "
          "config<Scalar>(output_limit));\n}\n\n";

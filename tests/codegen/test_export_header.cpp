@@ -120,6 +120,22 @@ TEST(ExportHeader, AControllerWithAVelocityObserverEqualsItsFileBitForBit) {
                        "/tests/sim/data/");
 }
 
+// Only a controller that runs the observer carries its state (pid::ObserverStorage).
+TEST(ExportHeader, AControllerWithoutTheObserverOmitsItsStorage) {
+  using fuzzypid::pid::ObserverStorage;
+  static_assert(std::is_same_v<observer_pid::Controller<float>, fuzzypid::pid::Pid<float>>);
+  static_assert(std::is_same_v<tuned_pid::Controller<float>,
+                               fuzzypid::pid::Pid<float, ObserverStorage::Omitted>>);
+  static_assert(sizeof(tuned_fuzzy::Controller<double>) + 6 * sizeof(double) <=
+                sizeof(supervisor::FuzzyPid<double, tuned_fuzzy::Supervisor<double>>));
+  // Asked for the observer anyway, the lean one refuses it.
+  auto config = observer_pid::pid_config<double>(3.0);
+  tuned_pid::Controller<double> lean;
+  EXPECT_EQ(lean.configure(config), Status::InvalidConfig);
+  config.derivative_source = fuzzypid::pid::DerivativeSource::Difference;
+  EXPECT_EQ(lean.configure(config), Status::Ok);
+}
+
 TEST(ExportHeader, RuleFileControllersEqualTheFilesBitForBit) {
   // rulebases/paper.fll (zero-order Sugeno, triangles and shoulders) and Octave's Mamdani tipper
   // (trapezoids in; Gaussians and triangles out; centroid; hedges and `or`).

@@ -108,7 +108,8 @@ TEST(SixthFamily, TheHeaderExportWritesItsSupervisor) {
   EXPECT_NE(h.find("using Supervisor = fuzzypid_test::ProportionalRamp<Scalar>;"),
             std::string::npos);
   EXPECT_NE(h.find("#include \"proportional_ramp.hpp\""), std::string::npos);
-  EXPECT_NE(h.find("fuzzypid::supervisor::FuzzyPid<Scalar, Supervisor<Scalar>>"),
+  EXPECT_NE(h.find("fuzzypid::supervisor::FuzzyPid<Scalar, Supervisor<Scalar>, "
+                   "fuzzypid::pid::ObserverStorage::Omitted>"),
             std::string::npos);
 }
 

@@ -815,4 +815,45 @@ TEST(PidObserver, AnObserverWithoutABandwidthOrBeyondThreeTicksIsRefused) {
   EXPECT_TRUE(rates.valid());
 }
 
+// A PID that omits the observer's storage (the paper's controller) refuses the observer and keeps
+// its configuration; with the rates or the differenced error it runs as one that carries it, bit
+// for bit, over seeded random inputs, gains, limits and anti-windup schemes.
+TEST(PidObserver, APidThatOmitsTheObserverRefusesItAndOtherwiseRunsAsOneThatCarriesIt) {
+  using Lean = fuzzypid::pid::Pid<double, fuzzypid::pid::ObserverStorage::Omitted>;
+  static_assert(sizeof(Lean) + 6 * sizeof(double) <= sizeof(Pid));
+  Lean refused(observer_config(1.0, 1));
+  EXPECT_EQ(refused.update(at(1.0, 0.0, 0.0), 0.05), Status::InvalidConfig);
+  Lean lean(gains_only(2.0, 0.5, 0.1));
+  EXPECT_EQ(lean.configure(observer_config(1.0, 1)), Status::InvalidConfig);
+  EXPECT_EQ(lean.config().derivative_source, DerivativeSource::Rates);
+  EXPECT_EQ(lean.update(at(1.0, 0.0, 0.0), 0.05), Status::Ok);
+
+  std::mt19937_64 rng(20261206);
+  const auto uniform = [&rng](double lo, double hi) {
+    return fuzzypid::support::UniformReal<double>(lo, hi)(rng);
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    Config c = gains_only(uniform(0.0, 10.0), uniform(0.0, 2.0), uniform(0.0, 1.0));
+    c.derivative_source = trial % 2 == 0 ? DerivativeSource::Rates : DerivativeSource::Difference;
+    c.derivative_on = trial % 3 == 0 ? DerivativeOn::Measurement : DerivativeOn::Error;
+    c.anti_windup = static_cast<AntiWindup>(trial % 3);
+    c.derivative_filter_s = uniform(0.0, 0.1);
+    c.tracking_gain_per_s = uniform(0.0, 5.0);
+    c.output_max = uniform(0.5, 5.0);
+    c.output_min = -c.output_max;
+    Lean a(c);
+    Pid b(c);
+    for (int k = 0; k < 50; ++k) {
+      Input in = at(uniform(-1.0, 1.0), uniform(-1.0, 1.0), uniform(-2.0, 2.0));
+      in.setpoint_rate = uniform(-2.0, 2.0);
+      in.feed_forward = uniform(-0.5, 0.5);
+      const Status sa = a.update(in, 0.05);
+      ASSERT_EQ(sa, b.update(in, 0.05)) << trial << " " << k;
+      ASSERT_EQ(a.output(), b.output()) << trial << " " << k;
+      ASSERT_EQ(a.integral(), b.integral()) << trial << " " << k;
+      ASSERT_EQ(a.derivative(), b.derivative()) << trial << " " << k;
+    }
+  }
+}
+
 }  // namespace

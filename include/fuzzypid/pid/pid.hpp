@@ -57,6 +57,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "fuzzypid/pid/gains.hpp"
 #include "fuzzypid/scalar.hpp"
@@ -145,9 +146,16 @@ struct Terms {
   Scalar d = Scalar(0);
 };
 
-template <class Scalar>
+// What a Pid stores for the velocity observer: Included, its estimate and the last
+// kMaxObserverDelayTicks + 1 commands (six scalars); Omitted, nothing, and configure() refuses
+// DerivativeSource::Observer (InvalidConfig). A controller that never uses the observer omits
+// it: the paper's controller does, which keeps six double joints within 2 KB.
+enum class ObserverStorage : std::uint8_t { Included, Omitted };
+
+template <class Scalar, ObserverStorage ObserverStorageKind = ObserverStorage::Included>
 class Pid {
   FUZZYPID_ASSERT_SCALAR(Scalar);
+  static constexpr bool kHasObserver = ObserverStorageKind == ObserverStorage::Included;
 
  public:
   using Config = pid::Config<Scalar>;
@@ -161,15 +169,19 @@ class Pid {
   explicit constexpr Pid(const Config& config) noexcept { configured_ = configure(config); }
 
   // Replaces the configuration (keeps the state). Returns InvalidConfig and changes nothing when
-  // the configuration is invalid.
+  // the configuration is invalid, or asks for the observer that this Pid omits.
   [[nodiscard]] constexpr Status configure(const Config& config) noexcept {
     if (!config.valid()) return Status::InvalidConfig;
-    // An observer switched on mid-run starts at the last measurement, at rest, with the last
-    // output as every past command (its state was not kept while it was off).
-    if (config.derivative_source == DerivativeSource::Observer &&
-        config_.derivative_source != DerivativeSource::Observer) {
-      observer_ = {previous_measurement_, Scalar(0)};
-      past_output_.fill(output_);
+    const bool observed = config.derivative_source == DerivativeSource::Observer;
+    if constexpr (kHasObserver) {
+      // An observer switched on mid-run starts at the last measurement, at rest, with the last
+      // output as every past command (its state was not kept while it was off).
+      if (observed && config_.derivative_source != DerivativeSource::Observer) {
+        observer_.estimate = {previous_measurement_, Scalar(0)};
+        observer_.past_output.fill(output_);
+      }
+    } else if (observed) {
+      return Status::InvalidConfig;
     }
     config_ = config;
     configured_ = Status::Ok;
@@ -190,7 +202,6 @@ class Pid {
     integral_ = derivative_ = output_ = unsaturated_ = Scalar(0);
     previous_error_ = previous_measurement_ = Scalar(0);
     observer_ = {};
-    past_output_ = {};
     terms_ = {};
     has_previous_ = false;
   }
@@ -214,8 +225,10 @@ class Pid {
     output_ = unsaturated_ = output;
     previous_error_ = e;
     previous_measurement_ = in.measurement;
-    observer_ = {in.measurement, in.measurement_rate};
-    past_output_.fill(output);
+    if constexpr (kHasObserver) {
+      observer_.estimate = {in.measurement, in.measurement_rate};
+      observer_.past_output.fill(output);
+    }
     has_previous_ = true;
     return Status::Ok;
   }
@@ -236,20 +249,27 @@ class Pid {
   }
 
   // The velocity observer's estimate after this input (DerivativeSource::Observer; see the header
-  // comment). Pure; meaningful for finite inputs and a valid dt.
+  // comment); the measurement itself on the first tick and in a Pid that omits the observer.
+  // Pure; meaningful for finite inputs and a valid dt.
   struct Estimate {
     Scalar position = Scalar(0);  // y^, units of the measurement
     Scalar velocity = Scalar(0);  // w^, per second
   };
   constexpr Estimate observe(const Input& in, Scalar dt_s) const noexcept {
-    if (!has_previous_) return {in.measurement, in.measurement_rate};
-    const auto lag = static_cast<std::size_t>(config_.observer_delay_ticks);
-    const Scalar a = past_output_[lag] / config_.observer_output_per_unit;
-    const Scalar y = observer_.position + observer_.velocity * dt_s + Scalar(0.5) * a * dt_s * dt_s;
-    const Scalar w = observer_.velocity + a * dt_s;
-    const ObserverGains<Scalar> k = observer_gains(config_.observer_bandwidth_hz, dt_s);
-    const Scalar r = in.measurement - y;
-    return {y + k.l1 * r, w + k.l2 * r / dt_s};
+    if constexpr (kHasObserver) {
+      if (has_previous_) {
+        const Estimate& x = observer_.estimate;
+        const auto lag = static_cast<std::size_t>(config_.observer_delay_ticks);
+        const Scalar a = observer_.past_output[lag] / config_.observer_output_per_unit;
+        const Scalar y = x.position + x.velocity * dt_s + Scalar(0.5) * a * dt_s * dt_s;
+        const Scalar w = x.velocity + a * dt_s;
+        const ObserverGains<Scalar> k = observer_gains(config_.observer_bandwidth_hz, dt_s);
+        const Scalar r = in.measurement - y;
+        return {y + k.l1 * r, w + k.l2 * r / dt_s};
+      }
+    }
+    static_cast<void>(dt_s);
+    return {in.measurement, in.measurement_rate};
   }
 
   // Whether update() would accept this input and dt: InvalidConfig, InvalidTimeStep,
@@ -328,11 +348,14 @@ class Pid {
     derivative_ = d;
     previous_error_ = e;
     previous_measurement_ = in.measurement;
-    if (observed) {
-      observer_ = estimate;
-      for (std::size_t j = past_output_.size() - 1; j > 0; --j)
-        past_output_[j] = past_output_[j - 1];
-      past_output_[0] = u;
+    if constexpr (kHasObserver) {
+      if (observed) {
+        observer_.estimate = estimate;
+        auto& past = observer_.past_output;
+        for (std::size_t j = past.size() - 1; j > 0; --j)
+          past[j] = past[j - 1];
+        past[0] = u;
+      }
     }
     has_previous_ = true;
     unsaturated_ = v;
@@ -389,12 +412,16 @@ class Pid {
   Scalar unsaturated_ = Scalar(0);
   Scalar previous_error_ = Scalar(0);
   Scalar previous_measurement_ = Scalar(0);
-  Estimate observer_{};  // y^, w^ after the last tick
-  std::array<Scalar, kMaxObserverDelayTicks + 1>
-      past_output_{};  // u of the last ticks, newest first
   Terms<Scalar> terms_{};
   Status configured_ = Status::Ok;
   bool has_previous_ = false;
+  struct ObserverState {
+    Estimate estimate{};  // y^, w^ after the last tick
+    std::array<Scalar, kMaxObserverDelayTicks + 1>
+        past_output{};  // u of the last ticks, newest first
+  };
+  struct NoObserverState {};  // last, so that it takes a byte of the flags' padding
+  std::conditional_t<kHasObserver, ObserverState, NoObserverState> observer_{};
 };
 
 }  // namespace fuzzypid::pid

@@ -61,7 +61,9 @@ struct FuzzyPidConfig {
 };
 
 // Supervisor: see supervisor/supervisor.hpp (paper.hpp has the paper's, with aliases).
-template <class Scalar, class Supervisor>
+// ObserverStorageKind: whether the inner PID can run the velocity observer (pid::ObserverStorage).
+template <class Scalar, class Supervisor,
+          pid::ObserverStorage ObserverStorageKind = pid::ObserverStorage::Included>
 class FuzzyPid {
   FUZZYPID_ASSERT_SCALAR(Scalar);
   static_assert(is_supervisor_v<Supervisor, Scalar>,
@@ -72,6 +74,7 @@ class FuzzyPid {
   using Input = pid::Input<Scalar>;
   using Gains = pid::Gains<Scalar>;
   using Workspace = typename Supervisor::Workspace;
+  using Pid = pid::Pid<Scalar, ObserverStorageKind>;
 
   // Unconfigured: update() returns InvalidConfig.
   FuzzyPid() = default;
@@ -136,7 +139,7 @@ class FuzzyPid {
   [[nodiscard]] Status initialize(Scalar output, const Input& in) noexcept {
     if (configured_ != Status::Ok) return configured_;
     const Gains nominal = clamp_gains(pid_.gains());
-    pid::Pid<Scalar> next_pid = pid_;
+    Pid next_pid = pid_;
     Status s = next_pid.initialize(output, in, nominal);
     if (s != Status::Ok) return s;
     // The (e, ec) the next update sees with this input: the sample is recorded, so a difference
@@ -163,7 +166,7 @@ class FuzzyPid {
   const Gains& nominal_gains() const noexcept { return pid_.gains(); }
   // The supervisor's last raw outputs (dKp, dKi, dKd), before output scaling.
   const std::array<Scalar, 3>& delta() const noexcept { return delta_; }
-  const pid::Pid<Scalar>& pid() const noexcept { return pid_; }
+  const Pid& pid() const noexcept { return pid_; }
   // The shared supervisor (nullptr when default-constructed).
   const Supervisor* supervisor() const noexcept { return supervisor_; }
   const Workspace& workspace() const noexcept { return workspace_; }
@@ -202,7 +205,7 @@ class FuzzyPid {
 
   const Supervisor* supervisor_ = nullptr;
   Workspace workspace_{};
-  pid::Pid<Scalar> pid_{};
+  Pid pid_{};
   Gains gains_{};  // this tick's gains
   std::array<Scalar, 3> delta_{};
   std::array<Scalar, 3> output_scale_{Scalar(1), Scalar(1), Scalar(1)};
