@@ -33,11 +33,10 @@ double wrapped(double x) noexcept {
 std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
                                              const Condition& condition,
                                              const ControllerSpec& controller, std::string& error) {
-  if (std::string bad = condition.validate(); !bad.empty()) {
+  if (std::string bad = experiment.refusal(condition); !bad.empty()) {
     error = "condition " + condition.name + ": " + bad;
     return std::nullopt;
   }
-  if (experiment.path(condition, error) == nullptr) return std::nullopt;
   auto joints = controller::JointControllers::create(
       controller, experiment.output_limit(condition, controller.units.gains), error);
   if (!joints) return std::nullopt;
@@ -48,19 +47,12 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
                                              const Condition& condition,
                                              controller::JointControllers controller,
                                              std::string& error) {
-  if (std::string bad = condition.validate(); !bad.empty()) {
+  if (std::string bad = experiment.refusal(condition); !bad.empty()) {
     error = "condition " + condition.name + ": " + bad;
     return std::nullopt;
   }
   const robot::JointPathResult* path = experiment.path(condition, error);
   if (path == nullptr) return std::nullopt;
-  for (std::size_t i = 0; i < robot::kNumJoints; ++i)
-    if (condition.effects.joint_resonance_hz[i] > 0.0 && !(experiment.armature_kgm2()[i] > 0.0)) {
-      error = "condition " + condition.name +
-              ": joint_resonance_hz needs an armature > 0 on joint " + std::to_string(i + 1) +
-              " (the motor side of the two-mass joint; --armature or the key armature)";
-      return std::nullopt;
-    }
   ClosedLoop loop(experiment, condition, *path, std::move(controller));
   if (!loop.plant_.valid()) {
     error = "invalid plant configuration for condition " + condition.name;

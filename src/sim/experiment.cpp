@@ -178,6 +178,10 @@ std::optional<ExperimentSet> ExperimentSet::create(const std::vector<Condition>&
       setups.push_back(&c.robot);
     }
     set.index_.push_back(found);
+    if (std::string bad = set.experiments_[found]->refusal(c); !bad.empty()) {
+      error = "condition " + c.name + ": " + bad;
+      return std::nullopt;
+    }
   }
   return set;
 }
@@ -203,6 +207,17 @@ const robot::JointPathResult* Experiment::path(const Condition& condition,
     return nullptr;
   }
   return &reverse_path_;
+}
+
+std::string Experiment::refusal(const Condition& condition) const {
+  if (std::string bad = condition.validate(); !bad.empty()) return bad;
+  std::string error;
+  if (path(condition, error) == nullptr) return error;
+  for (std::size_t i = 0; i < kJoints; ++i)
+    if (condition.effects.joint_resonance_hz[i] > 0.0 && !(armature_kgm2()[i] > 0.0))
+      return "joint_resonance_hz needs an armature > 0 on joint " + std::to_string(i + 1) +
+             " (the motor side of the two-mass joint; --armature or the key armature)";
+  return {};
 }
 
 robot::JointVector Experiment::torque_limit(const Condition& condition) const {

@@ -83,6 +83,13 @@ expect 1 "joint_resonance_hz needs an armature > 0 on joint 2" -- run --joint-re
 expect 2 "--backlash-rad: expected 0 (none) or a number within 0 .. 1: 2" -- run --backlash-rad 2
 expect 2 "backlash_rad needs an elastic gear (joint_resonance_hz > 0)" -- run --backlash-rad 0.001
 row "[sets.s]" "conditions = [ { name = \"c\", plant_step_ms = -1.0 } ]" >"$work/bad_step.toml"
+# A gear on an arm without armature, in the second of two conditions: refused before the first runs.
+row "[sets.s]" "urdf = \"$ur5\"" "path = \"$work/good.csv\"" \
+  "conditions = [ { name = \"rigid\" }, { name = \"geared\", joint_resonance_hz = 12.0 } ]" \
+  >"$work/gear.toml"
+expect 1 "condition geared: joint_resonance_hz needs an armature > 0 on joint 1" -- \
+  run --conditions "$work/gear.toml" --allow-faults
+grep -q "rigid" "$work/err" && fail "gear.toml: a condition ran before the refusal: $(cat "$work/err")"
 expect 1 "bad_step.toml:2:46: 'plant_step_ms' must be 0 (the default step)" -- run --conditions "$work/bad_step.toml"
 
 # And the good path runs, with the robot it used stated on stderr.

@@ -144,6 +144,11 @@ class Experiment {
   // The planned path of the condition (A -> B, or B -> A when reversed); nullptr with `error`
   // set when the reversed path could not be planned.
   const robot::JointPathResult* path(const Condition& condition, std::string& error) const;
+  // Why this experiment cannot run the condition, or "" when it can: the condition's own
+  // validate(), a reversed path that could not be planned, a gear resonance on a joint without
+  // armature (the motor side of the two-mass joint). ClosedLoop::create refuses the same, and
+  // ExperimentSet::create refuses every condition of its list before anything runs.
+  [[nodiscard]] std::string refusal(const Condition& condition) const;
   // Torque limit of each joint (N·m): the URDF effort limits, or the condition's limit times J^_i.
   robot::JointVector torque_limit(const Condition& condition) const;
   // The plant configuration of the condition (payload, friction, torque limits applied).
@@ -203,7 +208,9 @@ class Experiment {
 // Experiments never move once built, so closed loops may point into them.
 class ExperimentSet {
  public:
-  // Builds the experiment of every condition's setup with `options`' controller settings.
+  // Builds the experiment of every condition's setup with `options`' controller settings;
+  // nullopt with `error` set when a setup cannot be built or its experiment cannot run one of the
+  // conditions (Experiment::refusal).
   static std::optional<ExperimentSet> create(const std::vector<Condition>& conditions,
                                              const ExperimentOptions& options, std::string& error);
   // The experiment of conditions[k] (the list given to create()).
