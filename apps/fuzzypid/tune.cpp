@@ -100,6 +100,7 @@ struct TuneOptions {
   std::vector<std::string> boxes;
   bool quiet = false;
   bool search_filter = true;
+  bool allow_faults = false;
   GivenOptions given;
   // A front (--objectives): its folder, and the checkpoint written after every generation and the
   // one resumed from.
@@ -847,6 +848,25 @@ int run_tune(const TuneOptions& t) {
               result->cost.faulted_runs);
   if (result->validation) std::printf(", validation cost %.6g", result->validation->total);
   std::printf(" -> %s\n", t.out.c_str());
+  // A result that faults where it was tuned or validated is no controller to load into a drive:
+  // said on stderr, and exit 1 unless --allow-faults (the file is written either way).
+  const std::size_t validation_faults = result->validation ? result->validation->faulted_runs : 0;
+  if (result->cost.faulted_runs + validation_faults > 0) {
+    const std::string validation_runs = t.validation > 0
+                                            ? " and " + std::to_string(validation_faults) + " of " +
+                                                  std::to_string(t.validation) + " validation"
+                                            : std::string();
+    std::fprintf(stderr,
+                 "fuzzypid tune: the result faults on %zu of %zu training%s runs (|e| > "
+                 "--divergence, a joint outside its limits or a controller fault; `sim_ab "
+                 "--conditions %s --set %s --controller %s` names them); a larger --budget, "
+                 "another --seed or a wider --box may find a stable one%s\n",
+                 result->cost.faulted_runs,
+                 training->conditions.size() - static_cast<std::size_t>(t.validation),
+                 validation_runs.c_str(), t.conditions.c_str(), t.set.c_str(), t.out.c_str(),
+                 t.allow_faults ? " (--allow-faults: exit 0)" : "");
+    if (!t.allow_faults) return 1;
+  }
   return 0;
 }
 
@@ -1146,6 +1166,10 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                 "[-3, 0] at a 50 ms tick; default), and with a start whose derivative is "
                 "\"observer\" its bandwidth (observer_hz, log10 Hz in [-1, 1]); or keep both");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
+  cmd->add_flag("--allow-faults", t->allow_faults,
+                "a result that faults on some of its training or validation runs (|e| beyond "
+                "--divergence, a joint outside its limits, a controller fault) is written and "
+                "warned of, and exits 0 (else 1)");
 #if FUZZYPID_HAVE_MPI
   t->transport = mpi_transport;
 #endif
