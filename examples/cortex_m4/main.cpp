@@ -34,8 +34,9 @@ int main(int argc, char** argv) {
   config.pid.output_max = 50.0f;
   fuzzypid::paper::JointController<float, kJoints> fuzzy(
       fuzzypid::paper::FuzzyPid<float>(&fuzzypid::paper::kSystem<float>, config));
-  fuzzypid::supervisor::JointController<float, kJoints, fuzzypid::pid::Pid<float>> fixed(
-      fuzzypid::pid::Pid<float>(config.pid));
+  // The fixed PID as the paper's fuzzy PID holds it: without the velocity observer's storage.
+  using FixedPid = fuzzypid::pid::Pid<float, fuzzypid::pid::ObserverStorage::Omitted>;
+  fuzzypid::supervisor::JointController<float, kJoints, FixedPid> fixed(FixedPid(config.pid));
 
   fuzzypid::Status worst_fuzzy = fuzzypid::Status::Ok;
   fuzzypid::Status worst_pid = fuzzypid::Status::Ok;
