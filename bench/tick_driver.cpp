@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
     config.pid = tick_pid_config();
     sum = run(fuzzypid::paper::FuzzyPid<double>(&fuzzypid::paper::kSystem<double>, config), n);
   } else if (std::strcmp(argv[1], "pid") == 0) {
-    sum = run(fuzzypid::pid::Pid<double>(tick_pid_config()), n);
+    // Without the velocity observer's storage, as the paper's fuzzy PID holds its PID.
+    using Pid = fuzzypid::pid::Pid<double, fuzzypid::pid::ObserverStorage::Omitted>;
+    sum = run(Pid(tick_pid_config()), n);
   } else if (std::strcmp(argv[1], "scheduled") == 0) {
     sum = run(fuzzypid::bench::scheduled_joint(), n);
   } else if (std::strcmp(argv[1], "fuzzy_rules") == 0) {
