@@ -499,6 +499,73 @@ bool lies_in(const std::string& dir, const std::string& file) {
   return !ec && folder == parent;
 }
 
+// A result's worst figures over some of its runs, as sim_ab's metrics.csv gives them: each the
+// largest over the runs' joints, with the joint (1-based) and the condition it came from.
+struct Worst {
+  double value = 0.0;
+  std::size_t joint = 1;
+  std::size_t run = 0;  // the condition's index
+  std::string condition;
+  void take(double v, std::size_t j, std::size_t k, const std::string& c) {
+    if (!(v > value) && !condition.empty()) return;
+    value = v;
+    joint = j + 1;
+    run = k;
+    condition = c;
+  }
+};
+struct RunFigures {
+  std::size_t runs = 0;  // the runs the figures cover: those that ran to their end
+  Worst error_after_1s_rad, reversals_pct, saturated_pct;
+};
+
+// The figures of `spec` on conditions[first, last), each on experiments.of(k), at the objective's
+// divergence bound as the tuner ran them; a run that stopped early (diverged) is left out, its
+// fault said elsewhere.
+RunFigures figures_of(const sim::ExperimentSet& experiments,
+                      const std::vector<sim::Condition>& conditions, std::size_t first,
+                      std::size_t last, const controller::ControllerSpec& spec,
+                      double divergence_rad) {
+  RunFigures out;
+  sim::RunLimits limits;
+  limits.max_error_rad = divergence_rad;
+  for (std::size_t k = first; k < last; ++k) {
+    const sim::Experiment& ex = experiments.of(k);
+    const sim::RunResult r = ex.run(conditions[k], spec, limits);
+    if (!r.ok || r.diverged) continue;
+    ++out.runs;
+    const auto m = sim::run_metrics(r.rows, ex.options().tick_s);
+    const auto d = sim::run_drive_metrics(r.rows);
+    for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
+      const std::string& name = conditions[k].name;
+      out.error_after_1s_rad.take(m[j].max_abs_error_after_1s_rad, j, k, name);
+      out.reversals_pct.take(d[j].reversals_pct, j, k, name);
+      out.saturated_pct.take(d[j].saturated_pct, j, k, name);
+    }
+  }
+  return out;
+}
+
+// "V UNIT (joint J, CONDITION)", or "0 UNIT" when no joint reached above 0.
+std::string said(const Worst& w, const char* format, const char* unit) {
+  std::array<char, 64> v{};
+  std::snprintf(v.data(), v.size(), format, w.value);
+  std::string out = std::string(v.data()) + " " + unit;
+  if (w.value > 0.0) out += " (joint " + std::to_string(w.joint) + ", " + w.condition + ")";
+  return out;
+}
+
+// One line of the summary: "result on its N KIND runs: ..." (nothing when no run covers it).
+void print_figures(const RunFigures& f, const char* kind) {
+  if (f.runs == 0) return;
+  std::printf(
+      "result on its %zu %s run%s: |e| after 1 s up to %s; the command reverses on up to "
+      "%s, the torque sits at a limit on up to %s\n",
+      f.runs, kind, f.runs == 1 ? "" : "s", said(f.error_after_1s_rad, "%.3g", "rad").c_str(),
+      said(f.reversals_pct, "%.1f", "% of a joint's ticks").c_str(),
+      said(f.saturated_pct, "%.1f", "%").c_str());
+}
+
 int run_tune(const TuneOptions& t) {
   const bool front = !t.front_out.empty();
   const tune::Transport* transport = t.transport ? t.transport() : nullptr;
@@ -743,12 +810,22 @@ int run_tune(const TuneOptions& t) {
   for (std::size_t k = 0; writer && k < training->conditions.size(); ++k)
     warn_about_payload("fuzzypid tune", experiments->of(k), training->conditions[k]);
 
+  if (t.validation >= training->conditions.size()) {
+    std::fprintf(stderr,
+                 "fuzzypid tune: --validation %" PRIu64
+                 " leaves no training condition (set %s has %zu)\n",
+                 t.validation, t.set.c_str(), training->conditions.size());
+    return kExitUsage;
+  }
+  // The conditions the search trains on; the last t.validation of the set validate.
+  const std::size_t trained = training->conditions.size() - static_cast<std::size_t>(t.validation);
+
   if (!quiet) {
     std::fprintf(stderr,
                  "fuzzypid tune: family %s, %zu training conditions (set %s), budget %" PRIu64
                  ", seed %" PRIu64 ", %u threads\n",
-                 controller::to_string(family), training->conditions.size() - t.validation,
-                 t.set.c_str(), total_budget, t.seed, t.threads);
+                 controller::to_string(family), trained, t.set.c_str(), total_budget, t.seed,
+                 t.threads);
     if (t.validation != 0)
       std::fprintf(stderr,
                    "fuzzypid tune: the last %" PRIu64
@@ -765,13 +842,6 @@ int run_tune(const TuneOptions& t) {
                    " evaluations, best cost %.6g, %.1f evaluations/s, ETA %.0f s\n",
                    p.evaluations, p.budget, p.best_cost, rate, eta);
     };
-  }
-  if (t.validation >= training->conditions.size()) {
-    std::fprintf(stderr,
-                 "fuzzypid tune: --validation %" PRIu64
-                 " leaves no training condition (set %s has %zu)\n",
-                 t.validation, t.set.c_str(), training->conditions.size());
-    return kExitUsage;
   }
   opt.transport = transport;
   if (front) {
@@ -842,12 +912,47 @@ int run_tune(const TuneOptions& t) {
               "penalty %.6g, chatter penalty %.6g, effort penalty %.6g, regulariser %.6g, %zu "
               "faulted runs)",
               controller::to_string(family), result->evaluations, total_budget, result->wall_s,
-              rate, rate * static_cast<double>(training->conditions.size() - t.validation),
-              result->cost.total, result->cost.itae, result->cost.overshoot_penalty,
-              result->cost.chatter_penalty, result->cost.effort_penalty, result->penalty,
-              result->cost.faulted_runs);
+              rate, rate * static_cast<double>(trained), result->cost.total, result->cost.itae,
+              result->cost.overshoot_penalty, result->cost.chatter_penalty,
+              result->cost.effort_penalty, result->penalty, result->cost.faulted_runs);
   if (result->validation) std::printf(", validation cost %.6g", result->validation->total);
   std::printf(" -> %s\n", t.out.c_str());
+  // What a drive engineer looks at first, on the runs the result was tuned and validated on: how
+  // far off the path it stays once the start error is gone, how it rings, how it saturates.
+  const double divergence = opt.objective.divergence_rad;
+  const RunFigures on_training =
+      figures_of(*experiments, training->conditions, 0, trained, result->controller, divergence);
+  print_figures(on_training, "training");
+  print_figures(figures_of(*experiments, training->conditions, trained, training->conditions.size(),
+                           result->controller, divergence),
+                "validation");
+  // A result that stays off the path by half the divergence bound on its own training runs is
+  // one harder condition away from a fault (a heavier tool, a faster path): said, not refused.
+  if (on_training.runs > 0 && result->cost.faulted_runs == 0 &&
+      on_training.error_after_1s_rad.value > 0.5 * divergence) {
+    const Worst& w = on_training.error_after_1s_rad;
+    const sim::Experiment& ex = experiments->of(w.run);
+    const robot::PlantConfig plant = ex.plant_config(training->conditions[w.run]);
+    // What the worst run's set-up leaves out of the remedies a loop holds the arm closer with.
+    std::array<char, 32> tick_ms{};
+    std::snprintf(tick_ms.data(), tick_ms.size(), "%g", ex.options().tick_s * 1e3);
+    std::vector<std::string> remedies{"a shorter tick (tick_ms; this one is " +
+                                      std::string(tick_ms.data()) + " ms)"};
+    if (std::all_of(plant.armature_kgm2.begin(), plant.armature_kgm2.end(),
+                    [](double a) { return a == 0.0; }))
+      remedies.emplace_back("the motors' reflected inertia (armature, 0 here)");
+    if (plant.gravity && !result->controller.feedforward.gravity)
+      remedies.emplace_back("a --base with a gravity feed-forward");
+    std::string consider = remedies.front();
+    for (std::size_t k = 1; k < remedies.size(); ++k)
+      consider += (k + 1 == remedies.size() ? " or " : ", ") + remedies[k];
+    std::fprintf(stderr,
+                 "fuzzypid tune: warning: the result is still %.3g rad off the path after the "
+                 "first second of training condition %s (joint %zu), more than half of "
+                 "--divergence (%g rad): a little more load or speed than training had may "
+                 "fault. Consider %s (docs/your_robot.md)\n",
+                 w.value, w.condition.c_str(), w.joint, divergence, consider.c_str());
+  }
   // A result that faults where it was tuned or validated is no controller to load into a drive:
   // said on stderr, and exit 1 unless --allow-faults (the file is written either way).
   const std::size_t validation_faults = result->validation ? result->validation->faulted_runs : 0;
@@ -861,10 +966,8 @@ int run_tune(const TuneOptions& t) {
                  "--divergence, a joint outside its limits or a controller fault; `sim_ab "
                  "--conditions %s --set %s --controller %s` names them); a larger --budget, "
                  "another --seed or a wider --box may find a stable one%s\n",
-                 result->cost.faulted_runs,
-                 training->conditions.size() - static_cast<std::size_t>(t.validation),
-                 validation_runs.c_str(), t.conditions.c_str(), t.set.c_str(), t.out.c_str(),
-                 t.allow_faults ? " (--allow-faults: exit 0)" : "");
+                 result->cost.faulted_runs, trained, validation_runs.c_str(), t.conditions.c_str(),
+                 t.set.c_str(), t.out.c_str(), t.allow_faults ? " (--allow-faults: exit 0)" : "");
     if (!t.allow_faults) return 1;
   }
   return 0;
