@@ -1,13 +1,17 @@
 #include "fuzzypid/sim/condition_set.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "fuzzypid/sim/random.hpp"
 #include "fuzzypid_support/toml_reader.hpp"
@@ -219,6 +223,18 @@ std::pair<double, double> range(TableReader& r, const char* key, double lo, doub
   return {mn, mx};
 }
 
+// 0 .. n-1 in a random order (Fisher-Yates), from `rng`.
+std::vector<std::uint64_t> shuffled(std::uint64_t n, Random& rng) {
+  std::vector<std::uint64_t> order(n);
+  for (std::uint64_t i = 0; i < n; ++i)
+    order[i] = i;
+  for (std::uint64_t i = n; i > 1; --i) {
+    const auto j = static_cast<std::uint64_t>(rng.uniform() * static_cast<double>(i));
+    std::swap(order[i - 1], order[std::min(j, i - 1)]);
+  }
+  return order;
+}
+
 void read_monte_carlo(TableReader& r, const std::string& set_name, const Condition& defaults,
                       PlantKeys plant, ConditionSet& set) {
   const std::uint64_t count = r.count("count");
@@ -228,6 +244,7 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
   if (!(payload.first > 0.0)) r.fail(*r.raw().get("payload_scale"), "payload_scale must be > 0");
   const auto friction = range(r, "friction", 0.0, 0.0);
   const auto initial = range(r, "initial_error", 0.05, 0.05);
+  const Sampling sampling = r.choice("sampling", kSamplingNames, Sampling::Random);
   // payload_kg and the keys of what real joints have: a number sets them, [min, max] draws them
   // uniformly (one value for every joint; encoder_counts rounded to a whole count).
   // coulomb_smoothing, a numerical setting, is not drawn and not on this list: one draw per
@@ -270,6 +287,20 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
   // The draws above come from their own stream, one per key and condition whatever is given, so
   // that adding a range changes no other draw (and the three below stay as they always were).
   Random effects_rng(seed ^ 0x9E3779B97F4A7C15ull);
+  // Latin hypercube: per key (the three above, then the list) a seeded permutation of the count
+  // strata; draw k of a key lies in stratum strata[key][k], at the place its stream gives it.
+  constexpr std::size_t kKeys = 3 + std::tuple_size_v<decltype(draws)>;
+  std::array<std::vector<std::uint64_t>, kKeys> strata;
+  if (sampling == Sampling::LatinHypercube) {
+    Random order_rng(seed ^ 0xD1B54A32D192ED03ull);
+    for (auto& order : strata)
+      order = shuffled(count, order_rng);
+  }
+  // u in [0, 1) of draw k of key `key`, moved into its stratum when stratified.
+  const auto place = [&](std::size_t key, std::uint64_t k, double u) {
+    if (sampling == Sampling::Random) return u;
+    return (static_cast<double>(strata[key][k]) + u) / static_cast<double>(count);
+  };
   for (std::uint64_t k = 0; k < count; ++k) {
     Condition c = base;
     char name[64];
@@ -277,14 +308,15 @@ void read_monte_carlo(TableReader& r, const std::string& set_name, const Conditi
                   static_cast<unsigned long long>(k) + 1);
     c.name = name;
     // Three draws per condition, always in this order, whatever the ranges.
-    const double u_payload = rng.uniform();
-    const double u_friction = rng.uniform();
-    const double u_initial = rng.uniform();
+    const double u_payload = place(0, k, rng.uniform());
+    const double u_friction = place(1, k, rng.uniform());
+    const double u_initial = place(2, k, rng.uniform());
     c.payload_scale = payload.first * std::pow(payload.second / payload.first, u_payload);
     c.friction_per_s = friction.first + (friction.second - friction.first) * u_friction;
     c.initial_error_rad = initial.first + (initial.second - initial.first) * u_initial;
-    for (const Draw& d : draws) {
-      const double u = effects_rng.uniform();
+    for (std::size_t i = 0; i < draws.size(); ++i) {
+      const Draw& d = draws[i];
+      const double u = place(3 + i, k, effects_rng.uniform());
       if (!d.given) continue;
       const double v = d.lo + (d.hi - d.lo) * u;
       JointEffects& e = c.effects;

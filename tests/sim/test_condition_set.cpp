@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fuzzypid/sim/condition_set.hpp"
 
@@ -117,6 +119,87 @@ TEST(ConditionSets, MonteCarloDrawsPayloadKgAndJointEffectsWithoutChangingTheOth
   EXPECT_NE(db[0].payload_kg, db[1].payload_kg);
 }
 
+// Which of `count` equal strata of [lo, hi] v lies in (log-uniform ranges on log v).
+std::size_t stratum_of(double v, double lo, double hi, std::size_t count, bool log_scale) {
+  const double f = log_scale ? std::log(v / lo) / std::log(hi / lo) : (v - lo) / (hi - lo);
+  return std::min(count - 1, static_cast<std::size_t>(std::floor(f * static_cast<double>(count))));
+}
+
+TEST(ConditionSets, LatinHypercubeDrawsPutOneDrawInEachStratumOfEveryRange) {
+  struct Key {
+    const char* name;
+    double lo, hi;
+    bool log_scale;
+    double (*of)(const fuzzypid::sim::Condition&);
+  };
+  const Key keys[] = {
+      {"payload_scale", 0.5, 2.0, true, [](const auto& c) { return c.payload_scale; }},
+      {"friction", 0.0, 2.0, false, [](const auto& c) { return c.friction_per_s; }},
+      {"initial_error", -0.08, 0.08, false, [](const auto& c) { return c.initial_error_rad; }},
+      {"payload_kg", 0.0, 5.0, false, [](const auto& c) { return c.payload_kg; }},
+      {"delay_ms", 0.0, 50.0, false, [](const auto& c) { return c.effects.delay_s * 1e3; }},
+      {"torque_bandwidth_hz", 20.0, 100.0, false,
+       [](const auto& c) { return c.effects.torque_bandwidth_hz; }},
+      {"coulomb_nm", 0.0, 10.0, false, [](const auto& c) { return c.effects.coulomb_nm[3]; }},
+      {"joint_resonance_hz", 8.0, 20.0, false,
+       [](const auto& c) { return c.effects.joint_resonance_hz[0]; }},
+      {"joint_damping_ratio", 0.01, 0.1, false,
+       [](const auto& c) { return c.effects.joint_damping_ratio; }},
+  };
+  for (std::uint64_t seed = 1; seed <= 25; ++seed) {
+    for (const std::size_t count : {1u, 2u, 5u, 8u, 13u}) {
+      std::string text = "[sets.mc.monte_carlo]\ncount = " + std::to_string(count) +
+                         "\nseed = " + std::to_string(seed) + "\nsampling = \"latin-hypercube\"\n";
+      for (const Key& k : keys)
+        text += std::string(k.name) + " = [" + std::to_string(k.lo) + ", " + std::to_string(k.hi) +
+                "]\n";
+      ConditionFile f;
+      fuzzypid::FileError e;
+      ASSERT_TRUE(parse_conditions(text, "mc.toml", f, e)) << e.to_string();
+      const auto& draws = f.sets[0].conditions;
+      ASSERT_EQ(draws.size(), count);
+      for (const Key& k : keys) {
+        std::vector<std::size_t> strata;
+        for (const auto& c : draws) {
+          EXPECT_GE(k.of(c), k.lo) << k.name;
+          EXPECT_LE(k.of(c), k.hi) << k.name;
+          strata.push_back(stratum_of(k.of(c), k.lo, k.hi, count, k.log_scale));
+        }
+        std::sort(strata.begin(), strata.end());
+        for (std::size_t i = 0; i < count; ++i)
+          EXPECT_EQ(strata[i], i) << k.name << ", seed " << seed << ", " << count << " draws";
+      }
+    }
+  }
+}
+
+TEST(ConditionSets, LatinHypercubeDrawsAreSeededAndRandomSamplingIsTheDefault) {
+  const std::string ranges =
+      "count = 12\npayload_scale = [0.5, 2.0]\nfriction = [0.0, 2.0]\n"
+      "initial_error = [-0.08, 0.08]\ndelay_ms = [0.0, 50.0]\njoint_resonance_hz = [8.0, 20.0]\n";
+  const auto parse = [&](const std::string& extra) {
+    ConditionFile f;
+    fuzzypid::FileError e;
+    EXPECT_TRUE(parse_conditions("[sets.mc.monte_carlo]\n" + ranges + extra, "mc.toml", f, e))
+        << e.to_string();
+    return f.sets.at(0).conditions;
+  };
+  const auto same = [](const auto& a, const auto& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (a[k].payload_scale != b[k].payload_scale || a[k].friction_per_s != b[k].friction_per_s ||
+          a[k].initial_error_rad != b[k].initial_error_rad || a[k].effects != b[k].effects)
+        return false;
+    return true;
+  };
+  const auto plain = parse("seed = 3\n");
+  EXPECT_TRUE(same(plain, parse("seed = 3\nsampling = \"random\"\n")));
+  const auto lhs = parse("seed = 3\nsampling = \"latin-hypercube\"\n");
+  EXPECT_TRUE(same(lhs, parse("seed = 3\nsampling = \"latin-hypercube\"\n")));
+  EXPECT_FALSE(same(lhs, plain));
+  EXPECT_FALSE(same(lhs, parse("seed = 4\nsampling = \"latin-hypercube\"\n")));
+}
+
 TEST(ConditionSets, AScenarioIsAShorthandTheOtherKeysOverride) {
   ConditionFile f;
   fuzzypid::FileError e;
@@ -162,6 +245,8 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
       {"[sets.s]\nconditions = [ { name = \"c\", scenario = \"moon\" } ]\n", 2, 41,
        "unknown scenario 'moon'"},
       {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nfriction = [2.0, 1.0]\n", 4, 12, "reversed"},
+      {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\nsampling = \"sobol\"\n", 4, 12,
+       "'sampling': unknown value 'sobol' (expected random|latin-hypercube)"},
       {"[sets.s.monte_carlo]\ncount = 3\nseed = 1\ncoulomb_smoothing = [0.01, 0.02]\n", 4, 21,
        "coulomb_smoothing"},
       {"[sets.s]\ndescription = \"empty\"\n", 1, 1, "has no conditions"},

@@ -18,6 +18,10 @@
 //   encoder_counts = [4096, 65536]            # joint; counts rounded), and a number sets them
 // The draws of payload_kg and the joint keys come from a stream of their own (one draw per key and
 // condition, in a fixed order), so adding one changes neither the others nor the three above.
+//   sampling = "latin-hypercube"              # optional (default "random"): each range cut into
+//                                             # count equally likely strata, one draw in each
+// With "latin-hypercube" each draw keeps its place within its stratum from the same streams, and
+// the order of the strata comes from a stream of its own: "random" draws stay as they always were.
 //
 // Condition keys: name, description, scenario, payload_scale, friction, torque_limit, contact,
 // noise = [SIGMA_Q, SIGMA_QD], seed, reverse, initial_error (sim_ab's options of the same names).
@@ -44,6 +48,7 @@
 // Unknown keys, wrong types, NaN and out-of-range values are errors with file:line:column.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,6 +62,17 @@ namespace fuzzypid::sim {
 
 inline constexpr std::array<fuzzypid::EnumName<robot::PlantCoupling>, 2> kDynamicsNames{
     {{robot::PlantCoupling::Decoupled, "decoupled"}, {robot::PlantCoupling::Coupled, "coupled"}}};
+
+// How a Monte-Carlo table spreads its draws over each range (key `sampling`).
+enum class Sampling : std::uint8_t {
+  // Each draw independent and uniform: N draws can leave a range's end unvisited.
+  Random,
+  // Latin hypercube: each range cut into N equally likely strata, each stratum drawn exactly once
+  // (in a seeded random order per key, at a seeded random place within it).
+  LatinHypercube,
+};
+inline constexpr std::array<fuzzypid::EnumName<Sampling>, 2> kSamplingNames{
+    {{Sampling::Random, "random"}, {Sampling::LatinHypercube, "latin-hypercube"}}};
 
 struct ConditionSet {
   std::string name;
