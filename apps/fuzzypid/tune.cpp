@@ -536,8 +536,8 @@ RunFigures figures_of(const sim::ExperimentSet& experiments,
     ++out.runs;
     const auto m = sim::run_metrics(r.rows, ex.options().tick_s);
     const auto d = sim::run_drive_metrics(r.rows);
+    const std::string& name = conditions[k].name;
     for (std::size_t j = 0; j < robot::kNumJoints; ++j) {
-      const std::string& name = conditions[k].name;
       out.error_after_1s_rad.take(m[j].max_abs_error_after_1s_rad, j, k, name);
       out.reversals_pct.take(d[j].reversals_pct, j, k, name);
       out.saturated_pct.take(d[j].saturated_pct, j, k, name);
