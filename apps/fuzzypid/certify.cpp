@@ -42,13 +42,20 @@ std::string num(double v) {
   return buf;
 }
 
+// The delay of a case's loop, ms.
+double delay_ms(const sim::MarginCase& c) {
+  return (c.loop.delay_ticks + c.loop.delay_fraction) * c.loop.tick_s * 1e3;
+}
+
 void print_case_json(const char* name, const sim::MarginCase& c, bool last) {
   std::printf(
-      "      \"%s\": {\"inertia_kgm2\": %s, \"damping_nms\": %s, \"tick_s\": %s, \"kp\": %s, "
-      "\"ki\": %s, \"kd\": %s, \"x\": %s, \"y\": %s}%s\n",
+      "      \"%s\": {\"inertia_kgm2\": %s, \"damping_nms\": %s, \"tick_s\": %s, "
+      "\"delay_ms\": %s, \"gear_resonance_hz\": %s, \"kp\": %s, \"ki\": %s, \"kd\": %s, "
+      "\"x\": %s, \"y\": %s}%s\n",
       name, num(c.inertia_kgm2).c_str(), num(c.damping_nms).c_str(), num(c.tick_s).c_str(),
-      num(c.gains.kp).c_str(), num(c.gains.ki).c_str(), num(c.gains.kd).c_str(), num(c.x).c_str(),
-      num(c.y).c_str(), last ? "" : ",");
+      num(delay_ms(c)).c_str(), num(c.loop.gear_resonance_hz).c_str(), num(c.gains.kp).c_str(),
+      num(c.gains.ki).c_str(), num(c.gains.kd).c_str(), num(c.x).c_str(), num(c.y).c_str(),
+      last ? "" : ",");
 }
 
 void print_json(const CertifyCli& o, const sim::Certificate& cert) {
@@ -107,9 +114,11 @@ void print_json(const CertifyCli& o, const sim::Certificate& cert) {
 }
 
 void print_table(const CertifyCli& o, const sim::Certificate& cert) {
-  std::printf("controller %s (%s), %zu condition(s), extra delay %g ms: frozen-gain margins\n",
-              o.controller.c_str(), controller::to_string(cert.family), cert.conditions,
-              cert.delay_s * 1e3);
+  std::printf(
+      "controller %s (%s), %zu condition(s), extra delay %g ms (elastic gears also at their "
+      "conditions' own): frozen-gain margins\n",
+      o.controller.c_str(), controller::to_string(cert.family), cert.conditions,
+      cert.delay_s * 1e3);
   std::printf("%-5s %-21s %9s %9s %10s %9s %9s %9s %5s %7s %8s %7s %6s\n", "joint", "J kg·m²", "J^",
               "GM dB", "GM low dB", "PM deg", "DM ms", "exact ms", "ticks", "disk α", "±dB", "±deg",
               "stable");
@@ -127,14 +136,19 @@ void print_table(const CertifyCli& o, const sim::Certificate& cert) {
                 sim::to_db(disk.disk_gain_high), disk.disk_phase_deg, j.stable ? "yes" : "NO");
   }
   std::printf(
-      "worst disk margin at (J kg·m², b N·m·s/rad, Kp, Ki 1/s, Kd s; x = Ke e, y = Kec ec):\n");
+      "worst disk margin at (J kg·m², b N·m·s/rad, delay ms, gear Hz, Kp, Ki 1/s, Kd s; x = Ke e, "
+      "y = Kec ec):\n");
   for (std::size_t i = 0; i < cert.joints.size(); ++i) {
     const sim::MarginCase& w = cert.joints[i].worst_disk;
-    std::printf(
-        "  joint %zu: J %.6g, b %.6g, gains %.6g %.6g %.6g, x %.3g, y %.3g (%zu gain "
-        "triples, %zu loops)\n",
-        i + 1, w.inertia_kgm2, w.damping_nms, w.gains.kp, w.gains.ki, w.gains.kd, w.x, w.y,
-        cert.joints[i].gain_triples, cert.joints[i].cases);
+    std::printf("  joint %zu: J %.6g, b %.6g, delay %.6g, ", i + 1, w.inertia_kgm2, w.damping_nms,
+                delay_ms(w));
+    if (w.loop.gear_resonance_hz > 0.0)
+      std::printf("gear %.4g, ", w.loop.gear_resonance_hz);
+    else
+      std::printf("rigid, ");
+    std::printf("gains %.6g %.6g %.6g, x %.3g, y %.3g (%zu gain triples, %zu loops)\n", w.gains.kp,
+                w.gains.ki, w.gains.kd, w.x, w.y, cert.joints[i].gain_triples,
+                cert.joints[i].cases);
   }
   std::printf(
       "gains switching every tick inside their box (Kp, Ki 1/s, Kd s), inertia anywhere in "

@@ -13,6 +13,7 @@ namespace fuzzypid::sim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
 
 struct GainPoint {
   pid::Gains<double> gains;
@@ -123,6 +124,18 @@ JointLoop group_loop(const ControllerSpec& spec, const PlantGroup& g, double del
   return loop;
 }
 
+// The group's gear at inertia j (margins.hpp): the motor's share, the free resonance and its
+// damping ratio. A rigid group leaves the loop rigid.
+void set_gear(JointLoop& loop, const PlantGroup& g, double j) {
+  if (!(g.gear_stiffness_nm_per_rad > 0.0)) return;
+  const double motor = g.motor_inertia_kgm2, link = j - motor;
+  const double reduced = motor * link / j;
+  const double omega = std::sqrt(g.gear_stiffness_nm_per_rad / reduced);
+  loop.motor_inertia_fraction = motor / j;
+  loop.gear_resonance_hz = omega / (2.0 * kPi);
+  loop.gear_damping_ratio = g.gear_damping_nms / (2.0 * omega * reduced);
+}
+
 // One switching loop per tick, J^ and kind of current loop (ideal or not) among a joint's plant
 // groups: the ranges of their plant gains, dampings and bandwidths merged, the gains in `box`.
 std::vector<SwitchingLoop> switching_loops(const ControllerSpec& spec,
@@ -226,14 +239,32 @@ std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions
     robot::RobotData data(model);
     const robot::PlantConfig plant = ex.plant_config(c);
     const double bandwidth = plant.torque_bandwidth_hz;
+    // The gear's stiffness and damping as robot::Plant fixes them at reset(): from the resonance
+    // and the two inertias where the run starts (or at the fixed configuration).
+    const robot::JointVector reference =
+        plant.fixed_configuration_rad.value_or(ex.initial_position(*path, c));
+    const robot::JointVector link_diagonal = model.inertia_diagonal(reference, data);
     for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
       const double nominal = ex.nominal_inertia()[i];
+      double stiffness = 0.0, gear_damping = 0.0, motor = 0.0;
+      if (plant.joint_resonance_hz[i] > 0.0) {
+        motor = plant.armature_kgm2[i];
+        const double link = plant.inertia_scale[i] * link_diagonal[i];
+        const double omega = 2.0 * kPi * plant.joint_resonance_hz[i];
+        const double reduced = 1.0 / (1.0 / motor + 1.0 / link);
+        stiffness = omega * omega * reduced;
+        gear_damping = 2.0 * plant.joint_damping_ratio * omega * reduced;
+      }
+      const double own_delay = stiffness > 0.0 ? c.effects.delay_s : 0.0;
       auto it = std::find_if(groups[i].begin(), groups[i].end(), [&](const PlantGroup& g) {
         return g.tick_s == h && g.nominal_inertia_kgm2 == nominal &&
-               g.torque_bandwidth_hz == bandwidth;
+               g.torque_bandwidth_hz == bandwidth && g.gear_stiffness_nm_per_rad == stiffness &&
+               g.gear_damping_nms == gear_damping && g.motor_inertia_kgm2 == motor &&
+               g.delay_s == own_delay;
       });
       if (it == groups[i].end()) {
-        groups[i].push_back({h, nominal, bandwidth, kInf, 0.0, kInf, 0.0});
+        groups[i].push_back({h, nominal, bandwidth, kInf, 0.0, kInf, 0.0, stiffness, gear_damping,
+                             motor, own_delay});
         it = groups[i].end() - 1;
       }
       for (const robot::JointVector& q : path->position_rad) {
@@ -298,33 +329,38 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
       inertias.erase(std::unique(inertias.begin(), inertias.end()), inertias.end());
       std::vector<double> dampings{g.damping_min, g.damping_max};
       dampings.erase(std::unique(dampings.begin(), dampings.end()), dampings.end());
-      for (double j : inertias)
-        for (double b : dampings) {
-          JointLoop plant = group_loop(controller, g, options.delay_s);
-          plant.plant_gain = torque_per_unit(controller, g) / j;
-          plant.damping_per_s = b / j;
-          // The plant's frequency response once; each gain triple only recombines it.
-          const detail::PlantGrid grid = detail::plant_grid(plant, bulk);
-          for (const GainPoint& p : (*points)[i]) {
-            JointLoop loop = plant;
-            loop.gains = p.gains;
-            MarginCase mc{
-                detail::margins(loop, bulk, &grid), loop, j, b, g.tick_s, p.gains, p.x, p.y};
-            ++jc.cases;
-            jc.stable = jc.stable && mc.margins.stable;
-            const LoopMargins& m = mc.margins;
-            if (first || m.gain_margin_db < jc.worst_gain.margins.gain_margin_db)
-              jc.worst_gain = mc;
-            if (first || m.gain_margin_low_db > jc.worst_gain_low.margins.gain_margin_low_db)
-              jc.worst_gain_low = mc;
-            if (first || m.phase_margin_deg < jc.worst_phase.margins.phase_margin_deg)
-              jc.worst_phase = mc;
-            if (first || m.delay_margin_s < jc.worst_delay.margins.delay_margin_s)
-              jc.worst_delay = mc;
-            if (first || m.disk_margin < jc.worst_disk.margins.disk_margin) jc.worst_disk = mc;
-            first = false;
+      std::vector<double> delays{options.delay_s};
+      if (g.gear_stiffness_nm_per_rad > 0.0 && g.delay_s != options.delay_s)
+        delays.push_back(g.delay_s);
+      for (double delay : delays)
+        for (double j : inertias)
+          for (double b : dampings) {
+            JointLoop plant = group_loop(controller, g, delay);
+            plant.plant_gain = torque_per_unit(controller, g) / j;
+            plant.damping_per_s = b / j;
+            set_gear(plant, g, j);
+            // The plant's frequency response once; each gain triple only recombines it.
+            const detail::PlantGrid grid = detail::plant_grid(plant, bulk);
+            for (const GainPoint& p : (*points)[i]) {
+              JointLoop loop = plant;
+              loop.gains = p.gains;
+              MarginCase mc{
+                  detail::margins(loop, bulk, &grid), loop, j, b, g.tick_s, p.gains, p.x, p.y};
+              ++jc.cases;
+              jc.stable = jc.stable && mc.margins.stable;
+              const LoopMargins& m = mc.margins;
+              if (first || m.gain_margin_db < jc.worst_gain.margins.gain_margin_db)
+                jc.worst_gain = mc;
+              if (first || m.gain_margin_low_db > jc.worst_gain_low.margins.gain_margin_low_db)
+                jc.worst_gain_low = mc;
+              if (first || m.phase_margin_deg < jc.worst_phase.margins.phase_margin_deg)
+                jc.worst_phase = mc;
+              if (first || m.delay_margin_s < jc.worst_delay.margins.delay_margin_s)
+                jc.worst_delay = mc;
+              if (first || m.disk_margin < jc.worst_disk.margins.disk_margin) jc.worst_disk = mc;
+              first = false;
+            }
           }
-        }
     }
     // The whole-tick delay margin of the worst delay case only (it takes eigenvalues).
     if (!first) jc.worst_delay.margins = margins(jc.worst_delay.loop, options.margin);

@@ -16,8 +16,10 @@ namespace fuzzypid::sim::detail {
 // The plant over one tick h with a delay fraction f of a tick:
 //   x_{k+1} = Φ x_k + g1 u_{k−m} + g0 u_{k−m−1},
 // x = (θ, θ̇) or, with a current loop (torque_bandwidth_hz > 0), (θ, θ̇, v) where v is the lagged
-// command: v̇ = w (u − v), θ̈ = c v − a θ̇, w = 2π torque_bandwidth_hz. Φ and the g are affine in
-// the plant gain c for a fixed damping a (the certificate's vertices rely on it).
+// command: v̇ = w (u − v), θ̈ = c v − a θ̇, w = 2π torque_bandwidth_hz. With an elastic gear
+// (gear_resonance_hz > 0) x = (θ_m, θ̇_m, θ_l, θ̇_l[, v]), the measured motor side first. Without a
+// gear, Φ and the g are affine in the plant gain c for a fixed damping a (the certificate's
+// vertices rely on it; it takes rigid loops only).
 struct DiscretePlant {
   Eigen::MatrixXd phi;
   Eigen::VectorXd g1, g0;

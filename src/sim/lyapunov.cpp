@@ -198,8 +198,9 @@ bool finite_box(const GainBox& b) {
 }  // namespace
 
 const char* lyapunov_assumptions() noexcept {
-  return "linear joint (no saturation, Coulomb friction, backlash or gear elasticity; with "
-         "saturation and an integrator the result is local), inertia and viscous friction inside "
+  return "linear joint (no saturation, Coulomb friction or backlash; with saturation and an "
+         "integrator the result is local; an elastic gear in the frozen-gain margins, the joint "
+         "rigid in the certificate for moving gains), inertia and viscous friction inside "
          "the ranges given, gains inside the box; the gains may change on every tick, the inertia "
          "too within each of the intervals the certificate names (slowly across them)";
 }
@@ -220,6 +221,10 @@ LyapunovCertificate common_lyapunov(const SwitchingLoop& set) {
       (set.torque_bandwidth_max_hz == 0.0 || set.torque_bandwidth_min_hz > 0.0);
   if (!ranges_ok) {
     out.reason = "invalid loop or ranges";
+    return out;
+  }
+  if (base.gear_resonance_hz != 0.0) {
+    out.reason = "an elastic gear (the certificate is of rigid joints)";
     return out;
   }
   if (set.gains.high.ki > 0.0 && set.gains.low.ki <= 0.0) {

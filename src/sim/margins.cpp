@@ -72,7 +72,11 @@ bool valid(const JointLoop& l) {
          finite(l.damping_per_s) && l.damping_per_s >= 0.0 && l.gains.finite() &&
          finite(l.derivative_filter_s) && l.derivative_filter_s >= 0.0 && l.delay_ticks >= 0 &&
          l.delay_fraction >= 0.0 && l.delay_fraction < 1.0 && finite(l.torque_bandwidth_hz) &&
-         l.torque_bandwidth_hz >= 0.0 &&
+         l.torque_bandwidth_hz >= 0.0 && finite(l.gear_resonance_hz) &&
+         l.gear_resonance_hz >= 0.0 &&
+         (l.gear_resonance_hz == 0.0 ||
+          (l.motor_inertia_fraction > 0.0 && l.motor_inertia_fraction < 1.0 &&
+           finite(l.gear_damping_ratio) && l.gear_damping_ratio >= 0.0)) &&
          (l.derivative != pid::DerivativeSource::Observer ||
           (finite(l.observer_bandwidth_hz) && l.observer_bandwidth_hz > 0.0 &&
            l.observer_delay_ticks >= 0 && l.observer_delay_ticks <= pid::kMaxObserverDelayTicks &&
@@ -96,6 +100,48 @@ std::pair<Eigen::Matrix3d, Eigen::Vector3d> lagged_segment(double a, double c, d
   m(2, 3) = w;
   const Eigen::Matrix4d e = (m * t).exp();
   return {e.topLeftCorner<3, 3>(), e.topRightCorner<3, 1>()};
+}
+
+// The continuous plant with an elastic gear (margins.hpp): x = (θ_m, θ̇_m, θ_l, θ̇_l[, v]),
+// ẋ = A x + B u; the current loop's state v last when there is one.
+std::pair<Eigen::MatrixXd, Eigen::VectorXd> geared_plant(const JointLoop& loop, double c) {
+  const bool lagged = loop.torque_bandwidth_hz > 0.0;
+  const int n = lagged ? 5 : 4;
+  const double r = loop.motor_inertia_fraction, a = loop.damping_per_s;
+  const double w = 2.0 * kPi * loop.gear_resonance_hz, zeta = loop.gear_damping_ratio;
+  const double stiffness = w * w, damping = 2.0 * zeta * w;  // per unit of r (1 − r) J
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  m(0, 1) = 1.0;
+  m(1, 0) = -stiffness * (1.0 - r);
+  m(1, 1) = -a / r - damping * (1.0 - r);
+  m(1, 2) = stiffness * (1.0 - r);
+  m(1, 3) = damping * (1.0 - r);
+  m(2, 3) = 1.0;
+  m(3, 0) = stiffness * r;
+  m(3, 1) = damping * r;
+  m(3, 2) = -stiffness * r;
+  m(3, 3) = -damping * r;
+  if (lagged) {
+    const double wc = 2.0 * kPi * loop.torque_bandwidth_hz;
+    m(1, 4) = c / r;
+    m(4, 4) = -wc;
+    b(4) = wc;
+  } else {
+    b(1) = c / r;
+  }
+  return {m, b};
+}
+
+// Φ(t) and Γ(t) = ∫₀ᵗ e^{A s} ds B from the exponential of [[A, B], [0, 0]] t.
+std::pair<Eigen::MatrixXd, Eigen::VectorXd> segment(const Eigen::MatrixXd& a,
+                                                    const Eigen::VectorXd& b, double t) {
+  const auto n = a.rows();
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  m.topLeftCorner(n, n) = a * t;
+  m.topRightCorner(n, 1) = b * t;
+  const Eigen::MatrixXd e = m.exp();
+  return {e.topLeftCorner(n, n), e.topRightCorner(n, 1)};
 }
 
 // |S − 1/2| = |(1 − L) / (2 (1 + L))|.
@@ -131,6 +177,15 @@ namespace detail {
 DiscretePlant discretise(const JointLoop& loop, double plant_gain, double fraction) {
   const double h = loop.tick_s, a = loop.damping_per_s, c = plant_gain;
   DiscretePlant d;
+  if (loop.gear_resonance_hz > 0.0) {
+    const auto [a_c, b_c] = geared_plant(loop, c);
+    const auto [phi_last, gamma_last] = segment(a_c, b_c, (1.0 - fraction) * h);
+    const auto [phi_first, gamma_first] = segment(a_c, b_c, fraction * h);
+    d.phi = segment(a_c, b_c, h).first;
+    d.g1 = gamma_last;
+    d.g0 = phi_last * gamma_first;
+    return d;
+  }
   if (loop.torque_bandwidth_hz > 0.0) {
     const double w = 2.0 * kPi * loop.torque_bandwidth_hz;
     const auto [phi_last, gamma_last] = lagged_segment(a, c, w, (1.0 - fraction) * h);
@@ -237,7 +292,15 @@ class LoopResponse {
     const double h = loop_.tick_s;
     const Complex z = std::polar(1.0, omega_rad_s * h);
     Complex p_theta, p_omega;
-    if (loop_.torque_bandwidth_hz > 0.0) {
+    if (loop_.gear_resonance_hz > 0.0) {
+      // (zI − Φ)⁻¹ (g1 + g0 / z) in general: the motor side's angle and rate are its first two.
+      const auto n = plant_.phi.rows();
+      const Eigen::MatrixXcd m = z * Eigen::MatrixXcd::Identity(n, n) - plant_.phi.cast<Complex>();
+      const Eigen::VectorXcd g = plant_.g1.cast<Complex>() + plant_.g0.cast<Complex>() / z;
+      const Eigen::VectorXcd x = m.partialPivLu().solve(g);
+      p_theta = x(0);
+      p_omega = x(1);
+    } else if (loop_.torque_bandwidth_hz > 0.0) {
       // (zI − Φ)⁻¹ (g1 + g0 / z): the transfers from u to θ and θ̇. Φ is upper triangular (so is
       // the continuous plant with its lag), so back substitution solves it.
       const Eigen::MatrixXd& phi = plant_.phi;

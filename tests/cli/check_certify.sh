@@ -85,6 +85,14 @@ PY
 [ $? -le 1 ] || fail "certify on a set"
 grep -q '"conditions": 14' "$work/set.json" || fail "training set has 14 conditions"
 
+# An elastic gear is in the loop the margins are of (the drive measures the motor): a 10 Hz gear
+# (the tick's Nyquist rate) behind a 30 Hz current loop leaves the tuned PID's joint 1 unstable at
+# its frozen gains, as the simulation rings there; a 40 Hz one is certified.
+expect 1 "^1 .* NO$" -- "$fuzzypid" certify "$src/controllers/tuned_pid.toml" \
+  --joint-resonance-hz 10 --joint-damping-ratio 0.05 --torque-bandwidth-hz 30
+expect 0 "^certified" -- "$fuzzypid" certify "$src/controllers/tuned_pid.toml" \
+  --joint-resonance-hz 40 --joint-damping-ratio 0.05 --torque-bandwidth-hz 30
+
 # Usage errors: exit 2 naming the option or file.
 expect 2 "^--set: " -- "$fuzzypid" certify "$pid" --set held-out
 expect 2 "has no set 'nope'" -- "$fuzzypid" certify "$pid" --conditions "$src/tuning/robust.toml" \

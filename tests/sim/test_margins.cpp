@@ -15,6 +15,9 @@
 
 #include "fuzzypid/controller_file/controller_file.hpp"
 #include "fuzzypid/pid/pid.hpp"
+#include "fuzzypid/robot/path.hpp"
+#include "fuzzypid/robot/plant.hpp"
+#include "fuzzypid/robot/robot_model.hpp"
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/experiment.hpp"
 #include "fuzzypid_support/uniform_real.hpp"
@@ -253,6 +256,139 @@ TEST(Margins, AVelocityObserverInTheLoopIsModelledAsPidRunsIt) {
     EXPECT_GT(simulate(loop, 1.05 * gm, loop.delay_ticks, 40000), 1.0) << "trial " << trial;
   }
   EXPECT_GE(checked, 15);
+}
+
+// Largest |θ_m| over the last tenth of a run of pid::Pid (gains × scale, output in N·m) on joint
+// `joint` of robot::JointPlant, decoupled at a fixed inertia with the elastic gear, current loop
+// and delay of `config`, reading the motor side as a drive does, from 0.05 rad at rest.
+double simulate_on_plant(const fuzzypid::robot::RobotModel& model,
+                         const fuzzypid::robot::PlantConfig& config, std::size_t joint,
+                         const JointLoop& loop, double scale, int ticks) {
+  fuzzypid::pid::Config<double> pc;
+  pc.gains = {scale * loop.gains.kp, scale * loop.gains.ki, scale * loop.gains.kd};
+  pc.derivative_filter_s = loop.derivative_filter_s;
+  pc.derivative_source = loop.derivative;
+  pc.anti_windup = fuzzypid::pid::AntiWindup::None;
+  fuzzypid::pid::Pid<double> pid(pc);
+  fuzzypid::robot::JointPlant plant(model, config);
+  if (!plant.valid()) return NAN;
+  fuzzypid::robot::JointVector q0 = fuzzypid::robot::kPaperStartJoints;
+  q0[joint] += 0.05;
+  plant.reset(q0, fuzzypid::robot::JointVector{});
+  const double target = fuzzypid::robot::kPaperStartJoints[joint];
+  double peak = 0.0;
+  for (int k = 0; k < ticks; ++k) {
+    fuzzypid::pid::Input<double> in;
+    in.setpoint = target;
+    in.measurement = plant.measured_position()[joint];
+    in.measurement_rate = plant.measured_velocity()[joint];
+    if (pid.update(in, loop.tick_s) != fuzzypid::Status::Ok) return INFINITY;
+    fuzzypid::robot::JointVector tau{};
+    tau[joint] = pid.output();
+    if (plant.step(tau, loop.tick_s) != fuzzypid::robot::PlantStatus::Ok) return INFINITY;
+    const double off = std::abs(plant.motor_position()[joint] - target);
+    if (!(off < 1e3)) return INFINITY;
+    if (k >= ticks - ticks / 10) peak = std::max(peak, off);
+  }
+  return peak;
+}
+
+// An elastic gear (JointLoop::gear_resonance_hz): over seeded random joints of the ER50-C20, ticks,
+// resonances from below to above the Nyquist rate, damping ratios, current loops, delays of 0 to a
+// tick and both derivative sources, the frequency response's gain margin is the state matrix's
+// stability boundary, and robot::JointPlant run by pid::Pid (its own RK4 integration of the
+// two-mass joint) is stable below it and diverges above it.
+TEST(Margins, AnElasticGearIsModelledAsTheJointPlantRunsIt) {
+  const std::uint64_t seed = 20261207;
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  fuzzypid::support::UniformReal<double> unit(0.0, 1.0);
+  const std::vector<fuzzypid::sim::Condition> conditions{fuzzypid::sim::Condition{}};
+  std::string error;
+  const auto experiments =
+      fuzzypid::sim::ExperimentSet::create(conditions, fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(experiments) << error;
+  const fuzzypid::robot::RobotModel model = experiments->of(0).plant_model(conditions[0]);
+  int checked = 0, away_from_nyquist = 0;
+  for (int trial = 0; trial < 32; ++trial) {
+    const auto joint = static_cast<std::size_t>(unit(rng) * 6.0) % 6;
+    fuzzypid::robot::PlantConfig config;
+    config.armature_kgm2 = fuzzypid::robot::kEr50ArmatureKgm2;
+    config.inertia_update = fuzzypid::robot::InertiaUpdate::Fixed;
+    config.torque_limit_nm = fuzzypid::robot::JointVector{1e9, 1e9, 1e9, 1e9, 1e9, 1e9};
+    const double h = 0.01 * std::pow(5.0, unit(rng));                      // 10 .. 50 ms
+    config.joint_resonance_hz[joint] = (0.5 + 2.5 * unit(rng)) * 0.5 / h;  // 0.5 .. 3 × Nyquist
+    config.joint_damping_ratio = 0.1 * unit(rng);
+    config.torque_bandwidth_hz = unit(rng) < 0.5 ? 0.0 : 20.0 + 80.0 * unit(rng);
+    config.delay_s = h * std::floor(unit(rng) * 3.0) / 2.0;  // 0, h / 2 or h
+    config.damping_nms[joint] = 5.0 * unit(rng);
+    fuzzypid::robot::JointPlant probe(model, config);
+    ASSERT_TRUE(probe.valid());
+    probe.reset(fuzzypid::robot::kPaperStartJoints, fuzzypid::robot::JointVector{});
+    const double j = probe.inertia()[joint], motor = config.armature_kgm2[joint];
+
+    JointLoop loop;
+    loop.tick_s = h;
+    loop.plant_gain = 1.0 / j;  // the PID's output is the torque
+    loop.damping_per_s = config.damping_nms[joint] / j;
+    loop.torque_bandwidth_hz = config.torque_bandwidth_hz;
+    fuzzypid::sim::set_delay(loop, config.delay_s);
+    loop.gear_resonance_hz = config.joint_resonance_hz[joint];
+    loop.gear_damping_ratio = config.joint_damping_ratio;
+    loop.motor_inertia_fraction = motor / j;
+    const double wb = (0.03 + 0.12 * unit(rng)) * M_PI / h;
+    loop.gains = {j * wb * wb, j * 0.1 * wb * wb * wb, j * (1.0 + unit(rng)) * wb};
+    loop.derivative_filter_s = 0.3 * unit(rng) * h;
+    loop.derivative = unit(rng) < 0.5 ? DerivativeSource::Rates : DerivativeSource::Difference;
+    const LoopMargins m = fuzzypid::sim::margins(loop);
+    if (!m.stable || !std::isfinite(m.gain_margin_db)) continue;
+    ++checked;
+    if (std::abs(m.phase_crossover_rad_s - M_PI / h) > 1e-6 / h) ++away_from_nyquist;
+    const double gm = std::pow(10.0, m.gain_margin_db / 20.0);
+    // 1e-5: the bisections meet a lightly damped resonance's sharp phase there.
+    EXPECT_NEAR(eigen_gain_boundary(loop, 1.0, 1e3), gm, 1e-5 * gm) << "trial " << trial;
+    EXPECT_LT(simulate_on_plant(model, config, joint, loop, 0.95 * gm, 3000), 0.05)
+        << "trial " << trial;
+    EXPECT_GT(simulate_on_plant(model, config, joint, loop, 1.05 * gm, 3000), 0.5)
+        << "trial " << trial;
+  }
+  EXPECT_GE(checked, 16);
+  EXPECT_GE(away_from_nyquist, 4);
+  std::printf("%d of 32 loops checked, %d crossing -180° away from the Nyquist rate\n", checked,
+              away_from_nyquist);
+}
+
+// A gear far stiffer than the tick sees is the rigid joint; a soft one near the Nyquist rate is not.
+TEST(Margins, AVeryStiffGearIsTheRigidJoint) {
+  JointLoop rigid;
+  rigid.tick_s = 0.05;
+  rigid.plant_gain = 1.0;
+  rigid.gains = {172.5, 0.00045, 21.35};
+  rigid.torque_bandwidth_hz = 50.0;
+  fuzzypid::sim::set_delay(rigid, 0.01);
+  const LoopMargins r = fuzzypid::sim::margins(rigid);
+  ASSERT_TRUE(r.stable);
+  JointLoop stiff = rigid;
+  stiff.gear_resonance_hz = 2000.0;  // 200 × the Nyquist rate
+  stiff.gear_damping_ratio = 0.05;
+  stiff.motor_inertia_fraction = 0.1;
+  const LoopMargins s = fuzzypid::sim::margins(stiff);
+  ASSERT_TRUE(s.stable);
+  EXPECT_NEAR(s.gain_margin_db, r.gain_margin_db, 0.01);
+  EXPECT_NEAR(s.phase_margin_deg, r.phase_margin_deg, 0.05);
+  EXPECT_NEAR(s.disk_margin, r.disk_margin, 1e-3);
+  JointLoop soft = stiff;
+  soft.gear_resonance_hz = 9.0;
+  EXPECT_FALSE(fuzzypid::sim::margins(soft).stable);
+  // Invalid gears: a motor share outside (0, 1), a negative damping ratio.
+  for (const double share : {0.0, 1.0, -0.2}) {
+    JointLoop bad = stiff;
+    bad.motor_inertia_fraction = share;
+    EXPECT_FALSE(fuzzypid::sim::margins(bad).stable) << share;
+  }
+  JointLoop bad = stiff;
+  bad.gear_damping_ratio = -0.1;
+  EXPECT_FALSE(fuzzypid::sim::margins(bad).stable);
 }
 
 TEST(Margins, UnstableLoopHasNoDiskMargin) {

@@ -7,6 +7,10 @@
 //     matrix of the condition's plant model, payload at the flange included; J_motor the armature),
 //     evaluated at J_min, their geometric mean and J_max;
 //   - the viscous friction range [b_min, b_max], b_i = friction_per_s J^_i of each condition;
+//   - each condition's elastic gear (joint_resonance_hz, joint_damping_ratio; margins.hpp): its
+//     stiffness and damping as robot::JointPlant fixes them at reset(), the motor's share and the
+//     resonance following at each evaluated inertia, at the options' delay and at the condition's
+//     own (frozen-gain margins only: the common Lyapunov function below is of the rigid joint);
 //   - every controller tick the conditions run at, and the extra delay of the options (any
 //     value: whole ticks and a fraction, margins.hpp);
 //   - the gain triples the controller can produce: its gains for a PID; for a moving-gain family
@@ -109,14 +113,25 @@ struct MarginSummary {
 // The delay certify assumes for a set of conditions: the largest of their delay_s, s (0: none).
 [[nodiscard]] double largest_delay_s(const std::vector<Condition>& conditions) noexcept;
 
-// The plants one joint meets at one tick, one nominal inertia J^ and one current loop: the ranges
-// of its effective inertia and viscous friction over the conditions.
+// The plants one joint meets at one tick, one nominal inertia J^, one current loop and one gear:
+// the ranges of its effective inertia and viscous friction over the conditions.
 struct PlantGroup {
   double tick_s = 0.0;
   double nominal_inertia_kgm2 = 0.0;
   double torque_bandwidth_hz = 0.0;
   double inertia_min = 0.0, inertia_max = 0.0;  // kg·m²
   double damping_min = 0.0, damping_max = 0.0;  // N·m·s/rad
+  // An elastic gear (robot::PlantConfig::joint_resonance_hz): its stiffness (N·m/rad; 0: a rigid
+  // joint) and damping (N·m·s/rad) as the plant fixes them at reset(), and the motor side's
+  // inertia (the armature, kg·m²). At an inertia J the loop's motor share is J_m / J and its
+  // resonance √(k (1/J_m + 1/(J − J_m))).
+  double gear_stiffness_nm_per_rad = 0.0;
+  double gear_damping_nms = 0.0;
+  double motor_inertia_kgm2 = 0.0;
+  // With a gear, the condition's own delay (s): a gear near the Nyquist rate can be stable behind
+  // a whole tick and unstable behind less, so such a group is evaluated at this delay as well as
+  // at CertifyOptions::delay_s. 0 for a rigid joint.
+  double delay_s = 0.0;
 };
 
 struct PlantRanges {

@@ -17,12 +17,14 @@
 // 16 intervals with one P each (inertia_intervals): the inertia then varies slowly, as it
 // does along a path, and the gains still switch on every tick.
 //
-// Assumptions, as printed with every certificate: a linear joint (no saturation, friction other
-// than viscous, backlash or gear elasticity; with saturation and an integrator the result is
+// Assumptions, as printed with every certificate: a linear, rigid joint (no saturation, friction
+// other than viscous, backlash or gear elasticity; with saturation and an integrator the result is
 // local), the plant gain, damping and current-loop bandwidth inside their ranges, the gains
 // inside the box. The damping a = b / J and the current loop's bandwidth enter the discretisation
 // through exponentials, not affinely: the LMIs are solved at the ends of their ranges and P is
 // checked at six values of each (ends, geometric middle, quarters), every combination.
+// A loop with an elastic gear (JointLoop::gear_resonance_hz > 0) is refused: its state matrix is
+// not affine in c (certify.hpp certifies the rigid loop here and the gear at frozen gains).
 // A box whose Ki reaches 0 from above cannot be certified: at Ki = 0 the PID freezes its integral,
 // which then holds its value (an eigenvalue 1, no decay).
 //

@@ -15,6 +15,15 @@
 //   current loop (torque_bandwidth_hz F > 0) the plant receives v, the command lagged to first
 //               order: v̇ = 2π F (u_delayed − v), as robot::Plant applies torque_bandwidth_hz;
 //               discretised exactly (matrix exponential) with the ZOH.
+//   gear        (gear_resonance_hz F > 0) an elastic gear, as robot::Plant's joint_resonance_hz: a
+//               two-mass joint whose motor side carries the fraction r of J (the armature) and the
+//               viscous friction, is driven by the command and is what the drive measures (θ, θ̇
+//               above are the motor's θ_m, θ̇_m); the link side (1 − r) J follows through the gear
+//               (δ = θ_m − θ_l, ω = 2π F, ζ = gear_damping_ratio):
+//                   r θ̈_m = c v − a θ̇_m − g,   (1 − r) θ̈_l = g,   g = r (1 − r) (ω² δ + 2 ζ ω δ̇)
+//               (g the gear torque over J; its stiffness ω² μ and damping 2 ζ ω μ with
+//               μ = r (1 − r) J: F is the joint's free resonance at this inertia); v = u without a
+//               current loop. Discretised exactly (matrix exponential) with the ZOH.
 //   delay       u_k reaches the plant (d + f) h later (d = delay_ticks, f = delay_fraction in
 //               [0, 1)): over each tick the plant sees u_{k−d−1} for f h, then u_{k−d} (the
 //               modified z-transform of the ZOH plant; exact, not a Padé or e^{−jωτ} model).
@@ -72,6 +81,11 @@ struct JointLoop {
   // The current loop, a first-order lag on the (delayed) command, Hz; 0: ideal (robot::PlantConfig's
   // torque_bandwidth_hz). With it the plant is θ̈ = c v − a θ̇, v̇ = 2π F (u − v).
   double torque_bandwidth_hz = 0.0;
+  // The elastic gear: its free resonance at this inertia (Hz; 0: a rigid joint), its damping ratio
+  // (>= 0) and the motor side's share of the joint's inertia r = J_m / J (in (0, 1) with a gear).
+  double gear_resonance_hz = 0.0;
+  double gear_damping_ratio = 0.0;
+  double motor_inertia_fraction = 1.0;
   // DerivativeSource::Observer (pid.hpp): the observer's bandwidth F (Hz, > 0), the ticks of delay
   // it models (0 .. pid::kMaxObserverDelayTicks) and its model's c (rad/s² per unit of u: 1 with
   // acceleration gain units, whatever the plant's c is).
@@ -119,7 +133,8 @@ struct MarginOptions {
 };
 
 // The margins above. A loop with invalid numbers (non-positive tick or plant gain, negative
-// damping, filter or delay, non-finite gains) gives stable = false and zero margins.
+// damping, filter or delay, non-finite gains; with a gear a motor share outside (0, 1) or a
+// negative damping ratio) gives stable = false and zero margins.
 [[nodiscard]] LoopMargins margins(const JointLoop& loop, const MarginOptions& options = {});
 
 // The gain factor of a margin in dB (20 log10).
