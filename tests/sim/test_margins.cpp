@@ -464,6 +464,39 @@ TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
   }
 }
 
+// A 10 Hz gear (the tick's Nyquist rate) behind a 30 Hz current loop: the tuned PID's joint 1
+// is unstable there with no delay and stable behind a whole tick. In a set whose largest delay is
+// a tick (another, rigid condition's), the gear is still checked at its own condition's delay.
+TEST(Certify, AGearIsCheckedAtItsOwnConditionsDelay) {
+  Er50 er50;
+  fuzzypid::sim::Condition rigid_late, geared;
+  rigid_late.effects.delay_s = 0.05;
+  geared.effects.torque_bandwidth_hz = 30.0;
+  geared.effects.joint_resonance_hz.fill(10.0);
+  geared.effects.joint_damping_ratio = 0.05;
+  er50.conditions = {rigid_late, geared};
+  std::string error;
+  er50.experiments = fuzzypid::sim::ExperimentSet::create(
+      er50.conditions, fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(er50.experiments) << error;
+  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml", 0.05);
+  EXPECT_FALSE(cert.certified);
+  const fuzzypid::sim::JointCertificate& joint1 = cert.joints[0];
+  EXPECT_FALSE(joint1.stable);
+  EXPECT_EQ(joint1.worst_disk.margins.disk_margin, 0.0);
+  EXPECT_EQ(joint1.worst_disk.loop.delay_ticks, 0);
+  EXPECT_EQ(joint1.worst_disk.loop.delay_fraction, 0.0);
+  EXPECT_GT(joint1.worst_disk.loop.gear_resonance_hz, 9.5);
+  EXPECT_LT(joint1.worst_disk.loop.gear_resonance_hz, 10.5);
+  // Behind the whole tick alone the same gear is stable: the set's largest delay would hide it.
+  er50.conditions = {geared};
+  er50.conditions[0].effects.delay_s = 0.05;
+  er50.experiments = fuzzypid::sim::ExperimentSet::create(
+      er50.conditions, fuzzypid::sim::ExperimentOptions{}, error);
+  ASSERT_TRUE(er50.experiments) << error;
+  EXPECT_TRUE(er50.certify("controllers/tuned_pid.toml", 0.05).joints[0].stable);
+}
+
 TEST(Certify, AGainScheduleIsCertifiedOverTheBoxOfTheGainsItProduces) {
   const Er50 er50;
   const fuzzypid::sim::Certificate cert = er50.certify("tests/sim/data/certified_schedule.toml");
