@@ -1,6 +1,7 @@
 #include "fuzzypid/sim/margins.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -286,20 +287,42 @@ namespace {
 class LoopResponse {
  public:
   explicit LoopResponse(const JointLoop& loop)
-      : loop_(loop), plant_(detail::discretise(loop, loop.plant_gain, loop.delay_fraction)) {}
+      : loop_(loop), plant_(detail::discretise(loop, loop.plant_gain, loop.delay_fraction)) {
+    if (loop.gear_resonance_hz > 0.0) {
+      // Φ = U T U* (complex Schur: T upper triangular, U unitary) once, so that every frequency
+      // solves (zI − T) y = U* (g1 + g0 / z) by back substitution: no pivoting per frequency.
+      const Eigen::ComplexSchur<Eigen::MatrixXcd> schur(plant_.phi.cast<Complex>());
+      schur_t_ = schur.matrixT();
+      const Eigen::MatrixXcd& u = schur.matrixU();
+      schur_g1_ = u.adjoint() * plant_.g1.cast<Complex>();
+      schur_g0_ = u.adjoint() * plant_.g0.cast<Complex>();
+      schur_rows_ = u.topRows(2);
+    }
+  }
 
   detail::ResponseTerms terms(double omega_rad_s) const {
     const double h = loop_.tick_s;
     const Complex z = std::polar(1.0, omega_rad_s * h);
     Complex p_theta, p_omega;
     if (loop_.gear_resonance_hz > 0.0) {
-      // (zI − Φ)⁻¹ (g1 + g0 / z) in general: the motor side's angle and rate are its first two.
-      const auto n = plant_.phi.rows();
-      const Eigen::MatrixXcd m = z * Eigen::MatrixXcd::Identity(n, n) - plant_.phi.cast<Complex>();
-      const Eigen::VectorXcd g = plant_.g1.cast<Complex>() + plant_.g0.cast<Complex>() / z;
-      const Eigen::VectorXcd x = m.partialPivLu().solve(g);
-      p_theta = x(0);
-      p_omega = x(1);
+      // (zI − Φ)⁻¹ (g1 + g0 / z) = U (zI − T)⁻¹ U* (g1 + g0 / z): the motor side's angle and
+      // rate are its first two entries.
+      const auto n = static_cast<int>(schur_t_.rows());
+      const Complex z_inverse = std::conj(z);  // |z| = 1
+      std::array<Complex, 6> y{};
+      for (int i = n - 1; i >= 0; --i) {
+        Complex sum = schur_g1_(i) + schur_g0_(i) * z_inverse;
+        for (int k = i + 1; k < n; ++k)
+          sum += schur_t_(i, k) * y[static_cast<std::size_t>(k)];
+        // sum / (z − T_ii) without the library's scaled complex division: the divisor is far from
+        // overflow (|T_ii| <= 1 for a plant that does not grow) and not 0 on the grid (ω > 0).
+        const Complex d = z - schur_t_(i, i);
+        y[static_cast<std::size_t>(i)] = sum * std::conj(d) / std::norm(d);
+      }
+      for (int k = 0; k < n; ++k) {
+        p_theta += schur_rows_(0, k) * y[static_cast<std::size_t>(k)];
+        p_omega += schur_rows_(1, k) * y[static_cast<std::size_t>(k)];
+      }
     } else if (loop_.torque_bandwidth_hz > 0.0) {
       // (zI − Φ)⁻¹ (g1 + g0 / z): the transfers from u to θ and θ̇. Φ is upper triangular (so is
       // the continuous plant with its lag), so back substitution solves it.
@@ -349,6 +372,10 @@ class LoopResponse {
  private:
   JointLoop loop_;
   detail::DiscretePlant plant_;
+  // With a gear: Φ's Schur form (T, U* g1, U* g0 and U's first two rows).
+  Eigen::MatrixXcd schur_t_;
+  Eigen::VectorXcd schur_g1_, schur_g0_;
+  Eigen::MatrixXcd schur_rows_;
 };
 
 // The logarithmic grid margins() scans: n points up to π/h.
