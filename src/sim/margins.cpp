@@ -309,7 +309,7 @@ class LoopResponse {
       // rate are its first two entries.
       const auto n = static_cast<int>(schur_t_.rows());
       const Complex z_inverse = std::conj(z);  // |z| = 1
-      std::array<Complex, 6> y{};
+      std::array<Complex, 6> y{};              // room for the geared plant's 4 or 5 states
       for (int i = n - 1; i >= 0; --i) {
         Complex sum = schur_g1_(i) + schur_g0_(i) * z_inverse;
         for (int k = i + 1; k < n; ++k)
