@@ -72,6 +72,13 @@ struct DataSlot {
 
 }  // namespace
 
+GearCoupling gear_coupling(double resonance_hz, double damping_ratio, double motor_kgm2,
+                           double link_kgm2) noexcept {
+  const double omega = kTwoPi * resonance_hz;
+  const double reduced = 1.0 / (1.0 / motor_kgm2 + 1.0 / link_kgm2);
+  return {omega * omega * reduced, 2.0 * damping_ratio * omega * reduced};
+}
+
 class JointPlant::Impl {
  public:
   Impl(const RobotModel& m, const PlantConfig& c) : model(m), config(c) {
@@ -158,10 +165,11 @@ class JointPlant::Impl {
       for (int i = 0; i < static_cast<int>(kNumJoints); ++i) {
         const auto k = static_cast<std::size_t>(i);
         if (elastic_mask[i] == 0.0) continue;
-        const double omega = kTwoPi * config.joint_resonance_hz[k];
-        const double reduced = 1.0 / (1.0 / config.armature_kgm2[k] + 1.0 / link[i]);
-        gear_k[i] = omega * omega * reduced;
-        gear_c[i] = 2.0 * config.joint_damping_ratio * omega * reduced;
+        const GearCoupling g =
+            gear_coupling(config.joint_resonance_hz[k], config.joint_damping_ratio,
+                          config.armature_kgm2[k], link[i]);
+        gear_k[i] = g.stiffness_nm_per_rad;
+        gear_c[i] = g.damping_nms;
       }
     }
   }

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "fuzzypid/controller/joint_controllers.hpp"
+#include "fuzzypid/robot/plant.hpp"
 #include "loop_matrix.hpp"
 
 namespace fuzzypid::sim {
@@ -239,8 +240,8 @@ std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions
     robot::RobotData data(model);
     const robot::PlantConfig plant = ex.plant_config(c);
     const double bandwidth = plant.torque_bandwidth_hz;
-    // The gear's stiffness and damping as robot::Plant fixes them at reset(): from the resonance
-    // and the two inertias where the run starts (or at the fixed configuration).
+    // The gear's stiffness and damping as robot::JointPlant fixes them at reset(): from the
+    // resonance and the two inertias where the run starts (or at the fixed configuration).
     const robot::JointVector reference =
         plant.fixed_configuration_rad.value_or(ex.initial_position(*path, c));
     const robot::JointVector link_diagonal = model.inertia_diagonal(reference, data);
@@ -249,11 +250,11 @@ std::optional<PlantRanges> plant_ranges(const std::vector<Condition>& conditions
       double stiffness = 0.0, gear_damping = 0.0, motor = 0.0;
       if (plant.joint_resonance_hz[i] > 0.0) {
         motor = plant.armature_kgm2[i];
-        const double link = plant.inertia_scale[i] * link_diagonal[i];
-        const double omega = 2.0 * kPi * plant.joint_resonance_hz[i];
-        const double reduced = 1.0 / (1.0 / motor + 1.0 / link);
-        stiffness = omega * omega * reduced;
-        gear_damping = 2.0 * plant.joint_damping_ratio * omega * reduced;
+        const robot::GearCoupling g =
+            robot::gear_coupling(plant.joint_resonance_hz[i], plant.joint_damping_ratio, motor,
+                                 plant.inertia_scale[i] * link_diagonal[i]);
+        stiffness = g.stiffness_nm_per_rad;
+        gear_damping = g.damping_nms;
       }
       const double own_delay = stiffness > 0.0 ? c.effects.delay_s : 0.0;
       auto it = std::find_if(groups[i].begin(), groups[i].end(), [&](const PlantGroup& g) {

@@ -146,6 +146,19 @@ TEST(CommonLyapunov, AFixedStableLoopIsCertifiedWithAContractionNoBelowItsSpectr
   EXPECT_TRUE(c.reason.empty());
 }
 
+// The certificate is of rigid joints (its state matrix is affine in c only without a gear): a
+// loop with an elastic gear is refused with the reason, though the same rigid box is certified.
+TEST(CommonLyapunov, ALoopWithAnElasticGearIsRefused) {
+  SwitchingLoop s = pid_box();
+  ASSERT_TRUE(fuzzypid::sim::common_lyapunov(s).certified);
+  s.loop.gear_resonance_hz = 40.0;
+  s.loop.gear_damping_ratio = 0.05;
+  s.loop.motor_inertia_fraction = 0.3;
+  const LyapunovCertificate c = fuzzypid::sim::common_lyapunov(s);
+  EXPECT_FALSE(c.certified);
+  EXPECT_EQ(c.reason, "an elastic gear (the certificate is of rigid joints)");
+}
+
 TEST(CommonLyapunov, ACertifiedBoxNeverDivergesUnderTenThousandRandomSwitchingSequences) {
   const SwitchingLoop s = pid_box();
   const LyapunovCertificate c = fuzzypid::sim::common_lyapunov(s);

@@ -154,6 +154,17 @@ enum class PlantStatus : std::uint8_t {
   return "unknown";
 }
 
+// The gear of a two-mass joint (PlantConfig::joint_resonance_hz): the stiffness k = ω² μ
+// (N·m/rad) and damping c = 2 ζ ω μ (N·m·s/rad) that give the joint its free resonance
+// ω = 2π resonance_hz with damping ratio ζ, μ = 1 / (1/J_m + 1/J_l) from the motor and link
+// inertias (kg·m², > 0). JointPlant fixes them so at reset(); the margins (sim/certify) use the same.
+struct GearCoupling {
+  double stiffness_nm_per_rad = 0.0;
+  double damping_nms = 0.0;
+};
+[[nodiscard]] GearCoupling gear_coupling(double resonance_hz, double damping_ratio,
+                                         double motor_kgm2, double link_kgm2) noexcept;
+
 class JointPlant {
  public:
   // Copies the model. An invalid configuration (non-positive substep, negative armature, scale,
