@@ -22,6 +22,9 @@
 #              derivative is the velocity observer, whose bandwidth is then searched too
 #   CHATTER_WEIGHT=W CHATTER_LIMIT=L   the objective's chatter weight above L % reversals (defaults
 #                      300 and 5: docs/tuning.md, "Chatter")
+#   FAMILIES="pid ..."  the families to tune (default: all five)
+#   MIN_DISK_MARGIN=A  every candidate keeps a disk margin of at least A (--min-disk-margin; default 0)
+#   SEEDS_DIR=DIR      where the seed files and the evaluation go (default out/seeds)
 # The controllers shipped before the drive re-tune came from
 #   CONDITIONS=tuning/robust.toml CHATTER_WEIGHT=0 CHATTER_LIMIT=0 SEARCH_FILTER=0 BUDGET=64000 scripts/tune.sh
 set -euo pipefail
@@ -33,6 +36,8 @@ if [ "${SEARCH_FILTER:-1}" = 0 ]; then filter=--keep-filter; fi
 seeds="${SEEDS:-5}"
 threads="${THREADS:-$(nproc)}"
 rules_args="${RULES_ARGS:-}"
+families="${FAMILIES:-pid scheduled fuzzy fuzzy_rules scheduled_staged}"
+seeds_dir="${SEEDS_DIR:-out/seeds}"
 bash scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
@@ -43,6 +48,7 @@ control="pid:$((budget / 16)),scheduled:$((budget - budget / 16))"
 tune_one() {
   local common=(--conditions "${conditions}" --set training --validation 4 --seed "$2"
                 --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}"
+                --min-disk-margin "${MIN_DISK_MARGIN:-0}"
                 "${filter}" --threads "${threads}" --quiet --out "$3")
   if [ -n "${BASE:-}" ]; then common+=(--base "${BASE}"); fi
   if [ "$1" = fuzzy_rules ]; then
@@ -54,23 +60,24 @@ tune_one() {
     build/bin/fuzzypid tune --family "$1" --budget "${budget}" "${common[@]}"
   fi
 }
-mkdir -p out/seeds
+mkdir -p "${seeds_dir}"
 last="${seeds}"
 if [ "${SKIP_SEEDS:-0}" = 1 ]; then last=1; fi
 for seed in $(seq 1 "${last}"); do
-  for family in pid scheduled fuzzy fuzzy_rules scheduled_staged; do
-    out="out/seeds/${family}_seed${seed}.toml"
+  for family in ${families}; do
+    out="${seeds_dir}/${family}_seed${seed}.toml"
     if [ "${RESUME:-0}" = 1 ] && [ -f "${out}" ]; then echo "== ${family} seed ${seed}: kept"; continue; fi
     echo "== ${family} seed ${seed}"
-    tune_one "${family}" "${seed}" "out/seeds/${family}_seed${seed}.toml"
+    tune_one "${family}" "${seed}" "${out}"
   done
 done
-for family in pid scheduled fuzzy fuzzy_rules scheduled_staged; do
-  # The file records its conditions relative to its own folder: one level up from controllers/.
-  sed 's|^conditions = "\.\./\.\./|conditions = "../|' "out/seeds/${family}_seed1.toml" \
+for family in ${families}; do
+  # The file records its conditions relative to its own folder: one level up from controllers/
+  # (the seeds' folder is two levels below the project).
+  sed 's|^conditions = "\.\./\.\./|conditions = "../|' "${seeds_dir}/${family}_seed1.toml" \
     >"controllers/tuned_${family}.toml"
 done
 args=(--controller controllers/paper_pid.toml --controller controllers/paper_fuzzy.toml)
-for f in out/seeds/*_seed*.toml; do args+=(--controller "$f"); done
-build/bin/sim_ab --quiet --allow-faults --conditions "${conditions}" "${args[@]}" --out out/seeds/eval
-/usr/bin/python3 scripts/seed_study.py out/seeds/eval
+for f in "${seeds_dir}"/*_seed*.toml; do args+=(--controller "$f"); done
+build/bin/sim_ab --quiet --allow-faults --conditions "${conditions}" "${args[@]}" --out "${seeds_dir}/eval"
+/usr/bin/python3 scripts/seed_study.py "${seeds_dir}/eval"
