@@ -13,6 +13,7 @@
 
 namespace {
 
+using fuzzypid::sim::Condition;
 using fuzzypid::sim::ConditionFile;
 using fuzzypid::sim::load_conditions;
 using fuzzypid::sim::parse_conditions;
@@ -489,6 +490,45 @@ TEST(ConditionSets, TheDriveFileTrainsOnRealJointsWithinOneTickOfDelay) {
   EXPECT_GE(coulomb_conditions(f, "held-out"), 1);
   EXPECT_GT(longest_delay_s(f, "stress"), 0.05);
   expect_backwards_and_friction(f);
+}
+
+bool same_condition(const Condition& a, const Condition& b) {
+  return a.name == b.name && a.payload_scale == b.payload_scale &&
+         a.friction_per_s == b.friction_per_s && a.torque_limit_rad_s2 == b.torque_limit_rad_s2 &&
+         a.contact_rad_s2 == b.contact_rad_s2 && a.noise_position_rad == b.noise_position_rad &&
+         a.noise_velocity_rad_s == b.noise_velocity_rad_s && a.seed == b.seed &&
+         a.reverse == b.reverse && a.initial_error_rad == b.initial_error_rad &&
+         a.robot == b.robot && a.payload_kg == b.payload_kg && a.dynamics == b.dynamics &&
+         a.gravity == b.gravity && a.effects == b.effects;
+}
+
+void expect_same_conditions(const std::vector<Condition>& a, const std::vector<Condition>& b,
+                            const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_TRUE(same_condition(a[i], b[i])) << what << ": " << a[i].name << " / " << b[i].name;
+}
+
+// tuning/robust_drive_soft.toml (trials 7 to 10): the drive file with the first three conditions
+// of its soft-gears set moved into training before the seeded draws, so that the draws -- and the
+// four that --validation 4 holds back -- are the drive file's, and every set it is judged on is.
+TEST(ConditionSets, TheSoftGearDriveFileIsTheDriveFileWithTheSoftCornersInTraining) {
+  ConditionFile drive;
+  ConditionFile soft;
+  ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", drive));
+  ASSERT_NO_FATAL_FAILURE(
+      load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive_soft.toml", soft));
+  const auto& corners = drive.find("soft-gears")->conditions;
+  ASSERT_EQ(corners.size(), 5u);
+  std::vector<Condition> expected = drive.find("training")->conditions;
+  expected.insert(expected.begin() + 8, corners.begin(), corners.begin() + 3);
+  expect_same_conditions(soft.find("training")->conditions, expected, "training");
+  expect_same_conditions(soft.find("soft-gears")->conditions,
+                         std::vector<Condition>(corners.begin() + 3, corners.end()), "soft-gears");
+  ASSERT_EQ(soft.set_names(), drive.set_names());
+  for (const auto& set : drive.sets)
+    if (set.name != "training" && set.name != "soft-gears")
+      expect_same_conditions(soft.find(set.name)->conditions, set.conditions, set.name);
 }
 
 // The Monte-Carlo draws of a file stay as they were when a key is added: the effects' stream takes
