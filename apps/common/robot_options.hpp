@@ -165,7 +165,8 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
                                         "expected 6 comma-separated numbers (kg·m²): " + s);
            for (double a : v)
              if (a < 0.0 || a > sim::kMaxArmatureKgm2)
-               throw CLI::ValidationError("--armature", "values must be within 0 .. 1e6: " + s);
+               throw CLI::ValidationError(
+                   "--armature", "values must be within " + sim::kArmatureRange.text() + ": " + s);
            o.setup.armature_kgm2 = v;
          },
          "reflected motor inertia of each joint, kg·m² (default: the ER50's estimates for the "
@@ -219,7 +220,8 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
            if (!n || (*n != 0 && !sim::kEncoderCountsRange.contains(static_cast<double>(*n))))
              throw CLI::ValidationError(
                  "--encoder-counts", std::string("expected 0 (") + sim::kEncoderCountsRange.zero +
-                                         ") or an integer within 4 .. 1e12: " + s);
+                                         ") or an integer within " +
+                                         sim::kEncoderCountsRange.text() + ": " + s);
            o.effects.encoder_counts = *n;
          },
          "the measured angle quantised to 2 pi/N, the rate differenced from it (default 0: exact)")

@@ -98,6 +98,12 @@ bool default_gravity(const RobotSetup& robot, robot::PlantCoupling dynamics) noe
   return !robot.urdf.empty() && dynamics == robot::PlantCoupling::Coupled;
 }
 
+std::string FieldRange::text() const {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g .. %g", lo, hi);
+  return buf;
+}
+
 bool RobotSetup::operator==(const RobotSetup& o) const noexcept {
   return urdf == o.urdf && base_link == o.base_link && tip_link == o.tip_link && path == o.path &&
          start_m == o.start_m && end_m == o.end_m && tick_s == o.tick_s &&
@@ -106,11 +112,11 @@ bool RobotSetup::operator==(const RobotSetup& o) const noexcept {
 
 std::string RobotSetup::validate() const {
   if (!std::isfinite(tick_s) || tick_s < kMinTickS || tick_s > kMaxTickS)
-    return "tick must be within 0.1 .. 1000 ms";
+    return "tick must be within " + kTickMsRange.text() + " ms";
   if (armature_kgm2)
     for (double a : *armature_kgm2)
       if (!std::isfinite(a) || a < 0.0 || a > kMaxArmatureKgm2)
-        return "armature values must be within 0 .. 1e6 kg·m²";
+        return "armature values must be within " + kArmatureRange.text() + " kg·m²";
   for (const auto* p : {&start_m, &end_m})
     if (*p)
       for (double v : **p)

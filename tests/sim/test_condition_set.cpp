@@ -265,7 +265,7 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
       {"[sets.s]\nconditions = [ { name = \"c\", torque_bandwidth_hz = 0.01 } ]\n", 2, 52,
        "'torque_bandwidth_hz' must be 0 (ideal) or within 0.1 .. 100000"},
       {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 2 } ]\n", 2, 47,
-       "'encoder_counts' must be 0 (exact) or within 4 .. 1e12"},
+       "'encoder_counts' must be 0 (exact) or within 4 .. 1e+12"},
       {"[sets.s]\nconditions = [ { name = \"c\", encoder_counts = 1.5 } ]\n", 2, 47,
        "non-negative integer"},
       {"[sets.s]\nconditions = [ { name = \"c\", coulomb_nm = -1.0 } ]\n", 2, 43,

@@ -69,6 +69,8 @@ struct FieldRange {
   // "the plant's default"); the messages say it.
   const char* zero = "off";
   [[nodiscard]] constexpr bool contains(double v) const noexcept { return v >= lo && v <= hi; }
+  // "lo .. hi" as the messages give it (printf's %g), so that no message restates a bound.
+  [[nodiscard]] std::string text() const;
 };
 inline constexpr FieldRange kPayloadScaleRange{"payload_scale", 1e-3, 1e3};
 inline constexpr FieldRange kFrictionRange{"friction", 0.0, 1e4};            // 1/s
