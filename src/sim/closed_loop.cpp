@@ -40,7 +40,7 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
   auto joints = controller::JointControllers::create(
       controller, experiment.output_limit(condition, controller.units.gains), error);
   if (!joints) return std::nullopt;
-  return create(experiment, condition, std::move(*joints), error);
+  return assemble(experiment, condition, std::move(*joints), error);
 }
 
 std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
@@ -51,6 +51,13 @@ std::optional<ClosedLoop> ClosedLoop::create(const Experiment& experiment,
     error = "condition " + condition.name + ": " + bad;
     return std::nullopt;
   }
+  return assemble(experiment, condition, std::move(controller), error);
+}
+
+std::optional<ClosedLoop> ClosedLoop::assemble(const Experiment& experiment,
+                                               const Condition& condition,
+                                               controller::JointControllers controller,
+                                               std::string& error) {
   const robot::JointPathResult* path = experiment.path(condition, error);
   if (path == nullptr) return std::nullopt;
   ClosedLoop loop(experiment, condition, *path, std::move(controller));

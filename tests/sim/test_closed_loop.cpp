@@ -577,6 +577,45 @@ TEST_F(ClosedLoopTest, TheCyclicPathPlaysForwardsThenBackwardsWithoutEnd) {
   EXPECT_EQ(loop->cyclic_sample(5 * cycle + 7).theta_d, experiment_->path().position_rad[7]);
 }
 
+// A condition the experiment refuses (here a NaN payload and a gear on joints without the motor
+// side it needs) builds no loop, whichever create() is given the controller, and the error names
+// the condition and what is wrong.
+TEST_F(ClosedLoopTest, EitherCreateRefusesAConditionTheExperimentRefuses) {
+  const controller::ControllerSpec spec = controller::paper_pid();
+  const robot::JointVector limit = experiment_->output_limit(busy_condition(), spec.units.gains);
+  std::array<supervisor::FuzzyPidConfig<double>, kJ> configs;
+  for (std::size_t i = 0; i < kJ; ++i)
+    configs[i] = controller::fuzzy_pid_config(spec, limit[i]);
+  sim::Condition nan_payload = busy_condition();
+  nan_payload.name = "nan-payload";
+  nan_payload.payload_scale = std::nan("");
+  sim::Condition geared = busy_condition();
+  geared.name = "geared";
+  geared.effects.joint_resonance_hz.fill(12.0);
+  sim::ExperimentOptions no_armature = experiment_->options();
+  no_armature.plant.armature_kgm2.fill(0.0);
+  std::string error;
+  const auto bare = sim::Experiment::create(*model_, robot::paper_path_spec(), no_armature, error);
+  ASSERT_TRUE(bare) << error;
+  struct Refused {
+    const sim::Experiment* experiment;
+    const sim::Condition* condition;
+    const char* says;
+  };
+  for (const Refused& r : {Refused{&*experiment_, &nan_payload, "payload_scale"},
+                           Refused{&*bare, &geared, "needs an armature > 0 on joint 1"}}) {
+    error.clear();
+    EXPECT_FALSE(sim::ClosedLoop::create(*r.experiment, *r.condition, spec, error));
+    EXPECT_NE(error.find("condition " + r.condition->name + ": "), std::string::npos) << error;
+    EXPECT_NE(error.find(r.says), std::string::npos) << error;
+    auto joints = controller::JointControllers::create(spec, configs, error);
+    ASSERT_TRUE(joints) << error;
+    error.clear();
+    EXPECT_FALSE(sim::ClosedLoop::create(*r.experiment, *r.condition, std::move(*joints), error));
+    EXPECT_NE(error.find(r.says), std::string::npos) << error;
+  }
+}
+
 // What a file cannot say (a gain update per joint, an integral limit): the joints run the
 // configurations they were given, and the spec's own configurations run like the spec.
 TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {

@@ -122,6 +122,11 @@ class ClosedLoop {
  private:
   ClosedLoop(const Experiment& experiment, const Condition& condition,
              const robot::JointPathResult& path, controller::JointControllers controller);
+  // The loop of a condition the experiment has not refused (both create()s check that first).
+  [[nodiscard]] static std::optional<ClosedLoop> assemble(const Experiment& experiment,
+                                                          const Condition& condition,
+                                                          controller::JointControllers controller,
+                                                          std::string& error);
 
   const Experiment* experiment_;
   const robot::JointPathResult* path_;
