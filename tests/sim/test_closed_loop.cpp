@@ -751,8 +751,8 @@ TEST_F(ClosedLoopTest, AWiderCoulombSmoothingReachesThePlantAndKeepsAStuckWristS
 }
 
 // What the velocity observer is for: with a 2^14-count encoder at the 50 ms tick, one tick of
-// delay, a current loop and a 12 Hz gear, tuned_pid's command reverses with the encoder's counts
-// through its D term; the same gains with a 1.2 Hz observer (tests/sim/data/observer_pid.toml)
+// delay, a current loop and a 12 Hz gear, the drive re-tune's PID (data/drive_retune_pid.toml)
+// reverses its command with the encoder's counts through its D term; the same gains with a 1.2 Hz observer (tests/sim/data/observer_pid.toml)
 // reverse on a few per cent of the ticks, still track, and every run stays without faults.
 TEST_F(ClosedLoopTest, AVelocityObserverQuietsTheCommandOfACoarseEncoder) {
   sim::Condition c;
@@ -784,7 +784,7 @@ TEST_F(ClosedLoopTest, AVelocityObserverQuietsTheCommandOfACoarseEncoder) {
     return spec;
   };
   double itae_rates = 0.0, itae_observer = 0.0;
-  const double rates = worst(load("controllers/tuned_pid.toml"), itae_rates);
+  const double rates = worst(load("tests/sim/data/drive_retune_pid.toml"), itae_rates);
   const double observer = worst(load("tests/sim/data/observer_pid.toml"), itae_observer);
   std::printf(
       "[ observer ] worst joint's reversals %.1f %% (rates) %.1f %% (observer); summed ITAE "

@@ -178,7 +178,7 @@ TEST(Margins, FractionalDelayMarginIsTheSimulatedStabilityBoundary) {
   JointLoop loop;
   loop.tick_s = 0.05;
   loop.plant_gain = 1.0;
-  loop.gains = {172.5, 0.00045, 21.35};  // tuned_pid's gains, continuous
+  loop.gains = {172.5, 0.00045, 21.35};  // the drive re-tune's PID gains, continuous
   const LoopMargins m = fuzzypid::sim::margins(loop);
   ASSERT_TRUE(m.stable);
   ASSERT_EQ(m.delay_margin_ticks, 1);
@@ -439,7 +439,7 @@ struct Er50 {
 
 TEST(Certify, Er50TunedPidGainMarginIsTheSimulatedBoundaryOfEachJoint) {
   const Er50 er50;
-  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate cert = er50.certify("tests/sim/data/drive_retune_pid.toml");
   EXPECT_TRUE(cert.certified);
   EXPECT_EQ(cert.verdict, "certified (linear, no saturation; gains may change every tick)");
   for (const auto& joint : cert.joints) {
@@ -479,7 +479,8 @@ TEST(Certify, AGearIsCheckedAtItsOwnConditionsDelay) {
   er50.experiments = fuzzypid::sim::ExperimentSet::create(
       er50.conditions, fuzzypid::sim::ExperimentOptions{}, error);
   ASSERT_TRUE(er50.experiments) << error;
-  const fuzzypid::sim::Certificate cert = er50.certify("controllers/tuned_pid.toml", 0.05);
+  const fuzzypid::sim::Certificate cert =
+      er50.certify("tests/sim/data/drive_retune_pid.toml", 0.05);
   EXPECT_FALSE(cert.certified);
   const fuzzypid::sim::JointCertificate& joint1 = cert.joints[0];
   EXPECT_FALSE(joint1.stable);
@@ -494,7 +495,7 @@ TEST(Certify, AGearIsCheckedAtItsOwnConditionsDelay) {
   er50.experiments = fuzzypid::sim::ExperimentSet::create(
       er50.conditions, fuzzypid::sim::ExperimentOptions{}, error);
   ASSERT_TRUE(er50.experiments) << error;
-  EXPECT_TRUE(er50.certify("controllers/tuned_pid.toml", 0.05).joints[0].stable);
+  EXPECT_TRUE(er50.certify("tests/sim/data/drive_retune_pid.toml", 0.05).joints[0].stable);
 }
 
 TEST(Certify, AGainScheduleIsCertifiedOverTheBoxOfTheGainsItProduces) {
@@ -532,8 +533,8 @@ TEST(Certify, APaperFuzzyPidWhoseKiReachesZeroIsNotCertified) {
 
 TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
   const Er50 er50;
-  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
-  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml");
+  const fuzzypid::sim::Certificate a = er50.certify("tests/sim/data/drive_retune_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("tests/sim/data/drive_retune_pid.toml");
   for (std::size_t i = 0; i < a.joints.size(); ++i) {
     EXPECT_EQ(a.joints[i].worst_disk.margins.disk_margin,
               b.joints[i].worst_disk.margins.disk_margin);
@@ -546,15 +547,15 @@ TEST(Certify, DelayBeyondTheDelayMarginIsNotCertifiedAndIsDeterministic) {
     margin_s = std::min(margin_s, joint.worst_delay.margins.delay_margin_exact_s);
   ASSERT_TRUE(std::isfinite(margin_s));
   const fuzzypid::sim::Certificate late =
-      er50.certify("controllers/tuned_pid.toml", margin_s + 0.005);
+      er50.certify("tests/sim/data/drive_retune_pid.toml", margin_s + 0.005);
   EXPECT_FALSE(late.certified);
   EXPECT_EQ(late.verdict, "not certified (unstable at frozen gains)");
 }
 
 TEST(Certify, AFractionalDelayUsesUpTheExactDelayMargin) {
   const Er50 er50;
-  const fuzzypid::sim::Certificate a = er50.certify("controllers/tuned_pid.toml");
-  const fuzzypid::sim::Certificate b = er50.certify("controllers/tuned_pid.toml", 0.012);
+  const fuzzypid::sim::Certificate a = er50.certify("tests/sim/data/drive_retune_pid.toml");
+  const fuzzypid::sim::Certificate b = er50.certify("tests/sim/data/drive_retune_pid.toml", 0.012);
   EXPECT_TRUE(b.certified);
   for (std::size_t i = 0; i < a.joints.size(); ++i)
     EXPECT_NEAR(a.joints[i].worst_delay.margins.delay_margin_exact_s - 0.012,
