@@ -8,21 +8,27 @@
 # controller on every set of the file with sim_ab.
 # Outputs: controllers/ur5_class_tuned_{pid,scheduled,fuzzy}.toml, out/ur5_drive/ (the runs).
 #   BUDGET=N  SEED=N (default 1)  THREADS=N (default: all cores)
+#   CONDITIONS=FILE    the condition file (default tuning/ur5_class_drive.toml)
+#   FAMILIES="pid ..." the families to tune (default: pid scheduled fuzzy)
+#   MIN_DISK_MARGIN=A  every candidate keeps a disk margin of at least A (default 0: none)
+#   CHATTER_WEIGHT=W   the objective's chatter weight above 5 % reversals (default 300)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 budget="${BUDGET:-4000}"
 seed="${SEED:-1}"
 threads="${THREADS:-$(nproc)}"
-conditions=tuning/ur5_class_drive.toml
+conditions="${CONDITIONS:-tuning/ur5_class_drive.toml}"
+families="${FAMILIES:-pid scheduled fuzzy}"
 bash scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
 cmake --build build -j "$(nproc)" --target fuzzypid_cli sim_ab
 mkdir -p out/ur5_drive
-for family in pid scheduled fuzzy; do
+for family in ${families}; do
   echo "== ${family}"
   build/bin/fuzzypid tune --family "${family}" --conditions "${conditions}" --set training \
     --base tuning/ur5_class_base.toml --validation 4 --budget "${budget}" --seed "${seed}" \
+    --chatter-weight "${CHATTER_WEIGHT:-300}" --min-disk-margin "${MIN_DISK_MARGIN:-0}" \
     --threads "${threads}" --quiet --out "out/ur5_drive/${family}.toml"
   # The file records its conditions, robot and path relative to its own folder: one level up
   # from controllers/.

@@ -509,19 +509,21 @@ void expect_same_conditions(const std::vector<Condition>& a, const std::vector<C
     EXPECT_TRUE(same_condition(a[i], b[i])) << what << ": " << a[i].name << " / " << b[i].name;
 }
 
-// tuning/robust_drive_soft.toml (trials 7 to 10): the drive file with the first three conditions
-// of its soft-gears set moved into training before the seeded draws, so that the draws -- and the
-// four that --validation 4 holds back -- are the drive file's, and every set it is judged on is.
-TEST(ConditionSets, TheSoftGearDriveFileIsTheDriveFileWithTheSoftCornersInTraining) {
+// A drive file with the first three conditions of its soft-gears set moved into training after its
+// `listed` named conditions, before the seeded draws: the draws -- and the four that --validation
+// 4 holds back -- are the drive file's, and so is every set it is judged on.
+void expect_soft_corners_in_training(const char* drive_path, const char* soft_path,
+                                     std::size_t listed) {
   ConditionFile drive;
   ConditionFile soft;
-  ASSERT_NO_FATAL_FAILURE(load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml", drive));
-  ASSERT_NO_FATAL_FAILURE(
-      load_drive_file(FUZZYPID_SOURCE_DIR "/tuning/robust_drive_soft.toml", soft));
+  ASSERT_NO_FATAL_FAILURE(load_drive_file(drive_path, drive));
+  ASSERT_NO_FATAL_FAILURE(load_drive_file(soft_path, soft));
   const auto& corners = drive.find("soft-gears")->conditions;
   ASSERT_EQ(corners.size(), 5u);
   std::vector<Condition> expected = drive.find("training")->conditions;
-  expected.insert(expected.begin() + 8, corners.begin(), corners.begin() + 3);
+  ASSERT_GT(expected.size(), listed);
+  expected.insert(expected.begin() + static_cast<std::ptrdiff_t>(listed), corners.begin(),
+                  corners.begin() + 3);
   expect_same_conditions(soft.find("training")->conditions, expected, "training");
   expect_same_conditions(soft.find("soft-gears")->conditions,
                          std::vector<Condition>(corners.begin() + 3, corners.end()), "soft-gears");
@@ -529,6 +531,18 @@ TEST(ConditionSets, TheSoftGearDriveFileIsTheDriveFileWithTheSoftCornersInTraini
   for (const auto& set : drive.sets)
     if (set.name != "training" && set.name != "soft-gears")
       expect_same_conditions(soft.find(set.name)->conditions, set.conditions, set.name);
+}
+
+// tuning/robust_drive_soft.toml (the ER50's trials 7 to 10; trial 10's fixed PID is shipped).
+TEST(ConditionSets, TheSoftGearDriveFileIsTheDriveFileWithTheSoftCornersInTraining) {
+  expect_soft_corners_in_training(FUZZYPID_SOURCE_DIR "/tuning/robust_drive.toml",
+                                  FUZZYPID_SOURCE_DIR "/tuning/robust_drive_soft.toml", 8);
+}
+
+// tuning/ur5_class_drive_soft.toml (the UR5-class trials on the soft end of its ranges).
+TEST(ConditionSets, TheUr5SoftGearDriveFileIsTheUr5DriveFileWithTheSoftEndInTraining) {
+  expect_soft_corners_in_training(FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive.toml",
+                                  FUZZYPID_SOURCE_DIR "/tuning/ur5_class_drive_soft.toml", 6);
 }
 
 // The Monte-Carlo draws of a file stay as they were when a key is added: the effects' stream takes
