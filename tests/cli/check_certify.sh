@@ -107,4 +107,15 @@ expect 2 "controller is required" -- "$fuzzypid" certify
 # Per-tick gains run at another tick are converted, and standard error says so.
 expect 0 "note: .*paper_pid.toml's per-tick gains refer to a 0.05 s tick" -- \
   "$fuzzypid" certify "$pid" --tick-ms 10
+# The shipped fixed PID keeps the disk margin docs/margins.md gives it over the drive plant's
+# held-out set, gear and delay modelled (0.397, joint 1); the PID shipped before it had 0.0013.
+"$fuzzypid" certify "$src/controllers/tuned_pid.toml" --json \
+  --conditions "$src/tuning/robust_drive.toml" --set held-out >"$work/drive.json" ||
+  fail "the shipped PID is not certified over the drive's held-out set"
+"$python" - "$work/drive.json" <<'PY' || fail "the shipped PID's documented disk margin"
+import json, sys
+d = json.load(open(sys.argv[1]))
+worst = min(j["disk_margin"] for j in d["joints"])
+assert abs(worst - 0.397) < 1e-3, worst
+PY
 echo "certify: ok"
