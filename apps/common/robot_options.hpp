@@ -164,7 +164,7 @@ inline void add_robot_options(CLI::App& app, RobotOptions& o, bool with_tick) {
              throw CLI::ValidationError("--armature",
                                         "expected 6 comma-separated numbers (kg·m²): " + s);
            for (double a : v)
-             if (a < 0.0 || a > sim::kMaxArmatureKgm2)
+             if (!sim::kArmatureRange.contains(a))
                throw CLI::ValidationError(
                    "--armature", "values must be within " + sim::kArmatureRange.text() + ": " + s);
            o.setup.armature_kgm2 = v;

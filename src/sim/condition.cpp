@@ -115,7 +115,7 @@ std::string RobotSetup::validate() const {
     return "tick must be within " + kTickMsRange.text() + " ms";
   if (armature_kgm2)
     for (double a : *armature_kgm2)
-      if (!std::isfinite(a) || a < 0.0 || a > kMaxArmatureKgm2)
+      if (!kArmatureRange.contains(a))
         return "armature values must be within " + kArmatureRange.text() + " kg·m²";
   for (const auto* p : {&start_m, &end_m})
     if (*p)

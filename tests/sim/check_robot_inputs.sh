@@ -74,6 +74,7 @@ expect 2 "--delay-ms: expected 0 (none) or a number within 0 .. 1000: -5" -- run
 expect 2 "--torque-bandwidth-hz: expected 0 (ideal) or a number within 0.1 .. 100000: nan" -- run --torque-bandwidth-hz nan
 expect 2 "--encoder-counts: expected 0 (exact) or an integer within 4 .. 1e+12: 1.5" -- run --encoder-counts 1.5
 expect 2 "--coulomb-nm: values must be within 0 .. 1e+06: 1,2,3,4,5,-6" -- run --coulomb-nm 1,2,3,4,5,-6
+expect 2 "--armature: values must be within 0 .. 1e+06: 1,1,1,1,1,2e6" -- run --armature 1,1,1,1,1,2e6
 expect 2 "--stribeck-nm: expected one number or 6 comma-separated: 1,2" -- run --stribeck-nm 1,2
 expect 2 "--stribeck-velocity: expected 0 (the plant's default) or a number within 1e-05 .. 100: -1" -- "$rt_loop" --period-ms 0 --stribeck-velocity -1
 expect 2 "delay_ms must be at most 60 ticks (60 ms at this tick)" -- run --tick-ms 1 --delay-ms 61

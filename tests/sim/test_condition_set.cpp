@@ -282,6 +282,13 @@ TEST(ConditionSets, MalformedFilesAreRejectedWithLineAndColumn) {
        "'joint_resonance_hz' values must be within 0 .. 10000"},
       {"[sets.s]\nconditions = [ { name = \"c\", joint_damping_ratio = 11.0 } ]\n", 2, 52,
        "'joint_damping_ratio' must be 0 (undamped) or within 0 .. 10"},
+      // The robot and plant keys' ranges, from the same table as the options'.
+      {"[sets.s]\nconditions = [ { name = \"c\", tick_ms = 0.05 } ]\n", 2, 40,
+       "'tick_ms' must be within 0.1 .. 1000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", payload_kg = 2e4 } ]\n", 2, 43,
+       "'payload_kg' must be within 0 .. 10000"},
+      {"[sets.s]\nconditions = [ { name = \"c\", armature = [1, 1, 1, 1, 1, 2e6] } ]\n", 2, 57,
+       "'armature' values must be within 0 .. 1e+06 kg·m²"},
   };
   for (const Bad& b : cases) {
     ConditionFile f;

@@ -103,8 +103,6 @@ inline constexpr FieldRange kCoulombSmoothingRange{"coulomb_smoothing", 1e-5, 1.
 inline constexpr double kMaxPathCoordinateM = 1e3;
 inline constexpr double kMinTickS = kTickMsRange.lo * 1e-3;
 inline constexpr double kMaxTickS = kTickMsRange.hi * 1e-3;
-inline constexpr double kMaxPayloadKg = kPayloadKgRange.hi;
-inline constexpr double kMaxArmatureKgm2 = kArmatureRange.hi;
 
 // What real joints have beyond the paper's rigid, delay-free, ideally sensored joint (issue 29).
 // Each field is a condition-file key and a sim_ab / rt_loop option of the same name (underscores
