@@ -100,6 +100,7 @@ struct TuneOptions {
   std::vector<std::string> boxes;
   bool quiet = false;
   bool search_filter = true;
+  bool search_bandwidth = false;
   bool allow_faults = false;
   GivenOptions given;
   // A front (--objectives): its folder, and the checkpoint written after every generation and the
@@ -306,6 +307,7 @@ Fingerprint fingerprint_of(const TuneOptions& t, const tune::FrontOptions& fo,
       {"base-fnv1a64", hash(t.base_file)},
       {"init-fnv1a64", hash(t.init_file)},
       {"search-filter", t.search_filter ? "yes" : "no"},
+      {"per-joint-bandwidth", t.search_bandwidth ? "yes" : "no"},
       {"symmetry", t.symmetry},
       {"unvisited", t.unvisited},
       {"partition", t.partition},
@@ -693,6 +695,7 @@ int run_tune(const TuneOptions& t) {
   opt.table.partition = t.partition == "tuned";
   opt.validation = t.validation;
   opt.search_filter = t.search_filter;
+  opt.search_bandwidth = t.search_bandwidth;
   opt.family = family;
   opt.budget = t.budget;
   opt.seed = t.seed;
@@ -1268,6 +1271,11 @@ void add_tune_command(CLI::App& app, std::function<int()>& run) {
                 "search the derivative filter's time constant Tf too (parameter tf, log10 s in "
                 "[-3, 0] at a 50 ms tick; default), and with a start whose derivative is "
                 "\"observer\" its bandwidth (observer_hz, log10 Hz in [-1, 1]); or keep both");
+  cmd->add_flag("--per-joint-bandwidth", t->search_bandwidth,
+                "search a bandwidth scale for each of joints 2-6 relative to joint 1 (parameters "
+                "bandwidth_j2 .. bandwidth_j6, log10 in [-1, 1]): joint i gets Kp s^2, Ki s^3, "
+                "Kd s and Tf / s (docs/tuning.md, \"Per-joint bandwidth\"); without it the "
+                "result keeps the start's scales");
   cmd->add_flag("--quiet", t->quiet, "no progress on stderr");
   cmd->add_flag("--allow-faults", t->allow_faults,
                 "a result that faults on some of its training or validation runs (|e| beyond "

@@ -48,6 +48,10 @@ std::string validate(const ControllerSpec& s) {
   if (!positive_finite(s.units.tick_s)) return "units.tick_s must be finite and > 0";
   if (!s.gains.finite() || s.gains.kp < 0 || s.gains.ki < 0 || s.gains.kd < 0)
     return "gains must be finite and >= 0";
+  for (double v : s.bandwidth_scale)
+    if (!(v >= kMinBandwidthScale && v <= kMaxBandwidthScale))
+      return "bandwidth_scale must be within [" + format_double(kMinBandwidthScale) + ", " +
+             format_double(kMaxBandwidthScale) + "] on every joint";
   if (s.family.index() >= kFamilies.size()) return "unknown controller family";
   const FamilyTraits& traits = family_traits(s.family);
   const auto& sup = s.supervisor;

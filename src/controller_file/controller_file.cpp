@@ -142,6 +142,20 @@ ControllerFile read_file(const toml::table& root, const std::string& file) {
   s.gains.kd = gains->number("kd");
   for (const char* k : {"kp", "ki", "kd"})
     if (gains->number(k) < 0.0) gains->fail(*gains->raw().get(k), "gains must be >= 0");
+  if (gains->has("bandwidth_scale")) {
+    const toml::array* a = gains->array("bandwidth_scale", true);
+    if (a->size() != s.bandwidth_scale.size())
+      gains->fail(*a, "bandwidth_scale must have 6 numbers (one per joint)");
+    for (std::size_t i = 0; i < s.bandwidth_scale.size(); ++i) {
+      const double v =
+          number_of(*gains, *a->get(i), "bandwidth_scale[" + std::to_string(i) + "]", true);
+      if (!(v >= kMinBandwidthScale && v <= kMaxBandwidthScale))
+        gains->fail(*a->get(i), "bandwidth_scale[" + std::to_string(i) + "] must be within [" +
+                                    format_double(kMinBandwidthScale) + ", " +
+                                    format_double(kMaxBandwidthScale) + "]");
+      s.bandwidth_scale[i] = v;
+    }
+  }
   gains->finish();
 
   const FamilyTraits& traits = family_traits(s.family);
@@ -501,6 +515,13 @@ std::string to_toml(const ControllerFile& file) {
   o += "kp = " + format_double(s.gains.kp) + "\n";
   o += "ki = " + format_double(s.gains.ki) + "\n";
   o += "kd = " + format_double(s.gains.kd) + "\n";
+  if (s.bandwidth_scale != kUniformBandwidth) {
+    o += "# joint i runs s_i times faster: Kp s², Ki s³, Kd s, Tf / s (docs/tuning.md)\n";
+    o += "bandwidth_scale = [";
+    for (std::size_t i = 0; i < s.bandwidth_scale.size(); ++i)
+      o += (i == 0 ? "" : ", ") + format_double(s.bandwidth_scale[i]);
+    o += "]\n";
+  }
   if (traits.supervised()) {
     const auto& sup = s.supervisor;
     o += "\n[supervisor]\n";

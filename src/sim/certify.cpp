@@ -44,9 +44,8 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
   if (!moving) {
     auto ctl = controller::JointControllers::create(spec, unlimited, error);
     if (!ctl) return std::nullopt;
-    const pid::Gains<double> k = controller::pid_config(spec, kInf).gains;
-    for (auto& joint : out)
-      joint.push_back({k, 0.0, 0.0});
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      out[i].push_back({controller::pid_config(spec, i, kInf).gains, 0.0, 0.0});
     return out;
   }
   const double dt = spec.units.tick_s;
@@ -87,11 +86,13 @@ std::optional<std::array<std::vector<GainPoint>, robot::kNumJoints>> gain_points
 
 // The box of the gains the supervisor produces (continuous SI form). GainUpdate::Incremental
 // accumulates its steps: it can reach anything inside the file's gain bounds.
-GainBox gain_box(const ControllerSpec& spec, const std::vector<GainPoint>& points) {
+GainBox gain_box(const ControllerSpec& spec, std::size_t joint,
+                 const std::vector<GainPoint>& points) {
   GainBox box;
-  if (controller::fuzzy_pid_config(spec, kInf).gain_update == supervisor::GainUpdate::Incremental) {
-    box.low = controller::to_continuous(spec.gain_min, spec.units.form, spec.units.tick_s);
-    box.high = controller::to_continuous(spec.gain_max, spec.units.form, spec.units.tick_s);
+  const supervisor::FuzzyPidConfig<double> fc = controller::fuzzy_pid_config(spec, joint, kInf);
+  if (fc.gain_update == supervisor::GainUpdate::Incremental) {
+    box.low = fc.gain_min;
+    box.high = fc.gain_max;
     return box;
   }
   box.low = box.high = points.front().gains;
@@ -109,12 +110,14 @@ double torque_per_unit(const ControllerSpec& spec, const PlantGroup& g) {
   return spec.units.gains == controller::GainUnits::Acceleration ? g.nominal_inertia_kgm2 : 1.0;
 }
 
-// The loop of a group's plants with the controller's PID options and the delay; its gains, plant
-// gain and damping are left to the caller.
-JointLoop group_loop(const ControllerSpec& spec, const PlantGroup& g, double delay_s) {
+// The loop of joint `joint`'s plant group with the controller's PID options (its derivative
+// filter as the joint runs it) and the delay; its gains, plant gain and damping are left to the
+// caller.
+JointLoop group_loop(const ControllerSpec& spec, std::size_t joint, const PlantGroup& g,
+                     double delay_s) {
   JointLoop loop;
   loop.tick_s = g.tick_s;
-  loop.derivative_filter_s = spec.pid.derivative_filter_s;
+  loop.derivative_filter_s = controller::pid_config(spec, joint, kInf).derivative_filter_s;
   loop.derivative = spec.pid.derivative;
   loop.observer_bandwidth_hz = spec.pid.observer_bandwidth_hz;
   loop.observer_delay_ticks = spec.pid.observer_delay_ticks;
@@ -139,7 +142,7 @@ void set_gear(JointLoop& loop, const PlantGroup& g, double j) {
 
 // One switching loop per tick, J^ and kind of current loop (ideal or not) among a joint's plant
 // groups: the ranges of their plant gains, dampings and bandwidths merged, the gains in `box`.
-std::vector<SwitchingLoop> switching_loops(const ControllerSpec& spec,
+std::vector<SwitchingLoop> switching_loops(const ControllerSpec& spec, std::size_t joint,
                                            const std::vector<PlantGroup>& groups,
                                            const GainBox& box, double delay_s) {
   std::vector<SwitchingLoop> sets;
@@ -156,7 +159,7 @@ std::vector<SwitchingLoop> switching_loops(const ControllerSpec& spec,
       ++k;
     if (k == sets.size()) {
       SwitchingLoop set;
-      set.loop = group_loop(spec, g, delay_s);
+      set.loop = group_loop(spec, joint, g, delay_s);
       set.gains = box;
       set.plant_gain_min = c_lo;
       set.plant_gain_max = c_hi;
@@ -336,7 +339,7 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
       for (double delay : delays)
         for (double j : inertias)
           for (double b : dampings) {
-            JointLoop plant = group_loop(controller, g, delay);
+            JointLoop plant = group_loop(controller, i, g, delay);
             plant.plant_gain = torque_per_unit(controller, g) / j;
             plant.damping_per_s = b / j;
             set_gear(plant, g, j);
@@ -368,13 +371,13 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
     all_stable = all_stable && jc.stable && jc.worst_disk.margins.disk_margin > 0.0;
 
     // The gains may switch every tick inside their box, the inertia anywhere in its range.
-    jc.gain_box = gain_box(controller, (*points)[i]);
+    jc.gain_box = gain_box(controller, i, (*points)[i]);
     jc.plant_groups = groups[i].size();
     jc.lyapunov.reason = "not computed";
     if (!options.lyapunov) continue;
     bool first_set = true;
     for (const SwitchingLoop& set :
-         switching_loops(controller, groups[i], jc.gain_box, options.delay_s)) {
+         switching_loops(controller, i, groups[i], jc.gain_box, options.delay_s)) {
       const LyapunovCertificate lc = common_lyapunov(set);
       if (first_set || !lc.certified || lc.contraction > jc.lyapunov.contraction) jc.lyapunov = lc;
       first_set = false;

@@ -288,7 +288,7 @@ std::array<pid::Pid<double>, kJoints> Experiment::make_pid(const robot::JointVec
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] = pid::Pid<double>(controller::pid_config(spec, u_max));
+    joints[i] = pid::Pid<double>(controller::pid_config(spec, i, u_max));
   }
   return joints;
 }
@@ -300,7 +300,8 @@ std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] = paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, u_max));
+    joints[i] =
+        paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, i, u_max));
   }
   return joints;
 }
@@ -312,10 +313,12 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
   if (!loop) return result;
   const std::size_t ticks = loop->samples();
   if (limits.record) result.rows.reserve(ticks * kJoints);
-  // The bounds and K0 exactly as the joints hold them (continuous SI form).
+  // The bounds and K0 exactly as each joint holds them (continuous SI form).
   const bool supervised = controller::family_traits(controller.family).supervised();
-  const supervisor::FuzzyPidConfig<double> bounds =
-      controller::fuzzy_pid_config(controller, std::numeric_limits<double>::infinity());
+  std::array<supervisor::FuzzyPidConfig<double>, kJoints> joint_bounds;
+  for (std::size_t i = 0; i < kJoints; ++i)
+    joint_bounds[i] =
+        controller::fuzzy_pid_config(controller, i, std::numeric_limits<double>::infinity());
   const auto at_bound = [](double k, double k0, double lo, double hi) {
     return (k <= lo && k0 > lo) || (k >= hi && k0 < hi);
   };
@@ -334,6 +337,7 @@ RunResult Experiment::run(const Condition& condition, const ControllerSpec& cont
     for (std::size_t i = 0; supervised && i < kJoints; ++i) {
       if (r.command.joint_status[i] == Status::NoRuleFired) ++result.no_rule_ticks[i];
       const pid::Gains<double> g = loop->controller().gains(i);
+      const supervisor::FuzzyPidConfig<double>& bounds = joint_bounds[i];
       const auto& k0 = bounds.pid.gains;
       if (at_bound(g.kp, k0.kp, bounds.gain_min.kp, bounds.gain_max.kp) ||
           at_bound(g.ki, k0.ki, bounds.gain_min.ki, bounds.gain_max.ki) ||

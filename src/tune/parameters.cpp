@@ -25,6 +25,8 @@ constexpr double kOutputBox[3][2] = {{0.0, 6.0}, {-4.0, 3.0}, {-2.0, 5.0}};  // 
 // The derivative filter's time constant, s: 1 ms (no filter to speak of at a 50 ms tick) .. 1 s.
 constexpr double kFilterBox[2] = {-3.0, 0.0};
 constexpr double kObserverBox[2] = {-1.0, 1.0};
+// A joint's bandwidth relative to joint 1's: a tenth .. ten times.
+constexpr double kBandwidthBox[2] = {-1.0, 1.0};
 // An inner center as a fraction of the next one out: 0.1 .. 0.955.
 constexpr double kFractionBox[2] = {-1.0, -0.02};
 
@@ -89,19 +91,31 @@ std::vector<SearchBox> box_for_tick(std::vector<SearchBox> box, Family family, d
 std::optional<ParameterSpace> ParameterSpace::create(Family family, const ControllerSpec& start,
                                                      const TableOptions& options,
                                                      const VisitMap* visits, std::string& error,
-                                                     bool search_filter) {
+                                                     bool search_filter, bool search_bandwidth) {
   ParameterSpace p;
   p.search_filter_ = search_filter;
+  p.search_bandwidth_ = search_bandwidth;
   p.search_observer_ = search_filter && start.pid.derivative == pid::DerivativeSource::Observer;
   p.family_ = family;
   p.start_ = start;
   p.start_.family = family;
   p.options_ = options;
   p.box_ = fixed_box(family);
+  if (search_bandwidth && start.bandwidth_scale[0] != 1.0) {
+    error = "searching the bandwidth scales starts from a controller whose joint 1 has scale 1 "
+            "(the gains are joint 1's; the other joints' scales are relative to it)";
+    return std::nullopt;
+  }
   const auto with_filter = [&p]() -> std::optional<ParameterSpace> {
+    p.first_option_ = p.box_.size();
     if (p.search_filter_) p.box_.push_back({kFilterParameter, kFilterBox[0], kFilterBox[1]});
     if (p.search_observer_)
       p.box_.push_back({kObserverParameter, kObserverBox[0], kObserverBox[1]});
+    if (p.search_bandwidth_) {
+      for (std::size_t j = 1; j < p.start_.bandwidth_scale.size(); ++j)
+        p.box_.push_back({kBandwidthParameterPrefix + std::to_string(j + 1), kBandwidthBox[0],
+                          kBandwidthBox[1]});
+    }
     return p;
   };
   if (!family_traits(family).rule_table) return with_filter();
@@ -180,9 +194,14 @@ ControllerSpec ParameterSpace::to_spec(const std::vector<double>& x) const {
   ControllerSpec s = start_;
   const auto p = [&x](std::size_t k) { return std::pow(10.0, x[k]); };
   s.gains = {p(0), p(1), p(2)};
-  const std::size_t filter = box_.size() - (search_observer_ ? 2 : 1);
-  if (search_filter_) s.pid.derivative_filter_s = p(filter);
-  if (search_observer_) s.pid.observer_bandwidth_hz = p(box_.size() - 1);
+  std::size_t k = first_option_;
+  if (search_filter_) s.pid.derivative_filter_s = p(k++);
+  if (search_observer_) s.pid.observer_bandwidth_hz = p(k++);
+  if (search_bandwidth_) {
+    s.bandwidth_scale[0] = 1.0;
+    for (std::size_t j = 1; j < s.bandwidth_scale.size(); ++j)
+      s.bandwidth_scale[j] = p(k++);
+  }
   const controller::FamilyTraits& traits = family_traits(family_);
   if (traits.supervised()) {
     s.supervisor.error_scale = p(3);
@@ -221,6 +240,9 @@ std::vector<double> ParameterSpace::from_spec(const ControllerSpec& s) const {
   std::vector<double> x = from_spec_without_filter(s);
   if (search_filter_) x.push_back(std::log10(std::fmax(s.pid.derivative_filter_s, 1e-3)));
   if (search_observer_) x.push_back(std::log10(s.pid.observer_bandwidth_hz));
+  if (search_bandwidth_)
+    for (std::size_t j = 1; j < s.bandwidth_scale.size(); ++j)
+      x.push_back(std::clamp(std::log10(s.bandwidth_scale[j]), kBandwidthBox[0], kBandwidthBox[1]));
   return x;
 }
 

@@ -80,7 +80,7 @@ bool prepare(const ExperimentOf& experiment, const std::vector<sim::Condition>& 
       options.table.unvisited == Unvisited::Seed)
     visit_map = visits_in(search.arena.get(), data.training_ex, data.training, *start);
   search.space = ParameterSpace::create(options.family, *start, options.table, &visit_map, error,
-                                        options.search_filter);
+                                        options.search_filter, options.search_bandwidth);
   if (!search.space) return false;
 
   // The default box moves with the training tick when all training conditions share one.

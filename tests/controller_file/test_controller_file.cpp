@@ -601,7 +601,7 @@ TEST(ControllerFile, NonDefaultPidChoicesAreReadAndReachTheController) {
   EXPECT_EQ(spec.pid.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Difference);
   EXPECT_EQ(spec.pid.anti_windup, fuzzypid::pid::AntiWindup::BackCalculation);
-  const auto pc = controller::pid_config(spec, 1.0);
+  const auto pc = controller::pid_config(spec, 0, 1.0);
   EXPECT_EQ(pc.derivative_on, fuzzypid::pid::DerivativeOn::Measurement);
   EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Difference);
 }
@@ -618,7 +618,7 @@ TEST(ControllerFile, AVelocityObserverIsReadWrittenBackAndReachesThePid) {
   EXPECT_EQ(spec.pid.derivative, fuzzypid::pid::DerivativeSource::Observer);
   EXPECT_EQ(spec.pid.observer_bandwidth_hz, 1.5);
   EXPECT_EQ(spec.pid.observer_delay_ticks, 0);
-  const auto pc = controller::pid_config(spec, 1.0);
+  const auto pc = controller::pid_config(spec, 0, 1.0);
   EXPECT_EQ(pc.derivative_source, fuzzypid::pid::DerivativeSource::Observer);
   EXPECT_EQ(pc.observer_bandwidth_hz, 1.5);
   EXPECT_EQ(pc.observer_delay_ticks, 0);
@@ -664,9 +664,9 @@ TEST(ControllerFile, IncrementalGainUpdateReachesTheFuzzyController) {
   fuzzypid::FileError error;
   ASSERT_TRUE(cf::parse(cf::to_toml(spec), "inc.toml", back, error)) << error.to_string();
   EXPECT_EQ(back.supervisor.gain_update, fuzzypid::supervisor::GainUpdate::Incremental);
-  EXPECT_EQ(controller::fuzzy_pid_config(back, 1.0).gain_update,
+  EXPECT_EQ(controller::fuzzy_pid_config(back, 0, 1.0).gain_update,
             fuzzypid::supervisor::GainUpdate::Incremental);
-  EXPECT_EQ(controller::fuzzy_pid_config(controller::paper_fuzzy(), 1.0).gain_update,
+  EXPECT_EQ(controller::fuzzy_pid_config(controller::paper_fuzzy(), 0, 1.0).gain_update,
             fuzzypid::supervisor::GainUpdate::Absolute);
 }
 

@@ -585,7 +585,7 @@ TEST_F(ClosedLoopTest, EitherCreateRefusesAConditionTheExperimentRefuses) {
   const robot::JointVector limit = experiment_->output_limit(busy_condition(), spec.units.gains);
   std::array<supervisor::FuzzyPidConfig<double>, kJ> configs;
   for (std::size_t i = 0; i < kJ; ++i)
-    configs[i] = controller::fuzzy_pid_config(spec, limit[i]);
+    configs[i] = controller::fuzzy_pid_config(spec, i, limit[i]);
   sim::Condition nan_payload = busy_condition();
   nan_payload.name = "nan-payload";
   nan_payload.payload_scale = std::nan("");
@@ -624,7 +624,7 @@ TEST_F(ClosedLoopTest, AControllerBuiltWithAConfigurationPerJointRunsThem) {
   const robot::JointVector limit = experiment_->output_limit(cond, spec.units.gains);
   std::array<supervisor::FuzzyPidConfig<double>, kJ> configs;
   for (std::size_t i = 0; i < kJ; ++i)
-    configs[i] = controller::fuzzy_pid_config(spec, limit[i]);
+    configs[i] = controller::fuzzy_pid_config(spec, i, limit[i]);
   std::string error;
   auto from_spec = sim::ClosedLoop::create(*experiment_, cond, spec, error);
   auto same = controller::JointControllers::create(spec, configs, error);

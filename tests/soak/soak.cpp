@@ -160,7 +160,7 @@ std::optional<Soak> build(const sim::Experiment& experiment, std::string& error)
   const robot::JointVector u_max = experiment.output_limit(condition, spec.units.gains);
   std::array<supervisor::FuzzyPidConfig<double>, kJoints> configs;
   for (std::size_t i = 0; i < kJoints; ++i) {
-    configs[i] = controller::fuzzy_pid_config(spec, u_max[i]);
+    configs[i] = controller::fuzzy_pid_config(spec, i, u_max[i]);
     configs[i].pid.integral_min = -u_max[i];
     configs[i].pid.integral_max = u_max[i];
     configs[i].gain_update =

@@ -161,11 +161,24 @@ struct Feedforward {
   bool gravity = false;
 };
 
+// Joint i runs the file's loop s_i times faster (docs/tuning.md, "Per-joint bandwidth"): its
+// gains are Kp s², Ki s³, Kd s (and so are K0, a supervisor's output scales in gain units and the
+// gain bounds), its derivative filter's time constant Tf / s; the supervisor's Ke and Kec and an
+// observer's bandwidth stay. On a double integrator J^ q'' = u that scales the closed loop's
+// natural frequency by s and keeps its damping: one set of gains, shaped once, placed per joint.
+inline constexpr std::size_t kSpecJoints = 6;
+using BandwidthScale = std::array<double, kSpecJoints>;
+inline constexpr BandwidthScale kUniformBandwidth{1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+// The range a scale may take: three decades either way of the file's gains.
+inline constexpr double kMinBandwidthScale = 1e-3;
+inline constexpr double kMaxBandwidthScale = 1e3;
+
 struct ControllerSpec {
   Family family{};  // the list's first: the fixed PID
   std::string description;
   Units units{};
   pid::Gains<double> gains = paper::kNominalGains<double>;  // pid: the gains; else K0
+  BandwidthScale bandwidth_scale = kUniformBandwidth;       // per joint, s_i (above)
   SupervisorSpec supervisor{};                              // supervised families only
   pid::Gains<double> gain_min = {0.0, 0.0, 0.0};  // bounds on the retuned gains (file units)
   pid::Gains<double> gain_max = {std::numeric_limits<double>::infinity(),

@@ -18,13 +18,19 @@
 
 namespace fuzzypid::controller {
 
-// The inner PID configuration of every family (gains in continuous form, output limited to
-// +/- output_limit, in the controller's units).
-[[nodiscard]] pid::Config<double> pid_config(const ControllerSpec& spec, double output_limit);
-// The fuzzy PID configuration of a supervised family (its configure() sets what output_scale
-// means).
+// The inner PID configuration of joint `joint` (0 .. 5) in every family: gains in continuous
+// form with the joint's bandwidth scale applied (ControllerSpec::bandwidth_scale), output limited
+// to +/- output_limit, in the controller's units.
+[[nodiscard]] pid::Config<double> pid_config(const ControllerSpec& spec, std::size_t joint,
+                                             double output_limit);
+// The fuzzy PID configuration of joint `joint` of a supervised family (its configure() sets what
+// output_scale means; K0, the output scales in gain units and the bounds carry the joint's
+// bandwidth scale).
 [[nodiscard]] supervisor::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
+                                                                  std::size_t joint,
                                                                   double output_limit);
+// The factors joint `joint`'s bandwidth scale s puts on (kp, ki, kd): s², s³, s.
+[[nodiscard]] pid::Gains<double> bandwidth_factors(const ControllerSpec& spec, std::size_t joint);
 
 // Owns the supervisor its fuzzy or scheduled joints point to: movable, not copyable.
 class JointControllers {
@@ -36,7 +42,7 @@ class JointControllers {
                                                               std::string& error);
   // The spec's family and supervisor (tables, rule file or schedule) with one configuration per
   // joint in place of the ones the spec gives, for what a file cannot say: e.g. a gain update or
-  // an integral limit that differs between joints. Start from fuzzy_pid_config(spec, limit_i);
+  // an integral limit that differs between joints. Start from fuzzy_pid_config(spec, i, limit_i);
   // the pid family uses configs[i].pid only. spec() is then where the joints started from, not
   // their numbers. Returns nullopt with `error` set for an invalid spec or configuration.
   [[nodiscard]] static std::optional<JointControllers> create(const ControllerSpec& spec,

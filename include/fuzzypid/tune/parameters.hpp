@@ -41,6 +41,9 @@ inline constexpr const char* kFilterParameter = "tf";
 // The searched velocity observer's bandwidth (the last parameter with --search-filter when the
 // start's derivative is "observer").
 inline constexpr const char* kObserverParameter = "observer_hz";
+// The searched bandwidth scales of joints 2 .. 6 (ControllerSpec::bandwidth_scale; joint 1's is
+// 1, so that the gains stay joint 1's): "bandwidth_j2" .. "bandwidth_j6", after everything else.
+inline constexpr const char* kBandwidthParameterPrefix = "bandwidth_j";
 
 enum class Symmetry : std::uint8_t { Even, Odd, None };
 inline constexpr std::array<EnumName<Symmetry>, 3> kSymmetryNames{
@@ -79,9 +82,14 @@ class ParameterSpace {
   // Tf below 1 ms enters the space at 1 ms. When start's derivative is "observer" it is followed
   // by observer_hz: log10 of the observer's bandwidth F (Hz), in [-1, 1] at a 0.05 s tick (a tenth
   // of a hertz .. 10 Hz, where the observer is nearly the differenced rate, pid.hpp).
+  // With search_bandwidth, five more parameters close the space: log10 of the bandwidth scales of
+  // joints 2 .. 6 relative to joint 1, in [-1, 1] (ControllerSpec::bandwidth_scale); start's
+  // joint 1 must have scale 1, its other scales enter the space clamped into [0.1, 10]. Without
+  // it the result keeps start's scales.
   [[nodiscard]] static std::optional<ParameterSpace> create(
       Family family, const ControllerSpec& start, const TableOptions& options,
-      const VisitMap* visits, std::string& error, bool search_filter = false);
+      const VisitMap* visits, std::string& error, bool search_filter = false,
+      bool search_bandwidth = false);
 
   Family family() const noexcept { return family_; }
   // The default box, one entry per searched parameter.
@@ -116,8 +124,10 @@ class ParameterSpace {
   std::vector<CellClass> classes_;
   std::size_t first_cell_ = 0;  // index of the first cell parameter in x
   std::size_t held_cells_ = 0;
-  bool search_filter_ = false;    // tf is the last parameter, or the one before observer_hz
-  bool search_observer_ = false;  // observer_hz is the last parameter
+  bool search_filter_ = false;    // tf follows the family's parameters
+  bool search_observer_ = false;  // observer_hz follows tf
+  bool search_bandwidth_ = false;  // bandwidth_j2 .. bandwidth_j6 close the space
+  std::size_t first_option_ = 0;   // index of tf (or of the first after the family's)
 };
 
 // The start of a stage: `from` as a controller of family `to`, exactly (the same commands for

@@ -134,6 +134,10 @@ struct Options {
   // parameter, "tf": ParameterSpace::create); without it the result keeps the base's Tf. On by
   // default: an unfiltered derivative of an encoder's angle chatters (docs/tuning.md, "Chatter").
   bool search_filter = true;
+  // Search a bandwidth scale for each of joints 2 .. 6 relative to joint 1 (ControllerSpec::
+  // bandwidth_scale; parameters "bandwidth_j2" .. "bandwidth_j6", last): one loop shape, each
+  // joint placed at its own speed. Off by default: without it the result keeps the start's scales.
+  bool search_bandwidth = false;
   // The last `validation` of the given conditions are held back: never trained on, they choose
   // among the best points of the search (early stopping) and among stages.
   std::size_t validation = 0;

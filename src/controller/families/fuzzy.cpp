@@ -23,6 +23,7 @@ ControllerSpec fuzzy_from_rule_table(const ControllerSpec& rules, std::string ru
   s.description = std::move(description);
   s.units = rules.units;
   s.gains = rules.gains;
+  s.bandwidth_scale = rules.bandwidth_scale;
   s.supervisor.error_scale = rules.supervisor.error_scale;
   s.supervisor.error_rate_scale = rules.supervisor.error_rate_scale;
   // S = K0 in file units: fuzzy_pid_config converts S like the gains, so S = K0 per tick or
