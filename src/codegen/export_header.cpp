@@ -336,8 +336,11 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += "// Joint i runs the file's loop kBandwidthScale[i] times faster: its gains are Kp s^2,\n"
          "// Ki s^3, Kd s and its derivative filter Tf / s (docs/tuning.md), as written below.\n";
     h += "inline constexpr double kBandwidthScale[6] = {";
-    for (std::size_t i = 0; i < kSpecJoints; ++i)
-      h += (i == 0 ? "" : ", ") + lit(spec.bandwidth_scale[i]);
+    for (std::size_t i = 0; i < kSpecJoints; ++i) {
+      char b[64];
+      std::snprintf(b, sizeof b, "%a", spec.bandwidth_scale[i]);
+      h += (i == 0 ? "" : ", ") + std::string(b);
+    }
     h += "};\n\n";
     h += "// The inner PID of joint `joint` (0 .. 5; any other joint gets NaN gains, which the PID\n"
          "// refuses with Status::InvalidConfig); |u| <= output_limit.\n";

@@ -25,6 +25,9 @@
 #include "fuzzypid/supervisor/joint_controller.hpp"
 #include "observer_pid.hpp"
 #include "paper_fuzzy.hpp"
+#include "per_joint_fuzzy.hpp"
+#include "per_joint_pid.hpp"
+#include "per_joint_scheduled.hpp"
 #include "rule_table_fuzzy.hpp"
 #include "tuned_fuzzy.hpp"
 #include "tuned_fuzzy_rules.hpp"
@@ -49,8 +52,9 @@ bool same_bits(double a, double b) {
 // 0.2 rad, rates up to 1 rad/s) with output limit 3 rad/s²; every output must match bit for bit.
 // Returns the number of ticks on which the supervisor fired some rule (both sides alike).
 template <class Controller>
-int expect_equal_to_file(const char* file, const Controller& prototype,
-                         const char* folder = "/controllers/") {
+int expect_joints_equal_to_file(const char* file,
+                                supervisor::JointController<double, kJ, Controller> from_header,
+                                const char* folder) {
   int fired = 0;
   controller::ControllerSpec spec;
   fuzzypid::FileError err;
@@ -61,7 +65,6 @@ int expect_equal_to_file(const char* file, const Controller& prototype,
       controller::JointControllers::create(spec, controller::Vector{3, 3, 3, 3, 3, 3}, error);
   EXPECT_TRUE(from_file) << error;
   if (!from_file) return 0;
-  supervisor::JointController<double, kJ, Controller> from_header(prototype);
   sim::Random rng(2024);
   for (int k = 0; k < 400; ++k) {
     controller::Input in;
@@ -84,6 +87,14 @@ int expect_equal_to_file(const char* file, const Controller& prototype,
     }
   }
   return fired;
+}
+
+// The same with every joint a copy of the header's `prototype`.
+template <class Controller>
+int expect_equal_to_file(const char* file, const Controller& prototype,
+                         const char* folder = "/controllers/") {
+  return expect_joints_equal_to_file(
+      file, supervisor::JointController<double, kJ, Controller>(prototype), folder);
 }
 
 TEST(ExportHeader, TheHeaderCarriesTheSimulatedPlantsNominalInertiaAndTorqueLimits) {
@@ -112,6 +123,31 @@ TEST(ExportHeader, GeneratedControllersEqualTheFilesBitForBit) {
 }
 
 // The velocity observer (derivative = "observer") is part of the exported PID's configuration.
+// A bandwidth scale per joint: the configuration functions take the joint, each joint's
+// controller equals the file's joint bit for bit, and a joint past the sixth is refused.
+template <class Controller, class Make>
+void expect_per_joint_equal_to_file(const char* file, Make make) {
+  std::array<Controller, kJ> joints;
+  for (std::size_t i = 0; i < kJ; ++i)
+    joints[i] = make(i);
+  expect_joints_equal_to_file(file, supervisor::JointController<double, kJ, Controller>(joints),
+                              "/tests/sim/data/");
+  Controller beyond = make(kJ);
+  EXPECT_EQ(beyond.update(typename Controller::Input{}, 0.05), Status::InvalidConfig) << file;
+}
+
+TEST(ExportHeader, AControllerWithABandwidthScalePerJointEqualsItsFileJointByJoint) {
+  static_assert(per_joint_pid::kBandwidthScale[2] == 1.5, "the file's scale of joint 3");
+  expect_per_joint_equal_to_file<per_joint_pid::Controller<double>>(
+      "per_joint_pid.toml", [](std::size_t i) { return per_joint_pid::make_controller(i, 3.0); });
+  expect_per_joint_equal_to_file<per_joint_scheduled::Controller<double>>(
+      "per_joint_scheduled.toml",
+      [](std::size_t i) { return per_joint_scheduled::make_controller(i, 3.0); });
+  expect_per_joint_equal_to_file<per_joint_fuzzy::Controller<double>>(
+      "per_joint_fuzzy.toml",
+      [](std::size_t i) { return per_joint_fuzzy::make_controller(i, 3.0); });
+}
+
 TEST(ExportHeader, AControllerWithAVelocityObserverEqualsItsFileBitForBit) {
   constexpr auto config = observer_pid::pid_config<double>(3.0);
   static_assert(config.derivative_source == fuzzypid::pid::DerivativeSource::Observer);

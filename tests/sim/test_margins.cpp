@@ -498,6 +498,45 @@ TEST(Certify, AGearIsCheckedAtItsOwnConditionsDelay) {
   EXPECT_TRUE(er50.certify("tests/sim/data/drive_retune_pid.toml", 0.05).joints[0].stable);
 }
 
+// A bandwidth scale per joint: each joint is certified with the gains and derivative filter it
+// runs, the same as a uniform controller whose gains are that joint's.
+TEST(Certify, AJointWithABandwidthScaleIsCertifiedAsTheUniformControllerWithItsGains) {
+  const Er50 er50;
+  for (const char* name : {"per_joint_pid.toml", "per_joint_scheduled.toml"}) {
+    const std::string file = std::string("tests/sim/data/") + name;
+    const fuzzypid::sim::Certificate scaled = er50.certify(file);
+    fuzzypid::controller::ControllerSpec spec;
+    fuzzypid::FileError err;
+    ASSERT_TRUE(fuzzypid::controller_file::load(std::string(FUZZYPID_SOURCE_DIR) + "/" + file,
+                                                spec, err));
+    for (std::size_t i = 0; i < 6; ++i) {
+      fuzzypid::controller::ControllerSpec uniform = spec;
+      const double s = spec.bandwidth_scale[i];
+      uniform.bandwidth_scale = fuzzypid::controller::kUniformBandwidth;
+      uniform.gains = {spec.gains.kp * s * s, spec.gains.ki * s * s * s, spec.gains.kd * s};
+      uniform.gain_max = {spec.gain_max.kp * s * s, spec.gain_max.ki * s * s * s,
+                          spec.gain_max.kd * s};
+      uniform.pid.derivative_filter_s = spec.pid.derivative_filter_s / s;
+      fuzzypid::sim::CertifyOptions options;
+      options.grid_points = 5;
+      std::string error;
+      const auto same =
+          fuzzypid::sim::certify(uniform, er50.conditions, *er50.experiments, options, error);
+      ASSERT_TRUE(same) << error;
+      const auto& a = scaled.joints[i].worst_disk.margins;
+      const auto& b = same->joints[i].worst_disk.margins;
+      EXPECT_NEAR(a.disk_margin, b.disk_margin, 1e-9) << name << " joint " << i + 1;
+      EXPECT_NEAR(a.phase_margin_deg, b.phase_margin_deg, 1e-7) << name << " joint " << i + 1;
+      EXPECT_EQ(scaled.joints[i].stable, same->joints[i].stable);
+    }
+    // The scales matter: joint 6 (s = 0.5) and joint 5 (s = 3) differ from joint 1's loop.
+    EXPECT_GT(std::fabs(scaled.joints[4].worst_disk.margins.disk_margin -
+                        scaled.joints[5].worst_disk.margins.disk_margin),
+              0.01)
+        << name;
+  }
+}
+
 TEST(Certify, AGainScheduleIsCertifiedOverTheBoxOfTheGainsItProduces) {
   const Er50 er50;
   const fuzzypid::sim::Certificate cert = er50.certify("tests/sim/data/certified_schedule.toml");

@@ -416,3 +416,56 @@ TEST(SearchFilter, AnObserversBandwidthIsSearchedAfterTfAndRoundTrips) {
   EXPECT_NEAR(moved[0].log10_min, -1.0 + std::log10(5.0), 1e-12);
   EXPECT_NEAR(moved[0].log10_max, 1.0 + std::log10(5.0), 1e-12);
 }
+
+// --per-joint-bandwidth closes every family's space with "bandwidth_j2" .. "bandwidth_j6":
+// log10 of joints 2-6's bandwidth scales relative to joint 1 (whose scale stays 1), in [-1, 1],
+// written by to_spec and read back by from_spec; tf keeps its place. Without it the start's
+// scales are kept; a start whose joint 1 is scaled is refused (its gains would not be joint 1's).
+TEST(SearchBandwidth, FiveScalesCloseTheSpaceAndRoundTrip) {
+  for (const controller::Family family : {named_family("pid"), named_family("scheduled"),
+                                          named_family("fuzzy"), named_family("fuzzy-rules")}) {
+    controller::ControllerSpec start =
+        family == named_family("fuzzy-rules") ? converted(schedule(), named_family("fuzzy-rules"))
+                                              : controller::paper_pid();
+    start.bandwidth_scale = {1.0, 2.0, 0.5, 30.0, 1.0, 1.0};
+    tune::TableOptions o;
+    o.unvisited = tune::Unvisited::Free;
+    std::string error;
+    const auto filtered = tune::ParameterSpace::create(family, start, o, nullptr, error, true);
+    const auto scaled =
+        tune::ParameterSpace::create(family, start, o, nullptr, error, true, true);
+    ASSERT_TRUE(filtered && scaled) << error;
+    ASSERT_EQ(scaled->box().size(), filtered->box().size() + 5);
+    for (std::size_t k = 0; k < filtered->box().size(); ++k)
+      EXPECT_EQ(scaled->box()[k].name, filtered->box()[k].name);
+    for (std::size_t j = 0; j < 5; ++j) {
+      const tune::SearchBox& b = scaled->box()[filtered->box().size() + j];
+      EXPECT_EQ(b.name, "bandwidth_j" + std::to_string(j + 2));
+      EXPECT_EQ(b.log10_min, -1.0);
+      EXPECT_EQ(b.log10_max, 1.0);
+    }
+    // The start enters with its scales, 30 clamped to the box's 10.
+    std::vector<double> x = scaled->from_spec(start);
+    const std::size_t first = filtered->box().size();
+    EXPECT_NEAR(x[first], std::log10(2.0), 1e-15);
+    EXPECT_NEAR(x[first + 1], std::log10(0.5), 1e-15);
+    EXPECT_EQ(x[first + 2], 1.0);
+    x[first + 3] = -0.25;
+    const controller::ControllerSpec s = scaled->to_spec(x);
+    EXPECT_EQ(s.bandwidth_scale[0], 1.0);
+    EXPECT_NEAR(s.bandwidth_scale[4], std::pow(10.0, -0.25), 1e-15);
+    EXPECT_EQ(s.bandwidth_scale[3], 10.0);
+    EXPECT_EQ(s.gains.kp, filtered->to_spec(filtered->from_spec(start)).gains.kp);
+    const std::vector<double> back = scaled->from_spec(s);
+    ASSERT_EQ(back.size(), x.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+      EXPECT_NEAR(back[k], x[k], 1e-12) << scaled->box()[k].name;
+    EXPECT_EQ(controller::validate(s), "");
+    // Without the option the start's scales are kept.
+    EXPECT_EQ(filtered->to_spec(filtered->from_spec(start)).bandwidth_scale,
+              start.bandwidth_scale);
+    start.bandwidth_scale[0] = 2.0;
+    EXPECT_FALSE(tune::ParameterSpace::create(family, start, o, nullptr, error, true, true));
+    EXPECT_NE(error.find("joint 1 has scale 1"), std::string::npos) << error;
+  }
+}
