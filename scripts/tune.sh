@@ -25,6 +25,7 @@
 #   FAMILIES="pid ..."  the families to tune (default: all five)
 #   MIN_DISK_MARGIN=A  every candidate keeps a disk margin of at least A (--min-disk-margin; default 0)
 #   SEEDS_DIR=DIR      where the seed files and the evaluation go (default out/seeds)
+#   PER_JOINT_BANDWIDTH=1  search a bandwidth scale for joints 2-6 too (--per-joint-bandwidth)
 # The controllers shipped before the drive re-tune came from
 #   CONDITIONS=tuning/robust.toml CHATTER_WEIGHT=0 CHATTER_LIMIT=0 SEARCH_FILTER=0 BUDGET=64000 scripts/tune.sh
 set -euo pipefail
@@ -50,6 +51,7 @@ tune_one() {
                 --chatter-weight "${CHATTER_WEIGHT:-300}" --chatter-limit "${CHATTER_LIMIT:-5}"
                 --min-disk-margin "${MIN_DISK_MARGIN:-0}"
                 "${filter}" --threads "${threads}" --quiet --out "$3")
+  if [ "${PER_JOINT_BANDWIDTH:-0}" = 1 ]; then common+=(--per-joint-bandwidth); fi
   if [ -n "${BASE:-}" ]; then common+=(--base "${BASE}"); fi
   if [ "$1" = fuzzy_rules ]; then
     # shellcheck disable=SC2086

@@ -12,6 +12,7 @@
 #   FAMILIES="pid ..." the families to tune (default: pid scheduled fuzzy)
 #   MIN_DISK_MARGIN=A  every candidate keeps a disk margin of at least A (default 0: none)
 #   CHATTER_WEIGHT=W   the objective's chatter weight above 5 % reversals (default 300)
+#   PER_JOINT_BANDWIDTH=1  search a bandwidth scale for joints 2-6 too (--per-joint-bandwidth)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 budget="${BUDGET:-4000}"
@@ -19,6 +20,8 @@ seed="${SEED:-1}"
 threads="${THREADS:-$(nproc)}"
 conditions="${CONDITIONS:-tuning/ur5_class_drive.toml}"
 families="${FAMILIES:-pid scheduled fuzzy}"
+per_joint=""
+if [ "${PER_JOINT_BANDWIDTH:-0}" = 1 ]; then per_joint=--per-joint-bandwidth; fi
 bash scripts/install-deps.sh
 # shellcheck disable=SC2086
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${FUZZYPID_CMAKE_ARGS:-} >/dev/null
@@ -26,10 +29,11 @@ cmake --build build -j "$(nproc)" --target fuzzypid_cli sim_ab
 mkdir -p out/ur5_drive
 for family in ${families}; do
   echo "== ${family}"
+  # shellcheck disable=SC2086
   build/bin/fuzzypid tune --family "${family}" --conditions "${conditions}" --set training \
     --base tuning/ur5_class_base.toml --validation 4 --budget "${budget}" --seed "${seed}" \
     --chatter-weight "${CHATTER_WEIGHT:-300}" --min-disk-margin "${MIN_DISK_MARGIN:-0}" \
-    --threads "${threads}" --quiet --out "out/ur5_drive/${family}.toml"
+    --threads "${threads}" --quiet ${per_joint} --out "out/ur5_drive/${family}.toml"
   # The file records its conditions, robot and path relative to its own folder: one level up
   # from controllers/.
   sed 's|"\.\./\.\./|"../|g' "out/ur5_drive/${family}.toml" \
