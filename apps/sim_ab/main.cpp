@@ -179,6 +179,11 @@ void write_settings(std::FILE* f, const sim_ab::Options& o, const sim::Experimen
                  c.source.c_str(), controller::to_string(s.family),
                  controller::to_string(s.units.gains), controller::to_string(s.units.form),
                  fmt(s.gains.kp).c_str(), fmt(s.gains.ki).c_str(), fmt(s.gains.kd).c_str());
+    if (s.bandwidth_scale != controller::kUniformBandwidth) {
+      const auto& b = s.bandwidth_scale;
+      std::fprintf(f, " bandwidth_scale=%s,%s,%s,%s,%s,%s", fmt(b[0]).c_str(), fmt(b[1]).c_str(),
+                   fmt(b[2]).c_str(), fmt(b[3]).c_str(), fmt(b[4]).c_str(), fmt(b[5]).c_str());
+    }
     const controller::FamilyTraits& traits = controller::family_traits(s.family);
     if (traits.supervised())
       std::fprintf(

@@ -44,6 +44,9 @@ awk -F, -v s="$scales" '
     }
     exit bad
   }' run/trajectory.csv >msg || fail "the gains sim_ab ran are not the scaled ones: $(cat msg)"
+# settings.txt records the scales that ran.
+grep -q "^controller\.pj=.* bandwidth_scale=1," run/settings.txt ||
+  fail "settings.txt does not record the scales: $(grep '^controller' run/settings.txt)"
 "$fuzzypid" export-header pj.toml --namespace pj --out pj.hpp --allow-uncertified 2>err ||
   fail "export-header: $(cat err)"
 grep -q "make_controller(std::size_t joint, Scalar output_limit)" pj.hpp ||
