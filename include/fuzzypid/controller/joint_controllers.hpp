@@ -29,7 +29,8 @@ namespace fuzzypid::controller {
 [[nodiscard]] supervisor::FuzzyPidConfig<double> fuzzy_pid_config(const ControllerSpec& spec,
                                                                   std::size_t joint,
                                                                   double output_limit);
-// The factors joint `joint`'s bandwidth scale s puts on (kp, ki, kd): s², s³, s.
+// The factors joint `joint`'s bandwidth scale s puts on (kp, ki, kd): s², s³, s (joints 0 .. 5;
+// any other joint has none: 1, 1, 1).
 [[nodiscard]] pid::Gains<double> bandwidth_factors(const ControllerSpec& spec, std::size_t joint);
 
 // Owns the supervisor its fuzzy or scheduled joints point to: movable, not copyable.
