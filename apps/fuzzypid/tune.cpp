@@ -156,7 +156,10 @@ bool parse_stages(const std::string& text, std::vector<tune::Stage>& stages, std
 // whether it misses a margin the options require (judged as the search judged it).
 struct Completion {
   sim::MarginSummary margins;
-  bool short_of_required = false;
+  bool short_of_required = false;  // as the search screened: a failed search
+  // The recorded margins (certify's full grid, validation plants included) below the requirement
+  // the screened search met: warned of, since the file's [margins] then shows less than asked.
+  bool record_short_of_required = false;
 };
 
 // Completes the tuning record of `spec`, to be written to `out`: every file name in it relative to
@@ -231,6 +234,7 @@ std::optional<Completion> complete_record(const TuneOptions& t, const std::strin
         spec, trained, experiments, tune::screening_options(sim::largest_delay_s(trained)), error);
     if (!screened) return std::nullopt;
     done.short_of_required = tune::margin_shortfall(*screened, opt.objective) > 0.0;
+    done.record_short_of_required = tune::margin_shortfall(*cert, opt.objective) > 0.0;
   }
   return done;
 }
@@ -875,6 +879,17 @@ int run_tune(const TuneOptions& t) {
                  m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms,
                  t.out.c_str());
     return 1;
+  }
+  if (done->record_short_of_required) {
+    const sim::MarginSummary& m = done->margins;
+    std::fprintf(stderr,
+                 "fuzzypid tune: warning: the result kept the required margins as the search "
+                 "screened them (its training plants, a %zu-point grid of the supervisor's "
+                 "inputs), but not over every plant its [margins] record covers (validation "
+                 "plants included, a %zu-point grid): disk %.3f, gain %.2f dB, phase %.1f deg, "
+                 "delay %.1f ms (docs/margins.md)\n",
+                 tune::screening_options(0.0).grid_points, sim::CertifyOptions{}.grid_points,
+                 m.disk_margin, m.gain_margin_db, m.phase_margin_deg, m.delay_margin_ms);
   }
   const std::string text = cf::to_toml(tuned);
   if (std::fwrite(text.data(), 1, text.size(), out_file->file()) != text.size()) {
