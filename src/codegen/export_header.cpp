@@ -342,8 +342,9 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
       h += (i == 0 ? "" : ", ") + std::string(b);
     }
     h += "};\n\n";
-    h += "// The inner PID of joint `joint` (0 .. 5; any other joint gets NaN gains, which the PID\n"
-         "// refuses with Status::InvalidConfig); |u| <= output_limit.\n";
+    h +=
+        "// The inner PID of joint `joint` (0 .. 5; any other joint gets NaN gains, which the PID\n"
+        "// refuses with Status::InvalidConfig); |u| <= output_limit.\n";
   } else {
     h += "// The inner PID; |u| <= output_limit.\n";
   }
@@ -391,8 +392,8 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
                                        const char* indent) {
       return std::string(indent) + "c.output_scale = {" + lit(f.output_scale[0]) + ", " +
              lit(f.output_scale[1]) + ", " + lit(f.output_scale[2]) + "};\n" + indent +
-             "c.gain_min = " + gains(f.gain_min) + ";\n" + indent + "c.gain_max = " +
-             gains(f.gain_max) + ";\n";
+             "c.gain_min = " + gains(f.gain_min) + ";\n" + indent +
+             "c.gain_max = " + gains(f.gain_max) + ";\n";
     };
     h += "template <class Scalar>\nconstexpr fuzzypid::supervisor::FuzzyPidConfig<Scalar> "
          "config(" +

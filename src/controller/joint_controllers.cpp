@@ -15,8 +15,7 @@ pid::Gains<double> bandwidth_factors(const ControllerSpec& spec, std::size_t joi
   return {s * s, s * s * s, s};
 }
 
-pid::Config<double> pid_config(const ControllerSpec& spec, std::size_t joint,
-                               double output_limit) {
+pid::Config<double> pid_config(const ControllerSpec& spec, std::size_t joint, double output_limit) {
   const pid::Gains<double> f = bandwidth_factors(spec, joint);
   pid::Config<double> c;
   c.gains = scaled(to_continuous(spec.gains, spec.units.form, spec.units.tick_s), f);

@@ -300,8 +300,7 @@ std::array<paper::FuzzyPid<double>, kJoints> Experiment::make_fuzzy_pid(
   for (std::size_t i = 0; i < kJoints; ++i) {
     const double u_max =
         options_.gain_units == GainUnits::Acceleration ? limit[i] / nominal_inertia_[i] : limit[i];
-    joints[i] =
-        paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, i, u_max));
+    joints[i] = paper::FuzzyPid<double>(&supervisor_, controller::fuzzy_pid_config(spec, i, u_max));
   }
   return joints;
 }

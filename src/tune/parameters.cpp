@@ -102,8 +102,9 @@ std::optional<ParameterSpace> ParameterSpace::create(Family family, const Contro
   p.options_ = options;
   p.box_ = fixed_box(family);
   if (search_bandwidth && start.bandwidth_scale[0] != 1.0) {
-    error = "searching the bandwidth scales starts from a controller whose joint 1 has scale 1 "
-            "(the gains are joint 1's; the other joints' scales are relative to it)";
+    error =
+        "searching the bandwidth scales starts from a controller whose joint 1 has scale 1 "
+        "(the gains are joint 1's; the other joints' scales are relative to it)";
     return std::nullopt;
   }
   const auto with_filter = [&p]() -> std::optional<ParameterSpace> {

@@ -122,8 +122,8 @@ TEST(BandwidthScaleFile, ScalesOutOfRangeOrMiscountedAreRefusedWithLineAndColumn
 
 TEST(BandwidthScaleSpec, ValidateRefusesAScaleOutsideItsRange) {
   controller::ControllerSpec spec = controller::paper_pid();
-  for (const double bad : {0.0, -1.0, 1e-4, 1e4, std::nan(""),
-                           std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {0.0, -1.0, 1e-4, 1e4, std::nan(""), std::numeric_limits<double>::infinity()}) {
     spec.bandwidth_scale[3] = bad;
     EXPECT_NE(controller::validate(spec).find("bandwidth_scale"), std::string::npos) << bad;
   }

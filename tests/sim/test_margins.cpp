@@ -507,8 +507,8 @@ TEST(Certify, AJointWithABandwidthScaleIsCertifiedAsTheUniformControllerWithItsG
     const fuzzypid::sim::Certificate scaled = er50.certify(file);
     fuzzypid::controller::ControllerSpec spec;
     fuzzypid::FileError err;
-    ASSERT_TRUE(fuzzypid::controller_file::load(std::string(FUZZYPID_SOURCE_DIR) + "/" + file,
-                                                spec, err));
+    ASSERT_TRUE(
+        fuzzypid::controller_file::load(std::string(FUZZYPID_SOURCE_DIR) + "/" + file, spec, err));
     for (std::size_t i = 0; i < 6; ++i) {
       fuzzypid::controller::ControllerSpec uniform = spec;
       const double s = spec.bandwidth_scale[i];

@@ -424,16 +424,15 @@ TEST(SearchFilter, AnObserversBandwidthIsSearchedAfterTfAndRoundTrips) {
 TEST(SearchBandwidth, FiveScalesCloseTheSpaceAndRoundTrip) {
   for (const controller::Family family : {named_family("pid"), named_family("scheduled"),
                                           named_family("fuzzy"), named_family("fuzzy-rules")}) {
-    controller::ControllerSpec start =
-        family == named_family("fuzzy-rules") ? converted(schedule(), named_family("fuzzy-rules"))
-                                              : controller::paper_pid();
+    controller::ControllerSpec start = family == named_family("fuzzy-rules")
+                                           ? converted(schedule(), named_family("fuzzy-rules"))
+                                           : controller::paper_pid();
     start.bandwidth_scale = {1.0, 2.0, 0.5, 30.0, 1.0, 1.0};
     tune::TableOptions o;
     o.unvisited = tune::Unvisited::Free;
     std::string error;
     const auto filtered = tune::ParameterSpace::create(family, start, o, nullptr, error, true);
-    const auto scaled =
-        tune::ParameterSpace::create(family, start, o, nullptr, error, true, true);
+    const auto scaled = tune::ParameterSpace::create(family, start, o, nullptr, error, true, true);
     ASSERT_TRUE(filtered && scaled) << error;
     ASSERT_EQ(scaled->box().size(), filtered->box().size() + 5);
     for (std::size_t k = 0; k < filtered->box().size(); ++k)
@@ -462,8 +461,7 @@ TEST(SearchBandwidth, FiveScalesCloseTheSpaceAndRoundTrip) {
       EXPECT_NEAR(back[k], x[k], 1e-12) << scaled->box()[k].name;
     EXPECT_EQ(controller::validate(s), "");
     // Without the option the start's scales are kept.
-    EXPECT_EQ(filtered->to_spec(filtered->from_spec(start)).bandwidth_scale,
-              start.bandwidth_scale);
+    EXPECT_EQ(filtered->to_spec(filtered->from_spec(start)).bandwidth_scale, start.bandwidth_scale);
     start.bandwidth_scale[0] = 2.0;
     EXPECT_FALSE(tune::ParameterSpace::create(family, start, o, nullptr, error, true, true));
     EXPECT_NE(error.find("joint 1 has scale 1"), std::string::npos) << error;

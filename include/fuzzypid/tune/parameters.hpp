@@ -124,8 +124,8 @@ class ParameterSpace {
   std::vector<CellClass> classes_;
   std::size_t first_cell_ = 0;  // index of the first cell parameter in x
   std::size_t held_cells_ = 0;
-  bool search_filter_ = false;    // tf follows the family's parameters
-  bool search_observer_ = false;  // observer_hz follows tf
+  bool search_filter_ = false;     // tf follows the family's parameters
+  bool search_observer_ = false;   // observer_hz follows tf
   bool search_bandwidth_ = false;  // bandwidth_j2 .. bandwidth_j6 close the space
   std::size_t first_option_ = 0;   // index of tf (or of the first after the family's)
 };
