@@ -68,7 +68,9 @@ TEST_P(BandwidthScale, EveryGainAJointUsesIsTheUniformControllersTimesSSquaredSC
       moved += gb.kp != k0.kp || gb.ki != k0.ki || gb.kd != k0.kd ? 1 : 0;
     }
   }
-  if (controller::family_traits(scaled.family).supervised()) EXPECT_GT(moved, 1000);
+  if (controller::family_traits(scaled.family).supervised()) {
+    EXPECT_GT(moved, 1000);
+  }
   for (std::size_t j = 0; j < controller::kJoints; ++j)
     EXPECT_TRUE(close(controller::pid_config(scaled, j, 1.0).derivative_filter_s,
                       scaled.pid.derivative_filter_s / scaled.bandwidth_scale[j]));
