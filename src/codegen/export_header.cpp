@@ -34,6 +34,23 @@ struct CodeWriter {
   }
 };
 
+// An exact double literal: hexadecimal, or the infinity of <limits>.
+std::string double_literal(double v) {
+  if (std::isinf(v))
+    return std::string(v < 0 ? "-" : "") + "std::numeric_limits<double>::infinity()";
+  char b[64];
+  std::snprintf(b, sizeof b, "%a", v);
+  return b;
+}
+
+// Six doubles as a braced initialiser of exact literals.
+std::string six_doubles(const std::array<double, 6>& v) {
+  std::string t = "{";
+  for (std::size_t i = 0; i < v.size(); ++i)
+    t += (i == 0 ? "" : ", ") + double_literal(v[i]);
+  return t + "}";
+}
+
 std::string gains(const pid::Gains<double>& g) {
   return "{" + lit(g.kp) + ", " + lit(g.ki) + ", " + lit(g.kd) + "}";
 }
@@ -254,28 +271,12 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   h += supervisor.includes;
   h += "\nnamespace " + ns + " {\n\n";
   h += "inline constexpr const char* kFamily = \"" + std::string(to_string(spec.family)) + "\";\n";
-  h += "inline constexpr double kTickS = " + std::string([&] {
-         char b[64];
-         std::snprintf(b, sizeof b, "%a", spec.units.tick_s);
-         return std::string(b);
-       }()) +
+  h += "inline constexpr double kTickS = " + double_literal(spec.units.tick_s) +
        ";  // the tick the file's gains refer to\n";
   h += std::string("inline constexpr bool kGravityFeedforward = ") +
        (spec.feedforward.gravity ? "true" : "false") +
        ";  // add g^(q_desired), N·m, to the torque\n\n";
   if (plant != nullptr) {
-    const auto six = [](const std::array<double, 6>& v) {
-      std::string t = "{";
-      for (std::size_t i = 0; i < v.size(); ++i) {
-        char b[64];
-        if (std::isinf(v[i]))
-          std::snprintf(b, sizeof b, "std::numeric_limits<double>::infinity()");
-        else
-          std::snprintf(b, sizeof b, "%a", v[i]);
-        t += (i == 0 ? "" : ", ") + std::string(b);
-      }
-      return t + "}";
-    };
     const bool acceleration = spec.units.gains == GainUnits::Acceleration;
     std::array<double, 6> output_limit = plant->torque_limit_nm;
     if (acceleration)
@@ -285,11 +286,11 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
     h += acceleration ? "// Apply tau_i = kNominalInertiaKgm2[i] * u_i and clamp |tau_i| <= "
                         "kTorqueLimitNm[i] to get\n// the simulated torque.\n"
                       : "// u_i is the torque; clamp |u_i| <= kTorqueLimitNm[i].\n";
-    h += "inline constexpr double kNominalInertiaKgm2[6] = " + six(plant->nominal_inertia_kgm2) +
-         ";  // J^_i, kg·m²\n";
-    h += "inline constexpr double kTorqueLimitNm[6] = " + six(plant->torque_limit_nm) +
+    h += "inline constexpr double kNominalInertiaKgm2[6] = " +
+         six_doubles(plant->nominal_inertia_kgm2) + ";  // J^_i, kg·m²\n";
+    h += "inline constexpr double kTorqueLimitNm[6] = " + six_doubles(plant->torque_limit_nm) +
          ";  // N·m\n";
-    h += std::string("inline constexpr double kOutputLimit[6] = ") + six(output_limit) +
+    h += std::string("inline constexpr double kOutputLimit[6] = ") + six_doubles(output_limit) +
          (acceleration ? ";  // rad/s^2: the output_limit of joint i\n\n"
                        : ";  // N·m: the output_limit of joint i\n\n");
   }
@@ -335,13 +336,8 @@ std::string export_header(const ControllerSpec& spec, const std::string& ns,
   if (per_joint) {
     h += "// Joint i runs the file's loop kBandwidthScale[i] times faster: its gains are Kp s^2,\n"
          "// Ki s^3, Kd s and its derivative filter Tf / s (docs/tuning.md), as written below.\n";
-    h += "inline constexpr double kBandwidthScale[6] = {";
-    for (std::size_t i = 0; i < kSpecJoints; ++i) {
-      char b[64];
-      std::snprintf(b, sizeof b, "%a", spec.bandwidth_scale[i]);
-      h += (i == 0 ? "" : ", ") + std::string(b);
-    }
-    h += "};\n\n";
+    h += "inline constexpr double kBandwidthScale[6] = " + six_doubles(spec.bandwidth_scale) +
+         ";\n\n";
     h +=
         "// The inner PID of joint `joint` (0 .. 5; any other joint gets NaN gains, which the PID\n"
         "// refuses with Status::InvalidConfig); |u| <= output_limit.\n";
