@@ -62,6 +62,12 @@ namespace fuzzypid::cli {
                                            const std::vector<std::string>& names,
                                            const std::vector<std::string>& inputs);
 
+// `file` (relative to the current folder, or absolute) as named from the folder of the file `out`
+// (how a written file names the files it refers to): relative when both are on one tree, else
+// absolute. Symbolic links in the folders are resolved, so the name leads where a reader of `out`
+// follows it.
+[[nodiscard]] std::string path_from_folder_of(const std::string& out, const std::string& file);
+
 class OutputSet {
  public:
   // Locks `dir`, removes temporaries left by killed runs, creates the temporary directory and

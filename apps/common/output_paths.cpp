@@ -152,4 +152,22 @@ std::string check_output_dir(const std::string& dir, const std::vector<std::stri
   }
 }
 
+std::string path_from_folder_of(const std::string& out, const std::string& file) {
+  // The folder of `p`, absolute with its links resolved; false when it cannot be resolved.
+  const auto folder_of = [](const fs::path& p, fs::path& folder) {
+    std::error_code ec;
+    folder = fs::absolute(p.has_parent_path() ? p.parent_path() : fs::path("."), ec);
+    if (!ec) folder = fs::weakly_canonical(folder, ec);
+    return !ec;
+  };
+  const fs::path f(file);
+  fs::path from, folder;
+  std::error_code ec;
+  if (!folder_of(f, from) || !folder_of(fs::path(out), folder))
+    return fs::absolute(f, ec).lexically_normal().generic_string();
+  const fs::path target = from / f.filename();
+  const fs::path relative = target.lexically_relative(folder);
+  return relative.empty() ? target.generic_string() : relative.generic_string();
+}
+
 }  // namespace fuzzypid::cli

@@ -1,6 +1,7 @@
 // `fuzzypid certify CONTROLLER`: the frozen-gain margins of each joint's linear loop over the
 // inertia range of the conditions (sim/certify.hpp, docs/margins.md), as a table or JSON.
-// Exit 0 certified, 1 not certified, 2 bad usage or an input that cannot be read.
+// Exit 0 certified, 1 not certified, 2 bad usage or an input that cannot be read. With --record the
+// certificate also replaces the file's [margins] record (1 too when that write fails).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "fuzzypid/sim/certify.hpp"
 #include "fuzzypid/sim/condition_set.hpp"
 #include "fuzzypid/sim/experiment.hpp"
+#include "output_files.hpp"
 #include "robot_options.hpp"
 
 namespace fuzzypid::cli {
@@ -31,6 +33,7 @@ struct CertifyCli {
   bool set_given = false;
   std::size_t grid = 25;
   bool json = false;
+  bool record = false;  // write the certificate into the file's [margins]
   RobotOptions robot;
 };
 
@@ -235,6 +238,19 @@ int run_certify(const CertifyCli& o) {
     print_json(o, *cert);
   else
     print_table(o, *cert);
+  if (o.record) {
+    // The record a tune writes, over the conditions named as the file names its files; the rest
+    // of the file is rewritten as the tuner writes it.
+    controller_file.margins = sim::margin_record(*cert);
+    controller_file.margins->conditions = path_from_folder_of(o.controller, o.conditions);
+    controller_file.margins->set = o.set;
+    if (const std::string bad =
+            write_output_file(o.controller, controller_file::to_toml(controller_file), tool);
+        !bad.empty()) {
+      std::fprintf(stderr, "%s: --record: %s\n", tool, bad.c_str());
+      return kExitFailure;
+    }
+  }
   return cert->certified ? kExitOk : kExitFailure;
 }
 
@@ -261,8 +277,13 @@ void add_certify_command(CLI::App& app, std::function<int()>& run) {
       ->check(CLI::Range(3, 201))
       ->option_text("N");
   cmd->add_flag("--json", o->json, "JSON on stdout instead of the table");
+  CLI::Option* record = cmd->add_flag(
+      "--record", o->record,
+      "also write the certificate into the controller file's [margins] record, as `fuzzypid "
+      "tune` records it (needs --conditions and the default --grid; the file is rewritten as "
+      "the tuner writes it)");
   add_robot_options(*cmd, o->robot, true);
-  cmd->callback([&run, o, conditions, set] {
+  cmd->callback([&run, o, conditions, set, record] {
     if (const std::string bad = check_robot_options(o->robot); !bad.empty())
       throw CLI::ValidationError(bad);
     if (conditions->count() > 0 && o->robot.any())
@@ -270,6 +291,12 @@ void add_certify_command(CLI::App& app, std::function<int()>& run) {
                                  "the conditions name their robots: give no robot options");
     if (set->count() > 0 && conditions->count() == 0)
       throw CLI::ValidationError("--set", "needs --conditions");
+    if (record->count() > 0 && conditions->count() == 0)
+      throw CLI::ValidationError("--record", "needs --conditions (the record names them)");
+    if (record->count() > 0 && o->grid != CertifyCli{}.grid)
+      throw CLI::ValidationError("--record",
+                                 "records the certificate on the default --grid, as the tuner "
+                                 "does: give no --grid");
     run = [o] { return run_certify(*o); };
   });
 }

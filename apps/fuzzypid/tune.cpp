@@ -67,28 +67,6 @@ bool parse_box(const std::string& text, tune::SearchBox& box) {
          std::fabs(box.log10_max) <= kMaxLog10;
 }
 
-// `file` (relative to the current folder, or absolute) as named from the folder of the file `out`:
-// relative when both are on one tree, else absolute. Symbolic links in the folders are resolved, so
-// the name leads where a reader of `out` follows it.
-std::string path_from_folder_of(const std::string& out, const std::string& file) {
-  namespace fs = std::filesystem;
-  // The folder of `p`, absolute with its links resolved; false when it cannot be resolved.
-  const auto folder_of = [](const fs::path& p, fs::path& folder) {
-    std::error_code ec;
-    folder = fs::absolute(p.has_parent_path() ? p.parent_path() : fs::path("."), ec);
-    if (!ec) folder = fs::weakly_canonical(folder, ec);
-    return !ec;
-  };
-  const fs::path f(file);
-  fs::path from, folder;
-  std::error_code ec;
-  if (!folder_of(f, from) || !folder_of(fs::path(out), folder))
-    return fs::absolute(f, ec).lexically_normal().generic_string();
-  const fs::path target = from / f.filename();
-  const fs::path relative = target.lexically_relative(folder);
-  return relative.empty() ? target.generic_string() : relative.generic_string();
-}
-
 struct TuneOptions {
   std::string family_name, conditions, set = "training", out, base_file, init_file, stages;
   std::uint64_t budget = 16000, seed = 1, population = 0, validation = 0;
