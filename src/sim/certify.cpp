@@ -314,8 +314,8 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
   MarginOptions bulk = options.margin;
   bulk.delay_ticks = false;
 
-  bool all_stable = true;
-  for (std::size_t i = 0; i < robot::kNumJoints; ++i) {
+  // Joint i's certificate; it writes cert.joints[i] and reads nothing another joint writes.
+  const auto certify_joint = [&](std::size_t i) {
     JointCertificate& jc = cert.joints[i];
     jc.inertia_min_kgm2 = kInf;
     jc.damping_min_nms = kInf;
@@ -368,13 +368,12 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
     }
     // The whole-tick delay margin of the worst delay case only (it takes eigenvalues).
     if (!first) jc.worst_delay.margins = margins(jc.worst_delay.loop, options.margin);
-    all_stable = all_stable && jc.stable && jc.worst_disk.margins.disk_margin > 0.0;
 
     // The gains may switch every tick inside their box, the inertia anywhere in its range.
     jc.gain_box = gain_box(controller, i, (*points)[i]);
     jc.plant_groups = groups[i].size();
     jc.lyapunov.reason = "not computed";
-    if (!options.lyapunov) continue;
+    if (!options.lyapunov) return;
     bool first_set = true;
     for (const SwitchingLoop& set :
          switching_loops(controller, i, groups[i], jc.gain_box, options.delay_s)) {
@@ -384,7 +383,15 @@ std::optional<Certificate> certify(const ControllerSpec& controller, const Plant
       if (!lc.certified) break;  // the joint is not certified: the first failing set says why
     }
     jc.certified = jc.stable && jc.worst_disk.margins.disk_margin > 0.0 && jc.lyapunov.certified;
-  }
+  };
+  if (options.for_each_joint)
+    options.for_each_joint(robot::kNumJoints, certify_joint);
+  else
+    for (std::size_t i = 0; i < robot::kNumJoints; ++i)
+      certify_joint(i);
+  const bool all_stable = std::all_of(
+      cert.joints.begin(), cert.joints.end(),
+      [](const JointCertificate& j) { return j.stable && j.worst_disk.margins.disk_margin > 0.0; });
   std::string failing;
   for (std::size_t i = 0; i < robot::kNumJoints && failing.empty(); ++i)
     if (!cert.joints[i].lyapunov.certified)

@@ -1,7 +1,9 @@
 #include "fuzzypid/tune/tune.hpp"
 
+#include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -52,12 +54,19 @@ std::optional<Result> tune_on(const ExperimentOf& experiment,
   const auto cost_of = [&](const std::vector<double>& x, int set) {
     return detail::sum(runner.run({x}, set, false).runs, o);
   };
+  // The screening of one candidate at a time is most of a margin-screened search's work: its six
+  // joints run on the arena's threads (the candidate's runs do too, below).
+  sim::CertifyOptions screening = screening_options(training_set.delay_s);
+  if (arena != nullptr)
+    screening.for_each_joint = [arena](std::size_t n,
+                                       const std::function<void(std::size_t)>& joint) {
+      arena->execute([&] { tbb::parallel_for(std::size_t{0}, n, joint); });
+    };
   const auto objective = [&](const std::vector<double>& x) {
     const ControllerSpec spec = space->to_spec(x);
     if (ranges) {
       std::string ignored;
-      const auto cert =
-          sim::certify(spec, *ranges, screening_options(training_set.delay_s), ignored);
+      const auto cert = sim::certify(spec, *ranges, screening, ignored);
       const double shortfall = cert ? margin_shortfall(*cert, o) : 1.0;
       // More than any feasible candidate (whose runs cost at most fault_cost each), and less the
       // closer it comes: the search is led back to the feasible region.

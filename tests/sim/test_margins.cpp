@@ -8,9 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fuzzypid/controller_file/controller_file.hpp"
@@ -534,6 +536,70 @@ TEST(Certify, AJointWithABandwidthScaleIsCertifiedAsTheUniformControllerWithItsG
                         scaled.joints[5].worst_disk.margins.disk_margin),
               0.01)
         << name;
+  }
+}
+
+// The tuner screens each candidate with its joints on several threads: a certificate does not
+// depend on the order or the threads its joints are computed on.
+TEST(Certify, ItsJointsComputedInAnyOrderOrOnThreadsGiveTheSameCertificate) {
+  const Er50 er50;
+  fuzzypid::controller::ControllerSpec spec;
+  fuzzypid::FileError err;
+  ASSERT_TRUE(fuzzypid::controller_file::load(
+      std::string(FUZZYPID_SOURCE_DIR) + "/tests/sim/data/per_joint_scheduled.toml", spec, err))
+      << err.to_string();
+  const auto expect_same = [](const fuzzypid::sim::Certificate& a,
+                              const fuzzypid::sim::Certificate& b, const char* how) {
+    EXPECT_EQ(a.verdict, b.verdict) << how;
+    EXPECT_EQ(a.certified, b.certified) << how;
+    for (std::size_t i = 0; i < 6; ++i) {
+      const auto& x = a.joints[i];
+      const auto& y = b.joints[i];
+      EXPECT_EQ(x.stable, y.stable) << how << " joint " << i + 1;
+      EXPECT_EQ(x.cases, y.cases) << how << " joint " << i + 1;
+      EXPECT_EQ(x.worst_disk.margins.disk_margin, y.worst_disk.margins.disk_margin) << how;
+      EXPECT_EQ(x.worst_gain.margins.gain_margin_db, y.worst_gain.margins.gain_margin_db) << how;
+      EXPECT_EQ(x.worst_phase.margins.phase_margin_deg, y.worst_phase.margins.phase_margin_deg)
+          << how;
+      EXPECT_EQ(x.worst_delay.margins.delay_margin_s, y.worst_delay.margins.delay_margin_s) << how;
+      EXPECT_EQ(x.worst_disk.inertia_kgm2, y.worst_disk.inertia_kgm2) << how;
+      EXPECT_EQ(x.lyapunov.certified, y.lyapunov.certified) << how;
+      EXPECT_EQ(x.lyapunov.reason, y.lyapunov.reason) << how;
+      EXPECT_TRUE(x.lyapunov.contraction == y.lyapunov.contraction ||
+                  (std::isnan(x.lyapunov.contraction) && std::isnan(y.lyapunov.contraction)))
+          << how;
+    }
+  };
+  for (const bool lyapunov : {true, false}) {
+    fuzzypid::sim::CertifyOptions options;
+    options.grid_points = 5;
+    options.delay_s = 0.03;
+    options.lyapunov = lyapunov;
+    std::string error;
+    const auto in_order =
+        fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error);
+    ASSERT_TRUE(in_order) << error;
+    ASSERT_GT(in_order->joints[0].cases, 1u);
+    options.for_each_joint = [](std::size_t n, const std::function<void(std::size_t)>& joint) {
+      for (std::size_t i = n; i-- > 0;)
+        joint(i);
+    };
+    const auto reversed =
+        fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error);
+    ASSERT_TRUE(reversed) << error;
+    expect_same(*in_order, *reversed, lyapunov ? "reversed, Lyapunov" : "reversed");
+    if (lyapunov) continue;  // the SDPA solver is not run on several threads at once
+    options.for_each_joint = [](std::size_t n, const std::function<void(std::size_t)>& joint) {
+      std::vector<std::thread> threads;
+      for (std::size_t i = 0; i < n; ++i)
+        threads.emplace_back([&joint, i] { joint(i); });
+      for (std::thread& t : threads)
+        t.join();
+    };
+    const auto threaded =
+        fuzzypid::sim::certify(spec, er50.conditions, *er50.experiments, options, error);
+    ASSERT_TRUE(threaded) << error;
+    expect_same(*in_order, *threaded, "a thread per joint");
   }
 }
 

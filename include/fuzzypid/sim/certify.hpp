@@ -33,6 +33,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,11 @@ struct CertifyOptions {
   std::size_t grid_points = 25;  // per axis of the (x, y) grid of moving-gain families, >= 3
   MarginOptions margin{};
   bool lyapunov = true;  // also solve for the common Lyapunov function (SDPA)
+  // Runs `joint(i)` once for each i in [0, n); empty: in order on this thread. Each call touches
+  // only joint i's part of the certificate, so a caller may run them in parallel (the tuner's
+  // screening does, on its threads); the certificate is the same either way. With `lyapunov` the
+  // calls also run the SDPA solver: give an executor only without it.
+  std::function<void(std::size_t n, const std::function<void(std::size_t)>& joint)> for_each_joint;
 };
 
 // One evaluated loop and where it comes from.
